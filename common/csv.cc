@@ -1,0 +1,187 @@
+#include "common/csv.h"
+
+#include "common/error.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace clearjoint
+{
+  namespace
+  {
+    std::string trim(const std::string &s)
+    {
+      const auto b = s.find_first_not_of(" \t\r\n");
+      if (b == std::string::npos)
+        return "";
+      const auto e = s.find_last_not_of(" \t\r\n");
+      return s.substr(b, e - b + 1);
+    }
+
+    std::vector<std::string> split_fields(const std::string &line)
+    {
+      std::vector<std::string> out;
+      if (line.find(',') != std::string::npos)
+      {
+        std::stringstream ss(line);
+        std::string field;
+        while (std::getline(ss, field, ','))
+          out.push_back(trim(field));
+        if (!line.empty() && line.back() == ',')
+          out.push_back("");
+      }
+      else
+      {
+        std::stringstream ss(line);
+        std::string field;
+        while (ss >> field)
+          out.push_back(field);
+      }
+      return out;
+    }
+
+    bool parse_double(const std::string &text, double &value)
+    {
+      if (text.empty())
+        return false;
+      char *end = nullptr;
+      errno = 0;
+      value = std::strtod(text.c_str(), &end);
+      return end == text.c_str() + text.size() && errno != ERANGE;
+    }
+  } // namespace
+
+  std::size_t CsvTable::column_index(const std::string &name) const
+  {
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      if (columns[i] == name)
+        return i;
+    std::string present;
+    for (const auto &c : columns)
+      present += (present.empty() ? "" : ", ") + c;
+    throw InputError(source, "column '" + name + "'", "missing",
+                     "a column named '" + name + "'", "columns present: " + present);
+  }
+
+  bool CsvTable::has_column(const std::string &name) const
+  {
+    for (const auto &c : columns)
+      if (c == name)
+        return true;
+    return false;
+  }
+
+  std::vector<double> CsvTable::column(const std::string &name) const
+  {
+    const std::size_t j = column_index(name);
+    std::vector<double> out;
+    out.reserve(rows.size());
+    for (const auto &r : rows)
+      out.push_back(r[j]);
+    return out;
+  }
+
+  std::string CsvTable::unit_of(const std::string &name) const
+  {
+    const std::size_t j = column_index(name);
+    return j < units.size() ? units[j] : "";
+  }
+
+  CsvTable read_csv(const std::string &path)
+  {
+    std::ifstream in(path);
+    if (!in)
+      throw InputError("cannot read CSV file '" + path + "'");
+    CsvTable t;
+    t.source = path;
+    std::string line;
+    std::size_t line_no = 0;
+    while (std::getline(in, line))
+    {
+      ++line_no;
+      const std::string s = trim(line);
+      if (s.empty())
+        continue;
+      if (s[0] == '#')
+      {
+        const std::string c = trim(s.substr(1));
+        if (c.rfind("units:", 0) == 0)
+          t.units = split_fields(trim(c.substr(6)));
+        else if (c.rfind("status:", 0) == 0)
+          t.status = trim(c.substr(7));
+        else
+          t.comments.push_back(c);
+        continue;
+      }
+      auto fields = split_fields(s);
+      if (t.columns.empty())
+      {
+        t.columns = fields;
+        continue;
+      }
+      if (fields.size() != t.columns.size())
+        throw InputError(path, "line " + std::to_string(line_no),
+                         std::to_string(fields.size()) + " fields",
+                         std::to_string(t.columns.size()) + " fields as in the header");
+      std::vector<double> row(fields.size());
+      for (std::size_t j = 0; j < fields.size(); ++j)
+        if (!parse_double(fields[j], row[j]))
+          throw InputError(path, "line " + std::to_string(line_no) + ", column '" +
+                                   t.columns[j] + "'",
+                           fields[j], "a number");
+      t.rows.push_back(std::move(row));
+    }
+    if (t.columns.empty())
+      throw InputError(path, "", "", "", "the file has no header line");
+    if (!t.units.empty() && t.units.size() != t.columns.size())
+      throw InputError(path, "# units:", std::to_string(t.units.size()) + " units",
+                       std::to_string(t.columns.size()) + " units, one per column");
+    return t;
+  }
+
+  CsvWriter::CsvWriter(const std::string &path, std::vector<std::string> columns,
+                       std::vector<std::string> units, const std::vector<std::string> &comments)
+    : file_(std::make_unique<AtomicFile>(path))
+    , n_columns_(columns.size())
+  {
+    if (units.size() != columns.size())
+      throw std::logic_error("CsvWriter: one unit per column is required for " + path);
+    auto &o = file_->stream();
+    for (const auto &c : comments)
+      o << "# " << c << '\n';
+    o << "# units: ";
+    for (std::size_t j = 0; j < units.size(); ++j)
+      o << (j ? "," : "") << units[j];
+    o << '\n';
+    for (std::size_t j = 0; j < columns.size(); ++j)
+      o << (j ? "," : "") << columns[j];
+    o << '\n';
+  }
+
+  void CsvWriter::write_row(const std::vector<double> &values)
+  {
+    if (values.size() != n_columns_)
+      throw std::logic_error("CsvWriter: row has " + std::to_string(values.size()) +
+                             " values, header has " + std::to_string(n_columns_));
+    auto &o = file_->stream();
+    for (std::size_t j = 0; j < values.size(); ++j)
+      o << (j ? "," : "") << values[j];
+    o << '\n';
+    ++n_rows_;
+  }
+
+  void CsvWriter::commit()
+  {
+    file_->stream() << "# status: complete\n";
+    file_->commit();
+  }
+
+  void CsvWriter::commit_incomplete(const std::string &reason)
+  {
+    file_->stream() << "# status: incomplete: " << reason << '\n';
+    file_->commit();
+  }
+} // namespace clearjoint

@@ -1,0 +1,45 @@
+#include "common/error.h"
+
+#include <cstdio>
+
+namespace clearjoint
+{
+  namespace
+  {
+    std::string compose(const std::string &file, const std::string &key_path,
+                        const std::string &value, const std::string &allowed,
+                        const std::string &detail)
+    {
+      std::string m = "input error";
+      if (!file.empty())
+        m += " in " + file;
+      if (!key_path.empty())
+        m += ": key '" + key_path + "'";
+      if (!value.empty())
+        m += " has value '" + value + "'";
+      if (!allowed.empty())
+        m += "; allowed: " + allowed;
+      if (!detail.empty())
+        m += " (" + detail + ")";
+      return m;
+    }
+  } // namespace
+
+  InputError::InputError(std::string file, std::string key_path, std::string value,
+                         std::string allowed, std::string detail)
+    : std::runtime_error(compose(file, key_path, value, allowed, detail))
+    , file_(std::move(file))
+    , key_path_(std::move(key_path))
+  {}
+
+  InputError::InputError(const std::string &message)
+    : std::runtime_error("input error: " + message)
+  {}
+
+  std::string format_value(const double value)
+  {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.6g", value);
+    return buf;
+  }
+} // namespace clearjoint
