@@ -1,0 +1,34 @@
+#!/usr/bin/env python3
+"""clearjoint's plotting script: every plot and the HTML report come from here.
+
+    scripts/plot.py <kind> [args...]
+
+Each kind lives in scripts/plotting/<kind>.py and exposes main(argv). Stages call this script on
+their own outputs after writing them (and skip it with --no-plots). Only Debian's
+python3-matplotlib is needed; the Agg backend is used so no display is required.
+"""
+import importlib
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+
+def main() -> int:
+    kinds = sorted(f[:-3] for f in os.listdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), "plotting"))
+                   if f.endswith(".py") and not f.startswith("_"))
+    if len(sys.argv) < 2 or sys.argv[1] in ("-h", "--help"):
+        print(__doc__ + "\nkinds: " + ", ".join(kinds))
+        return 0 if len(sys.argv) >= 2 else 1
+    kind = sys.argv[1]
+    if kind not in kinds:
+        print(f"plot.py: unknown kind '{kind}'; allowed: {', '.join(kinds)}", file=sys.stderr)
+        return 1
+    import matplotlib
+    matplotlib.use("Agg")
+    module = importlib.import_module(f"plotting.{kind}")
+    return int(module.main(sys.argv[2:]) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
