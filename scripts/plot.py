@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """clearjoint's plotting script: every plot and the HTML report come from here.
 
     scripts/plot.py <kind> [args...]

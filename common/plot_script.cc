@@ -1,0 +1,58 @@
+#include "common/plot_script.h"
+
+#include "common/log.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+
+extern char **environ;
+
+namespace clearjoint
+{
+  std::string plot_script_path()
+  {
+    if (const char *env = std::getenv("CLEARJOINT_PLOT_SCRIPT"); env && *env)
+      return env;
+    return std::string(CLEARJOINT_SOURCE_DIR) + "/scripts/plot.py";
+  }
+
+  bool run_plot_script(const std::string &kind, const std::vector<std::string> &args)
+  {
+    // Debian's python3-matplotlib lives with /usr/bin/python3; a python3 earlier on PATH
+    // (pyenv, conda) usually lacks it. $CLEARJOINT_PYTHON overrides both.
+    std::string python = "python3";
+    if (const char *env = std::getenv("CLEARJOINT_PYTHON"); env && *env)
+      python = env;
+    else if (access("/usr/bin/python3", X_OK) == 0)
+      python = "/usr/bin/python3";
+    std::vector<std::string> words = {python, plot_script_path(), kind};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char *> argv;
+    for (auto &w : words)
+      argv.push_back(w.data());
+    argv.push_back(nullptr);
+    pid_t pid;
+    const int rc = posix_spawnp(&pid, words[0].c_str(), nullptr, nullptr, argv.data(), environ);
+    if (rc != 0)
+    {
+      log::warning("plots skipped: cannot start " + words[0] + ": " + std::string(std::strerror(rc)));
+      return false;
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+      if (errno != EINTR)
+        return false;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    {
+      log::warning("plots failed: '" + words[1] + " " + kind +
+                   "' exited with an error (the data files are complete; see the message above)");
+      return false;
+    }
+    return true;
+  }
+} // namespace clearjoint

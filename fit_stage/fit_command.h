@@ -1,0 +1,37 @@
+// The fit_stage command: reads force–penetration CSV files, fits F = K·δ^n, writes law files
+// (or a law family), their manifest and plots. Kept apart from main() so tests can call it.
+#pragma once
+
+#include "fit_stage/power_law_fitter.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace clearjoint::fit
+{
+  struct FitCommand
+  {
+    std::vector<std::string> inputs;  ///< one CSV, or FILE=VALUE pairs with --family
+    std::string output;               ///< law (or law-family) JSON path
+    std::optional<std::string> family_parameter;  ///< e.g. "theta", "t_B"
+    std::string family_unit;          ///< unit of the family parameter (SI)
+    std::string family_policy = "error";
+    std::optional<std::string> scene_file;  ///< scene parameters to embed (YAML/JSON)
+    std::optional<double> delta_ref;  ///< [m] reference penetration; default: top of range
+    FitOptions options;
+    bool plots = true;
+  };
+
+  /// Parses "A:B" (metres) into the options' range; throws InputError naming --range.
+  void parse_range(const std::string &text, FitOptions &options);
+  /// Parses "K,n"; throws InputError naming --start.
+  std::pair<double, double> parse_start(const std::string &text);
+
+  /// Fits one CSV file into a law (does not write it). `scene` is embedded as given.
+  laws::LawFile fit_csv_file(const std::string &csv_path, const FitOptions &options,
+                             const nlohmann::json &scene, std::optional<double> delta_ref);
+
+  /// Runs the whole command: returns the process exit code (see fit_stage --help).
+  int run_fit_command(const FitCommand &command, int argc, const char *const *argv);
+} // namespace clearjoint::fit

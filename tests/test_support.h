@@ -1,0 +1,52 @@
+// Small helpers shared by the tests: a fresh scratch directory per test, writing files, and
+// running an executable with its exit code.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace clearjoint::test_support
+{
+  /// A fresh, empty directory under the build tree, removed again at the end of the test.
+  class ScratchDir
+  {
+  public:
+    explicit ScratchDir(const std::string &name)
+      : path_(std::filesystem::path(CLEARJOINT_BINARY_DIR) / "test_scratch" /
+              (name + "_" + std::to_string(::getpid())))
+    {
+      std::filesystem::remove_all(path_);
+      std::filesystem::create_directories(path_);
+    }
+    ~ScratchDir() { std::filesystem::remove_all(path_); }
+    std::string file(const std::string &name) const { return (path_ / name).string(); }
+    const std::filesystem::path &path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+  };
+
+  inline void write_text(const std::string &path, const std::string &text)
+  {
+    std::ofstream(path) << text;
+  }
+
+  /// Runs a shell command line; returns its exit status (or -1 if it did not exit normally).
+  /// Output goes to `log_path` so tests can check messages.
+  inline int run_command(const std::string &command_line, const std::string &log_path)
+  {
+    const int status = std::system((command_line + " > '" + log_path + "' 2>&1").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  inline std::string read_text(const std::string &path)
+  {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+} // namespace clearjoint::test_support
