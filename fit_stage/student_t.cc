@@ -57,8 +57,16 @@ namespace clearjoint::fit
 
   double student_t_cdf(const double t, const double dof)
   {
-    const double x = dof / (dof + t * t);
-    const double tail = 0.5 * regularized_incomplete_beta(0.5 * dof, 0.5, x);
+    // Two forms of the same identity, chosen so the beta function's argument never sits next
+    // to 1 (where 1 − x loses digits):  P(|T| > t) = I_{ν/(ν+t²)}(ν/2, 1/2)
+    //                                   P(|T| < t) = I_{t²/(ν+t²)}(1/2, ν/2).
+    const double t2 = t * t;
+    if (t2 < dof)
+    {
+      const double inner = 0.5 * regularized_incomplete_beta(0.5, 0.5 * dof, t2 / (dof + t2));
+      return t >= 0.0 ? 0.5 + inner : 0.5 - inner;
+    }
+    const double tail = 0.5 * regularized_incomplete_beta(0.5 * dof, 0.5, dof / (dof + t2));
     return t >= 0.0 ? 1.0 - tail : tail;
   }
 
