@@ -61,7 +61,10 @@ namespace clearjoint
     /// Throws InputError if `value` is not an object. key_prefix is "" at the top level.
     StrictObject(const nlohmann::json &value, std::string file, std::string key_prefix = "");
 
+    /// True if the key is present and not null. Does not mark the key as read.
     bool has(const std::string &key) const;
+    /// Marks an optional key as known (so finish() accepts it, e.g. when it is null).
+    void allow(const std::string &key) { read_keys_.insert(key); }
 
     double number(const std::string &key, const Range &range);
     double number_or(const std::string &key, double fallback, const Range &range);

@@ -1,0 +1,52 @@
+// Runs one stage invocation ("task") of the pipeline, unless an identical one already ran.
+//
+// A task's identity is the sha256 of: the stage executable (the code version), its arguments,
+// the contents of its input files, and the identities of the tasks it depends on. The task
+// writes into "<dir>.partial/"; only when the stage exits 0 is that renamed to "<dir>/" and a
+// stamp "<dir>/.task.json" (with the identity) written atomically. So:
+//   - a second run with nothing changed finds every stamp and runs nothing;
+//   - changing one input re-runs exactly the tasks whose identity it enters;
+//   - an interrupted or failed task leaves only "<dir>.partial/", which never looks complete,
+//     and is redone next time.
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+namespace clearjoint::pipeline
+{
+  struct Task
+  {
+    std::string name;                  ///< e.g. "fe/thickness/t_B=0.004"
+    std::string stage;                 ///< fe_stage | fit_stage | mbd_stage (for messages)
+    std::vector<std::string> launcher; ///< e.g. {"mpirun", "-np", "2"}; not part of identity
+    std::string executable;            ///< absolute path of the stage executable
+    /// Arguments; the token "{out}" is replaced by the task's working output directory.
+    std::vector<std::string> args;
+    std::vector<std::string> input_files;  ///< hashed into the identity
+    std::vector<std::string> depends_on;   ///< identities of upstream tasks
+    std::string output_dir;                ///< final output directory
+  };
+
+  enum class TaskOutcome { ran, reused };
+
+  struct TaskResult
+  {
+    TaskOutcome outcome;
+    std::string identity;  ///< sha256 hex
+    double wall_time_s;    ///< 0 when reused
+  };
+
+  /// Set by SIGINT/SIGTERM; the running stage is stopped and run_task throws.
+  std::atomic<bool> &interrupt_requested();
+  /// Installs SIGINT/SIGTERM handlers that set interrupt_requested() and forward the signal
+  /// to the running stage's process group.
+  void install_signal_handlers();
+
+  std::string compute_identity(const Task &task);
+
+  /// Runs or reuses the task (force: always run). Throws NumericalError if the stage fails
+  /// (its exit code and log path in the message) or was interrupted.
+  TaskResult run_task(const Task &task, bool force);
+} // namespace clearjoint::pipeline
