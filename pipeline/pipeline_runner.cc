@@ -61,9 +61,12 @@ namespace clearjoint::pipeline
       // Outside the --only stage a task must already be complete and current.
       const std::string identity = compute_identity(task);
       std::string stamp;
+      double seconds = 0.0;
       try
       {
-        stamp = read_json_file(task.output_dir + "/.task.json").at("identity");
+        const auto j = read_json_file(task.output_dir + "/.task.json");
+        stamp = j.at("identity");
+        seconds = j.at("wall_time").at("value");
       }
       catch (...)
       {
@@ -72,7 +75,7 @@ namespace clearjoint::pipeline
         throw InputError(config_.source, "--only " + *options_.only, task.name,
                          "upstream tasks already run and up to date",
                          "task '" + task.name + "' is missing or out of date: run without --only");
-      r = {TaskOutcome::reused, identity, 0.0};
+      r = {TaskOutcome::reused, identity, seconds};
     }
     else
       r = run_task(task, options_.force);

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 extern char **environ;
 
@@ -38,17 +39,19 @@ namespace clearjoint::pipeline
 
     std::string stamp_path(const std::string &dir) { return dir + "/.task.json"; }
 
-    bool stamp_matches(const std::string &dir, const std::string &identity)
+    /// The wall time recorded when the task ran, if its stamp carries `identity`.
+    std::optional<double> stamp_matches(const std::string &dir, const std::string &identity)
     {
       try
       {
         const auto j = nlohmann::json::parse(read_file(stamp_path(dir)));
-        return j.at("identity").get<std::string>() == identity;
+        if (j.at("identity").get<std::string>() == identity)
+          return j.at("wall_time").at("value").get<double>();
       }
       catch (...)
       {
-        return false;
       }
+      return std::nullopt;
     }
 
     /// The stages record output paths in their manifests as they wrote them, inside
@@ -135,10 +138,10 @@ namespace clearjoint::pipeline
   TaskResult run_task(const Task &t, const bool force)
   {
     const std::string identity = compute_identity(t);
-    if (!force && stamp_matches(t.output_dir, identity))
+    if (const auto seconds = stamp_matches(t.output_dir, identity); !force && seconds)
     {
       log::info("  reused  " + t.name + "  (inputs unchanged)");
-      return {TaskOutcome::reused, identity, 0.0};
+      return {TaskOutcome::reused, identity, *seconds};
     }
     const std::string partial = t.output_dir + ".partial";
     fs::remove_all(partial);

@@ -35,7 +35,7 @@ namespace clearjoint::pipeline
   {
     TaskOutcome outcome;
     std::string identity;  ///< sha256 hex
-    double wall_time_s;    ///< 0 when reused
+    double wall_time_s;    ///< [s] of the run that produced the result (also when reused)
   };
 
   /// Set by SIGINT/SIGTERM; the running stage is stopped and run_task throws.
