@@ -32,11 +32,39 @@ namespace clearjoint::pipeline
     return exe.string();
   }
 
+  namespace
+  {
+    /// Stages resolve relative file paths in a scene against the scene's own folder. A
+    /// generated scene lives elsewhere (<run>/scenes/), so every string that names an existing
+    /// file relative to the base scene's folder becomes absolute.
+    void absolutize_paths(nlohmann::json &node, const fs::path &base_dir)
+    {
+      if (node.is_object() || node.is_array())
+      {
+        for (auto &child : node)
+          absolutize_paths(child, base_dir);
+        return;
+      }
+      if (!node.is_string())
+        return;
+      const std::string value = node.get<std::string>();
+      const bool looks_like_path =
+        value.find('/') != std::string::npos || value.find('.') != std::string::npos;
+      if (value.empty() || value[0] == '/' || !looks_like_path)
+        return;
+      std::error_code ec;
+      const fs::path candidate = base_dir / value;
+      if (fs::is_regular_file(candidate, ec))
+        node = fs::canonical(candidate).string();
+    }
+  } // namespace
+
   std::string PipelineRunner::make_scene(
     const std::string &base, const std::string &stage,
     const std::vector<std::pair<std::string, nlohmann::json>> &overrides, const std::string &name)
   {
     nlohmann::json scene = read_structured_file(base);
+    absolutize_paths(scene, fs::absolute(base).parent_path());
     const auto preset = config_.presets.find(config_.preset);
     if (preset != config_.presets.end())
       for (const auto &[key, value] : preset->second)

@@ -42,7 +42,8 @@ namespace
   {
     test_support::write_text(dir + "/fe.yaml",
                              "{\"geometry\": {\"t_B\": 0.004}" + extra_fe + "}\n");
-    test_support::write_text(dir + "/mbd.yaml", "{\"joint\": {\"law_file\": \"none\"}}\n");
+    test_support::write_text(dir + "/mbd.yaml",
+                             "{\"joint\": {\"law_file\": \"none\"}, \"extra_file\": \"law.json\"}\n");
     test_support::write_text(dir + "/law.json", test_support::read_text(
                                                   std::string(CLEARJOINT_SOURCE_DIR) +
                                                   "/laws/paper_tB4.json"));
@@ -107,6 +108,8 @@ TEST(RunPipeline, SecondRunReusesEverything)
   // The MBD scene got the fitted law's path.
   const auto used = read_json_file(dir.file("out/r/mbd/fitted/scene_used.json"));
   EXPECT_EQ(used["joint"]["law_file"], dir.file("out/r/fit/thickness/t_B=0.002/law.json"));
+  EXPECT_EQ(used["extra_file"], fs::canonical(dir.file("law.json")).string())
+    << "relative paths of the base scene are made absolute in the generated scene";
   const Outcome forced = run(dir, build, "--force");
   EXPECT_EQ(with(forced, "ran").size(), 8u);
 }
