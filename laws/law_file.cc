@@ -153,7 +153,7 @@ namespace clearjoint::laws
     mm.finish();
 
     auto src = top.object("source");
-    l.source_kind = src.string("kind", {"paper", "fit"});
+    l.source_kind = src.string("kind", {"paper", "fit", "confidence_band"});
     l.source_description = src.string("description");
     l.data_file = read_optional_string(src, "data_file");
     l.data_sha256 = read_optional_string(src, "data_sha256");

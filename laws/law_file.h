@@ -7,7 +7,7 @@
 //   "valid_range": {"delta_min": 0.0, "delta_max": 5.0e-5},          // m
 //   "reference":   {"delta_ref": 5.0e-5, "F_ref": 16344.0},          // m, N  (SPEC §3)
 //   "mm_N":        {"K": 338240.0, "n": 1.0114},                     // the same law, δ in mm
-//   "source":      {"kind": "paper" | "fit", "description": "...",
+//   "source":      {"kind": "paper" | "fit" | "confidence_band", "description": "...",
 //                   "data_file": "..." | null, "data_sha256": "..." | null},
 //   "scene":       { ...free-form parameters of the FE scene it came from... } | null,
 //   "diagnostics": { ...FitDiagnostics, see below... } | null
@@ -57,7 +57,7 @@ namespace clearjoint::laws
     double delta_min = 0.0;   ///< [m] valid range
     double delta_max = 0.0;   ///< [m]
     double delta_ref = 0.0;   ///< [m] reference penetration (normally delta_max)
-    std::string source_kind;  ///< "paper" | "fit"
+    std::string source_kind;  ///< "paper" | "fit" | "confidence_band" (laws/confidence_band.h)
     std::string source_description;
     std::optional<std::string> data_file, data_sha256;
     nlohmann::json scene;     ///< null or the FE scene parameters

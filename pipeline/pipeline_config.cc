@@ -149,6 +149,10 @@ namespace clearjoint::pipeline
         }
       else
         m.allow("laws");
+      r.band = m.boolean_or("band", false);
+      if (r.band && !(r.laws.size() == 1 && r.laws[0].value))
+        m.fail("band", "true", "false, or exactly one law given by 'study' and 'value'",
+               "a confidence band varies one fitted law");
       m.finish();
       c.mbd_runs.push_back(r);
     }

@@ -35,6 +35,9 @@ namespace clearjoint::pipeline
     std::string name;
     std::string scene;                  ///< MBD scene file (clearjoint.mbd/1)
     std::vector<LawChoice> laws;        ///< zero or more law substitutions
+    /// Also run the scene with the law's 95 % confidence-band variants (laws/confidence_band.h);
+    /// needs exactly one law, a fitted one (study + value).
+    bool band = false;
   };
 
   struct PipelineConfig

@@ -4,6 +4,7 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "common/strict_reader.h"
+#include "laws/confidence_band.h"
 
 #include <filesystem>
 #include <map>
@@ -242,7 +243,34 @@ namespace clearjoint::pipeline
       mbd.input_files.push_back(scene);
       mbd.output_dir = run + "/mbd/" + m.name;
       execute(mbd, "mbd");
-      summary_["mbd_runs"].push_back({{"name", m.name}, {"dir", mbd.output_dir}});
+      nlohmann::json entry = {{"name", m.name}, {"dir", mbd.output_dir}};
+      if (m.band)
+      {
+        // The same scene with the law's confidence-band variants: one MBD task each.
+        const LawChoice &choice = m.laws.front();
+        const std::string law_path = laws.at(*choice.study).at(value_label(*choice.value)).law;
+        entry["band"] = nlohmann::json::array();
+        for (const auto &variant :
+             laws::confidence_band_laws(laws::read_law_file(law_path), law_path))
+        {
+          const fs::path law_file =
+            fs::path(run) / "scenes" / ("band_" + m.name + "_" + variant.name + ".json");
+          laws::write_law_file(law_file.string(), variant.law);
+          Task band = mbd;
+          band.name = "mbd/" + m.name + "/band/" + variant.name;
+          const std::string scene_file = make_scene(
+            m.scene, "mbd", {{choice.key, law_file.string()}}, "mbd_" + m.name + "_" + variant.name);
+          band.args = {scene_file, "--output", "{out}"};
+          if (!options_.plots)
+            band.args.push_back("--no-plots");
+          band.input_files = {scene_file, law_file.string()};
+          band.depends_on.clear();
+          band.output_dir = run + "/mbd/" + m.name + "_band/" + variant.name;
+          execute(band, "mbd");
+          entry["band"].push_back({{"variant", variant.name}, {"dir", band.output_dir}});
+        }
+      }
+      summary_["mbd_runs"].push_back(entry);
     }
 
     write_file_atomically(run + "/pipeline_summary.json", summary_.dump(2) + "\n");

@@ -145,6 +145,8 @@ def mbd_section(runs, base):
         ax.legend(fontsize=8)
         fig.tight_layout()
         out.append(figure_html(fig, f"{label} of every MBD run overlaid (the paper's Figs. 14–17)"))
+    for r in runs:
+        out.append(band_figure(r))
     out.append("<table><tr><th>run</th><th>summary</th><th>files</th></tr>")
     for r in runs:
         summary = os.path.join(r["dir"], "summary.json")
@@ -162,6 +164,41 @@ def mbd_section(runs, base):
         for png in sorted(glob.glob(os.path.join(r["dir"], "plots", "*.png"))):
             out.append(image_file_html(png, f"{r['name']}: {os.path.basename(png)}"))
     return "".join(out)
+
+
+def band_figure(run):
+    """Nominal response and the envelope of the runs with the law's 95 % band variants."""
+    if not run.get("band"):
+        return ""
+    import numpy as np
+    nominal = os.path.join(run["dir"], "timeseries.csv")
+    if not os.path.exists(nominal):
+        return ""
+    _, _, d0 = read_table(nominal)
+    if "slider_velocity" not in d0:
+        return ""
+    t = np.array(d0["t"])
+    curves = []
+    for b in run["band"]:
+        csv = os.path.join(b["dir"], "timeseries.csv")
+        if os.path.exists(csv):
+            _, _, d = read_table(csv)
+            curves.append(np.interp(t, d["t"], d["slider_velocity"]))
+    if not curves:
+        return ""
+    lo, hi = np.min(curves, axis=0), np.max(curves, axis=0)
+    fig, ax = plt.subplots(figsize=(9, 4))
+    ax.fill_between(t, lo, hi, color="C1", alpha=0.35, label="K, n across their 95 % region")
+    ax.plot(t, d0["slider_velocity"], "k-", lw=1, label="fitted law")
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("slider velocity [m/s]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    width = float(np.max(hi - lo))
+    return figure_html(fig, f"{run['name']}: response band from the fit's uncertainty "
+                            f"(largest width {width:.3g} m/s; variants: "
+                            f"{', '.join(b['variant'] for b in run['band'])})")
 
 
 def timing_section(summary):

@@ -1,6 +1,7 @@
 // run_pipeline end to end with stand-in FE and MBD stages (tests/data/fake_stages) and the real
 // fit_stage: reuse, re-running only what changed, interrupts, failing stages, bad input.
 #include "common/strict_reader.h"
+#include "laws/law_file.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -54,7 +55,7 @@ namespace
            "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: " + values + "\n"
            "fit: {weighting: absolute}\n"
            "mbd_runs:\n"
-           "  - {name: fitted, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness, value: 0.002}]}\n"
+           "  - {name: fitted, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness, value: 0.002}], band: true}\n"
            "  - {name: family, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness}]}\n"
            "  - {name: paper, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, file: " + dir + "/law.json}]}\n"
            "report: false\n";
@@ -100,18 +101,22 @@ TEST(RunPipeline, SecondRunReusesEverything)
   test_support::write_text(dir.file("p.yaml"), pipeline_yaml(dir.path(), "[0.002, 0.004]"));
   const Outcome first = run(dir, build);
   ASSERT_EQ(first.exit_code, 0) << first.log;
-  EXPECT_EQ(with(first, "ran").size(), 8u) << "2 FE, 2 fits, 1 family, 3 MBD\n" << first.log;
+  EXPECT_EQ(with(first, "ran").size(), 12u) << "2 FE, 2 fits, 1 family, 3 MBD, 4 band\n" << first.log;
   const Outcome second = run(dir, build);
   ASSERT_EQ(second.exit_code, 0) << second.log;
   EXPECT_TRUE(with(second, "ran").empty()) << second.log;
-  EXPECT_EQ(with(second, "reused").size(), 8u);
+  EXPECT_EQ(with(second, "reused").size(), 12u);
   // The MBD scene got the fitted law's path.
   const auto used = read_json_file(dir.file("out/r/mbd/fitted/scene_used.json"));
   EXPECT_EQ(used["joint"]["law_file"], dir.file("out/r/fit/thickness/t_B=0.002/law.json"));
   EXPECT_EQ(used["extra_file"], fs::canonical(dir.file("law.json")).string())
     << "relative paths of the base scene are made absolute in the generated scene";
   const Outcome forced = run(dir, build, "--force");
-  EXPECT_EQ(with(forced, "ran").size(), 8u);
+  EXPECT_EQ(with(forced, "ran").size(), 12u);
+  // The band runs got the variants of the fitted law, not the law itself.
+  const auto band = read_json_file(dir.file("out/r/mbd/fitted_band/n_high/scene_used.json"));
+  const std::string band_law = band["joint"]["law_file"];
+  EXPECT_EQ(laws::read_law_file(band_law).source_kind, "confidence_band");
 }
 
 TEST(RunPipeline, ChangingOneParameterRerunsOnlyWhatDependsOnIt)
@@ -162,7 +167,7 @@ TEST(RunPipeline, InterruptLeavesNothingCompleteAndTheNextRunFinishesTheJob)
 
   const Outcome again = run(dir, build);
   ASSERT_EQ(again.exit_code, 0) << again.log;
-  EXPECT_EQ(with(again, "ran").size(), 8u);
+  EXPECT_EQ(with(again, "ran").size(), 12u);
   EXPECT_FALSE(fs::exists(partial)) << "the partial output was replaced";
 }
 
@@ -189,7 +194,10 @@ TEST(RunPipeline, OnlyNeedsUpToDateUpstream)
   ASSERT_EQ(run(dir, build).exit_code, 0);
   const Outcome o = run(dir, build, "--only mbd --force");
   ASSERT_EQ(o.exit_code, 0) << o.log;
-  EXPECT_EQ(with(o, "ran"), (std::set<std::string>{"mbd/fitted", "mbd/family", "mbd/paper"}));
+  EXPECT_EQ(with(o, "ran"),
+            (std::set<std::string>{"mbd/fitted", "mbd/family", "mbd/paper", "mbd/fitted/band/n_low",
+                                   "mbd/fitted/band/n_high", "mbd/fitted/band/K_low",
+                                   "mbd/fitted/band/K_high"}));
 }
 
 TEST(RunPipeline, BadPipelineFile)
