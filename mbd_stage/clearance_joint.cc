@@ -73,28 +73,17 @@ namespace clearjoint::mbd
     for (int end = 0; end < 2; ++end)
     {
       Vector3 n;
-      const double d = radial_offset(E_minus + end * G.L_J * p.j, n);
+      const Vector3 E = E_minus + end * G.L_J * p.j;
+      const double d = radial_offset(E, n);
       const double nj = n.dot(p.j);
       d_end[end] = d + G.R_J * std::sqrt(std::max(0.0, 1.0 - nj * nj)) - G.R_B;
+      p.normal[0][end] = n;
+      p.point[0][end] = p.C_B + (E - p.C_B).dot(p.b) * p.b + G.R_B * n;
     }
-    const double d1 = d_end[0], d2 = d_end[1], L = G.L_J;
-    double s_bar;
-    if (d1 > 0.0 && d2 > 0.0)
-      s_bar = L * (d1 + 2.0 * d2) / (3.0 * (d1 + d2));  // trapezoid centroid
-    else if (d1 > 0.0)
-      s_bar = (L * d1 / (d1 - d2)) / 3.0;                // triangle at the E− rim
-    else if (d2 > 0.0)
-      s_bar = L - (L - L * d1 / (d1 - d2)) / 3.0;        // triangle at the E+ rim
-    else
-      s_bar = d1 >= d2 ? 0.0 : L;
-    p.delta[0] = std::max(d1, d2);
-    {
-      Vector3 n;
-      const Vector3 A = E_minus + s_bar * p.j;
-      radial_offset(A, n);
-      p.normal[0] = n;
-      p.point[0] = p.C_B + (A - p.C_B).dot(p.b) * p.b + G.R_B * n;
-    }
+    p.delta[0] = std::max(d_end[0], d_end[1]);
+    const double blend = blend_fraction * G.c_r();
+    const double w_plus = std::clamp(0.5 + 0.5 * (d_end[1] - d_end[0]) / blend, 0.0, 1.0);
+    p.weight[0] = {1.0 - w_plus, w_plus};
 
     // Axial walls.
     const double u = (p.C_J - p.C_B).dot(p.b);
@@ -104,8 +93,10 @@ namespace clearjoint::mbd
     {
       const double sgn = side == 0 ? 1.0 : -1.0;
       p.delta[1 + side] = sgn * u + h - 0.5 * G.L_B;
-      p.normal[1 + side] = sgn * p.b;
-      p.point[1 + side] = p.C_J + sgn * (0.5 * G.L_J * p.j + G.R_J * m_hat);
+      p.normal[1 + side] = {sgn * p.b, sgn * p.b};
+      const Vector3 P = p.C_J + sgn * (0.5 * G.L_J * p.j + G.R_J * m_hat);
+      p.point[1 + side] = {P, P};
+      p.weight[1 + side] = {1.0, 0.0};
     }
     return p;
   }
@@ -120,8 +111,14 @@ namespace clearjoint::mbd
     const Placement p = place(k);
     std::array<double, 3> r;
     for (int c = 0; c < n_contacts; ++c)
-      r[c] = (k[journal_].point_velocity(p.point[c]) - k[bearing_].point_velocity(p.point[c]))
-               .dot(p.normal[c]);
+    {
+      r[c] = 0.0;
+      for (int i = 0; i < 2; ++i)
+        if (p.weight[c][i] > 0.0)
+          r[c] += p.weight[c][i] * (k[journal_].point_velocity(p.point[c][i]) -
+                                    k[bearing_].point_velocity(p.point[c][i]))
+                                     .dot(p.normal[c][i]);
+    }
     return r;
   }
 
@@ -130,11 +127,20 @@ namespace clearjoint::mbd
   {
     ContactResult r;
     r.delta = p.delta[c];
-    r.point = p.point[c];
-    r.normal = p.normal[c];
     const BodyKinematics &kb = k[bearing_], &kj = k[journal_];
-    const Vector3 v_rel = kj.point_velocity(r.point) - kb.point_velocity(r.point);
-    r.delta_dot = v_rel.dot(r.normal);
+    std::array<Vector3, 2> v_rel;
+    std::array<double, 2> rate{0.0, 0.0};
+    for (int i = 0; i < 2; ++i)
+    {
+      const double w = p.weight[c][i];
+      r.point += w * p.point[c][i];
+      r.normal += w * p.normal[c][i];
+      v_rel[i] = kj.point_velocity(p.point[c][i]) - kb.point_velocity(p.point[c][i]);
+      rate[i] = v_rel[i].dot(p.normal[c][i]);
+      r.delta_dot += w * rate[i];  // = dδ/dt (power-consistent with the weights)
+    }
+    if (r.normal.norm() > 0.0)
+      r.normal.normalize();
     if (!states_[c].active || r.delta <= 0.0)
       return r;
     const ContactForceModel &model = c == 0 ? radial_ : axial_;
@@ -143,21 +149,31 @@ namespace clearjoint::mbd
     r.F_n = f.total;
     r.F_el = f.elastic;
     r.E_el = model.elastic_energy(r.delta, c == 0 ? p.theta : 0.0);
-    const Vector3 v_T = v_rel - r.delta_dot * r.normal;
-    const Vector3 F_f = friction_.force(r.F_n, v_T);
-    r.F_t = F_f.norm();
-    r.P_friction = F_f.dot(v_T);
     r.P_damping = -(r.F_n - r.F_el) * r.delta_dot;
-    r.force_on_journal = -r.F_n * r.normal + F_f;
-    const auto add = [&](const int body, const Vector3 &f_G) {
+    const auto add = [&](const int body, const Vector3 &P, const Vector3 &f_G) {
       if (body == ground_index)
         return;
       const BodyKinematics &kk = k[body];
       Q.segment<3>(6 * body) += f_G;
-      Q.segment<3>(6 * body + 3) += kk.A.transpose() * (r.point - kk.r).cross(f_G);
+      Q.segment<3>(6 * body + 3) += kk.A.transpose() * (P - kk.r).cross(f_G);
     };
-    add(journal_, r.force_on_journal);
-    add(bearing_, -r.force_on_journal);
+    Vector3 F_t_total = Vector3::Zero();
+    for (int i = 0; i < 2; ++i)
+    {
+      const double w = p.weight[c][i];
+      if (w <= 0.0)
+        continue;
+      const Vector3 &n = p.normal[c][i], &P = p.point[c][i];
+      const Vector3 v_T = v_rel[i] - rate[i] * n;
+      const Vector3 F_f = friction_.force(w * r.F_n, v_T);
+      r.P_friction += F_f.dot(v_T);
+      F_t_total += F_f;
+      const Vector3 f_J = -w * r.F_n * n + F_f;
+      r.force_on_journal += f_J;
+      add(journal_, P, f_J);
+      add(bearing_, P, -f_J);
+    }
+    r.F_t = F_t_total.norm();
     return r;
   }
 

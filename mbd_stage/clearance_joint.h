@@ -3,12 +3,15 @@
 // journal (radius R_J, length L_J) in another.
 //
 // Contacts, each with its own gap function g = δ for the integrator's root finding:
-//  0 radial: the journal axis segment E− → E+ has radial offsets e(s) from the bearing axis;
+//  0 radial: the journal's end rims E− and E+ have radial offsets e_k from the bearing axis;
 //    the penetration of rim k is δ_k = |e_k| + R_J·√(1 − (n_k·j)²) − R_B (the rim's farthest
 //    point along n_k = e_k/|e_k|; = |e| − c_r when aligned). δ = max(δ−, δ+) — the deepest
-//    journal point, the same quantity as the FE push beyond first touch. The force acts at the
-//    centroid of the (linear) penetration profile along the journal: the middle for aligned
-//    line contact, moving continuously to one rim as the journal tilts (rim contact).
+//    journal point, the same quantity as the FE push beyond first touch — and F_n = F(δ).
+//    The force acts at the rim points P_k along n_k with weights w_k (w− + w+ = 1): all on the
+//    deeper rim when tilted (rim contact), half on each when aligned (line contact: resultant
+//    at mid-length), blended linearly while |δ+ − δ−| < blend_width. Applying −F·(w−∇δ− + w+∇δ+)
+//    is the gradient of the law's energy E(δ) wherever one rim is deeper by more than the
+//    blend width, and whenever the axes stay aligned, so the energy balance closes.
 //  1, 2 axial (+b, −b walls): u = (C_J − C_B)·b, h = (L_J/2)·cos θ + R_J·sin θ, and
 //    δ± = ±u + h − L_B/2 (a journal end face, or its rim when tilted, reaches a wall after the
 //    axial clearance c_a = (L_B − L_J)/2 is used up).
@@ -47,8 +50,8 @@ namespace clearjoint::mbd
     double E_el = 0.0;        ///< [J] elastic energy ∫F_el dδ (0 when inactive)
     double P_friction = 0.0;  ///< [W] power of friction (≤ 0)
     double P_damping = 0.0;   ///< [W] power of the damping term (≤ 0 when it dissipates)
-    Vector3 point = Vector3::Zero();   ///< [m] contact point P, ground
-    Vector3 normal = Vector3::Zero();  ///< [1] n, ground (journal penetrates along +n)
+    Vector3 point = Vector3::Zero();   ///< [m] resultant contact point (weighted), ground
+    Vector3 normal = Vector3::Zero();  ///< [1] n (weighted), ground; journal penetrates along +n
     Vector3 force_on_journal = Vector3::Zero();  ///< [N] ground frame
   };
 
@@ -73,6 +76,7 @@ namespace clearjoint::mbd
     static constexpr int n_contacts = 3;
     static constexpr double aligned_angle = 1e-3;  ///< [rad] below this a face contact acts at
                                                    ///< the face centre (see apply())
+    static constexpr double blend_fraction = 1e-3; ///< [1] blend_width = this × c_r
 
     /// Centres [m] and axes [1] in the ground frame at the initial configuration k0.
     ClearanceJoint(std::string name, int bearing_body, int journal_body,
@@ -105,7 +109,9 @@ namespace clearjoint::mbd
       Vector3 C_B, b, C_J, j;
       double theta;
       std::array<double, 3> delta;
-      std::array<Vector3, 3> point, normal;
+      // Up to two application points per contact (the two rims for the radial contact).
+      std::array<std::array<Vector3, 2>, 3> point, normal;
+      std::array<std::array<double, 2>, 3> weight;
     };
     Placement place(const KinematicsView &k) const;
     ContactResult evaluate_contact(const KinematicsView &k, int contact, const Placement &p,
