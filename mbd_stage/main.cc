@@ -28,7 +28,7 @@ int main(int argc, char **argv)
   app.add_flag("-v,--verbose", verbose, "debug messages");
   app.footer("Outputs: DIR/timeseries.csv (with a '# units:' line), DIR/summary.json, DIR/plots/, "
              "DIR/manifest.json.\nThe plotting script is found at <source>/scripts/plot.py or at "
-             "$CLEARJOINT_PLOT_SCRIPT.\n\nExit codes:\n  0  success\n  1  input error (bad "
+             "$CLEARJOINT_PLOT_SCRIPT, run by /usr/bin/python3 or $CLEARJOINT_PYTHON.\n\nExit codes:\n  0  success\n  1  input error (bad "
              "scene, law file or command line; nothing is written)\n  2  numerical failure "
              "(integrator error, non-finite state, law range under 'error'); the partial "
              "outputs are kept and marked failed");

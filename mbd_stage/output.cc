@@ -88,7 +88,12 @@ namespace clearjoint::mbd
 
     if (make_plots)
     {
-      const std::string cmd = "python3 '" + plot_script() + "' mbd '" + dir_ + "'";
+      // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may
+      // not. $CLEARJOINT_PYTHON overrides.
+      std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+      if (const char *env = std::getenv("CLEARJOINT_PYTHON"))
+        python = env;
+      const std::string cmd = "'" + python + "' '" + plot_script() + "' mbd '" + dir_ + "'";
       const int rc = std::system(cmd.c_str());
       if (rc != 0)
         log::warning("plotting failed (exit " + std::to_string(rc) + "): " + cmd);
