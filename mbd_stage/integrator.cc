@@ -278,12 +278,28 @@ namespace clearjoint::mbd
         emit(to, N_VGetArrayPointer(m.dky));
         ++k_out;
       }
-      t = t_reached;
       if (on_step)
       {
+        bool in_contact = false;
+        for (const auto &cj : system_.clearance_joints())
+          for (int c = 0; c < ClearanceJoint::n_contacts; ++c)
+            in_contact = in_contact || cj->state(c).active;
+        if (in_contact && settings_.n_step_samples > 1 && t_reached > t)
+        {
+          Eigen::VectorXd ys(n);
+          for (int k = 1; k < settings_.n_step_samples; ++k)
+          {
+            const double ts = t + (t_reached - t) * k / settings_.n_step_samples;
+            m.check(erk ? ERKStepGetDky(m.mem, ts, 0, m.dky) : CVodeGetDky(m.mem, ts, 0, m.dky),
+                    "GetDky");
+            ys = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(m.dky), n);
+            on_step(ts, ys);
+          }
+        }
         Eigen::Map<const Eigen::VectorXd> ys(yp, n);
-        on_step(t, ys);
+        on_step(t_reached, ys);
       }
+      t = t_reached;
       const bool is_root = erk ? flag == ARK_ROOT_RETURN : flag == CV_ROOT_RETURN;
       if (!is_root)
         continue;

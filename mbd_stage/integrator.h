@@ -32,6 +32,7 @@ namespace clearjoint::mbd
     double atol_work = 1e-8;      ///< [J] absolute tolerance of the work states
     double max_step = 0.0;        ///< [s] 0: no limit
     long max_num_steps = 50000000;
+    int n_step_samples = 8;       ///< samples per step while in contact (peak tracking)
   };
 
   struct ContactEvent
@@ -59,7 +60,9 @@ namespace clearjoint::mbd
     Integrator &operator=(const Integrator &) = delete;
 
     /// Integrates from t0 to t_end. `on_output(t, y)` is called at t0 and at every multiple of
-    /// output_interval (dense output), and `on_step(t, y)` after every accepted step.
+    /// output_interval (dense output), and `on_step(t, y)` after every accepted step — and, while
+    /// a contact is active, also at n_step_samples − 1 interior points of the step (dense
+    /// output), so peaks of the contact force are not missed between step ends.
     void run(double t0, double t_end, double output_interval,
              const std::function<void(double, const Eigen::VectorXd &)> &on_output,
              const std::function<void(double, const Eigen::VectorXd &)> &on_step = {});
