@@ -1,0 +1,198 @@
+#include "mbd_stage/clearance_joint.h"
+
+#include "common/error.h"
+#include "mbd_stage/joint.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clearjoint::mbd
+{
+  ClearanceJoint::ClearanceJoint(std::string name, const int bearing_body, const int journal_body,
+                                 const Vector3 &bearing_center_G, const Vector3 &bearing_axis_G,
+                                 const Vector3 &journal_center_G, const Vector3 &journal_axis_G,
+                                 ClearanceGeometry geometry, ContactForceModel radial,
+                                 ContactForceModel axial, CoulombFriction friction,
+                                 const KinematicsView &k0)
+    : name_(std::move(name))
+    , bearing_(bearing_body)
+    , journal_(journal_body)
+    , geometry_(geometry)
+    , radial_(std::move(radial))
+    , axial_(std::move(axial))
+    , friction_(friction)
+  {
+    const BodyKinematics &kb = k0[bearing_body], &kj = k0[journal_body];
+    const Vector3 b = bearing_axis_G.normalized(), j = journal_axis_G.normalized();
+    s_B_ = kb.A.transpose() * (bearing_center_G - kb.r);
+    b_B_ = kb.A.transpose() * b;
+    s_J_ = kj.A.transpose() * (journal_center_G - kj.r);
+    j_J_ = kj.A.transpose() * j;
+    Vector3 h1, h2;
+    make_perpendiculars(b, h1, h2);
+    h1_B_ = kb.A.transpose() * h1;
+    h2_B_ = kb.A.transpose() * h2;
+    // Start in contact if the initial configuration already penetrates (δ̇⁻ = the floor).
+    const auto g = gaps(k0);
+    for (int c = 0; c < n_contacts; ++c)
+      states_[c].active = g[c] > 0.0;
+  }
+
+  ClearanceJoint::Placement ClearanceJoint::place(const KinematicsView &k) const
+  {
+    const BodyKinematics &kb = k[bearing_], &kj = k[journal_];
+    const ClearanceGeometry &G = geometry_;
+    Placement p;
+    p.C_B = kb.r + kb.A * s_B_;
+    p.b = kb.A * b_B_;
+    p.C_J = kj.r + kj.A * s_J_;
+    p.j = kj.A * j_J_;
+    if (p.j.dot(p.b) < 0.0)
+      p.j = -p.j;  // the journal has no preferred direction
+    const double cos_t = std::min(1.0, p.j.dot(p.b));
+    const Vector3 m = p.b - cos_t * p.j;  // in the rim plane, toward +b; |m| = sin θ
+    const double sin_t = m.norm();
+    p.theta = std::atan2(sin_t, cos_t);
+
+    // Radial: rims at E− (s = 0) and E+ (s = L_J).
+    const auto radial_offset = [&](const Vector3 &X, Vector3 &n) {
+      const Vector3 w = X - p.C_B;
+      const Vector3 e = w - w.dot(p.b) * p.b;
+      const double d = e.norm();
+      if (d > 1e-300)
+        n = e / d;
+      else
+      {
+        Vector3 h2;
+        make_perpendiculars(p.b, n, h2);
+      }
+      return d;
+    };
+    const Vector3 E_minus = p.C_J - 0.5 * G.L_J * p.j;
+    std::array<double, 2> d_end;
+    for (int end = 0; end < 2; ++end)
+    {
+      Vector3 n;
+      const Vector3 E = E_minus + end * G.L_J * p.j;
+      const double d = radial_offset(E, n);
+      const double nj = n.dot(p.j);
+      d_end[end] = d + G.R_J * std::sqrt(std::max(0.0, 1.0 - nj * nj)) - G.R_B;
+      p.normal[0][end] = n;
+      p.point[0][end] = p.C_B + (E - p.C_B).dot(p.b) * p.b + G.R_B * n;
+    }
+    p.delta[0] = std::max(d_end[0], d_end[1]);
+    const double blend = blend_fraction * G.c_r();
+    const double w_plus = std::clamp(0.5 + 0.5 * (d_end[1] - d_end[0]) / blend, 0.0, 1.0);
+    p.weight[0] = {1.0 - w_plus, w_plus};
+
+    // Axial walls.
+    const double u = (p.C_J - p.C_B).dot(p.b);
+    const double h = 0.5 * G.L_J * cos_t + G.R_J * sin_t;
+    const Vector3 m_hat = m / std::max(sin_t, std::sin(aligned_angle));
+    for (int side = 0; side < 2; ++side)
+    {
+      const double sgn = side == 0 ? 1.0 : -1.0;
+      p.delta[1 + side] = sgn * u + h - 0.5 * G.L_B;
+      p.normal[1 + side] = {sgn * p.b, sgn * p.b};
+      const Vector3 P = p.C_J + sgn * (0.5 * G.L_J * p.j + G.R_J * m_hat);
+      p.point[1 + side] = {P, P};
+      p.weight[1 + side] = {1.0, 0.0};
+    }
+    return p;
+  }
+
+  std::array<double, 3> ClearanceJoint::gaps(const KinematicsView &k) const
+  {
+    return place(k).delta;
+  }
+
+  std::array<double, 3> ClearanceJoint::rates(const KinematicsView &k) const
+  {
+    const Placement p = place(k);
+    std::array<double, 3> r;
+    for (int c = 0; c < n_contacts; ++c)
+    {
+      r[c] = 0.0;
+      for (int i = 0; i < 2; ++i)
+        if (p.weight[c][i] > 0.0)
+          r[c] += p.weight[c][i] * (k[journal_].point_velocity(p.point[c][i]) -
+                                    k[bearing_].point_velocity(p.point[c][i]))
+                                     .dot(p.normal[c][i]);
+    }
+    return r;
+  }
+
+  ContactResult ClearanceJoint::evaluate_contact(const KinematicsView &k, const int c,
+                                                 const Placement &p, Eigen::VectorXd &Q) const
+  {
+    ContactResult r;
+    r.delta = p.delta[c];
+    const BodyKinematics &kb = k[bearing_], &kj = k[journal_];
+    std::array<Vector3, 2> v_rel;
+    std::array<double, 2> rate{0.0, 0.0};
+    for (int i = 0; i < 2; ++i)
+    {
+      const double w = p.weight[c][i];
+      r.point += w * p.point[c][i];
+      r.normal += w * p.normal[c][i];
+      v_rel[i] = kj.point_velocity(p.point[c][i]) - kb.point_velocity(p.point[c][i]);
+      rate[i] = v_rel[i].dot(p.normal[c][i]);
+      r.delta_dot += w * rate[i];  // = dδ/dt (power-consistent with the weights)
+    }
+    if (r.normal.norm() > 0.0)
+      r.normal.normalize();
+    if (!states_[c].active || r.delta <= 0.0)
+      return r;
+    const ContactForceModel &model = c == 0 ? radial_ : axial_;
+    const ContactForce f =
+      model.force(r.delta, r.delta_dot, states_[c].delta_dot_impact, c == 0 ? p.theta : 0.0);
+    r.F_n = f.total;
+    r.F_el = f.elastic;
+    r.E_el = model.elastic_energy(r.delta, c == 0 ? p.theta : 0.0);
+    r.P_damping = -(r.F_n - r.F_el) * r.delta_dot;
+    const auto add = [&](const int body, const Vector3 &P, const Vector3 &f_G) {
+      if (body == ground_index)
+        return;
+      const BodyKinematics &kk = k[body];
+      Q.segment<3>(6 * body) += f_G;
+      Q.segment<3>(6 * body + 3) += kk.A.transpose() * (P - kk.r).cross(f_G);
+    };
+    Vector3 F_t_total = Vector3::Zero();
+    for (int i = 0; i < 2; ++i)
+    {
+      const double w = p.weight[c][i];
+      if (w <= 0.0)
+        continue;
+      const Vector3 &n = p.normal[c][i], &P = p.point[c][i];
+      const Vector3 v_T = v_rel[i] - rate[i] * n;
+      const Vector3 F_f = friction_.force(w * r.F_n, v_T);
+      r.P_friction += F_f.dot(v_T);
+      F_t_total += F_f;
+      const Vector3 f_J = -w * r.F_n * n + F_f;
+      r.force_on_journal += f_J;
+      add(journal_, P, f_J);
+      add(bearing_, P, -f_J);
+    }
+    r.F_t = F_t_total.norm();
+    return r;
+  }
+
+  void ClearanceJoint::apply(const KinematicsView &k, Eigen::VectorXd &Q,
+                             ClearanceOutput *out) const
+  {
+    const Placement p = place(k);
+    std::array<ContactResult, 3> results;
+    for (int c = 0; c < n_contacts; ++c)
+      results[c] = evaluate_contact(k, c, p, Q);
+    if (out)
+    {
+      out->contacts = results;
+      const BodyKinematics &kb = k[bearing_];
+      const Vector3 w = p.C_J - p.C_B;
+      const Vector3 e = w - w.dot(p.b) * p.b;
+      out->ecc_1 = e.dot(kb.A * h1_B_);
+      out->ecc_2 = e.dot(kb.A * h2_B_);
+      out->theta = p.theta;
+    }
+  }
+} // namespace clearjoint::mbd

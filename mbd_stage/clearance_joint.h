@@ -1,0 +1,128 @@
+// The spatial revolute joint with clearance (SPEC §4) as a force element between a bearing (a
+// cylindrical cavity of radius R_B and length L_B closed by two end walls) in one body and a
+// journal (radius R_J, length L_J) in another.
+//
+// Contacts, each with its own gap function g = δ for the integrator's root finding:
+//  0 radial: the journal's end rims E− and E+ have radial offsets e_k from the bearing axis;
+//    the penetration of rim k is δ_k = |e_k| + R_J·√(1 − (n_k·j)²) − R_B (the rim's farthest
+//    point along n_k = e_k/|e_k|; = |e| − c_r when aligned). δ = max(δ−, δ+) — the deepest
+//    journal point, the same quantity as the FE push beyond first touch — and F_n = F(δ).
+//    The force acts at the rim points P_k along n_k with weights w_k (w− + w+ = 1): all on the
+//    deeper rim when tilted (rim contact), half on each when aligned (line contact: resultant
+//    at mid-length), blended linearly while |δ+ − δ−| < blend_width. Applying −F·(w−∇δ− + w+∇δ+)
+//    is the gradient of the law's energy E(δ) wherever one rim is deeper by more than the
+//    blend width, and whenever the axes stay aligned, so the energy balance closes.
+//  1, 2 axial (+b, −b walls): u = (C_J − C_B)·b, h = (L_J/2)·cos θ + R_J·sin θ, and
+//    δ± = ±u + h − L_B/2 (a journal end face, or its rim when tilted, reaches a wall after the
+//    axial clearance c_a = (L_B − L_J)/2 is used up).
+// Forces: normal F_n from the contact model, friction from CoulombFriction on the tangential
+// relative velocity, applied equal and opposite at the same point P on both bodies (so the
+// pair exerts no net moment about P, and each body gets its moment (P − r) × f).
+#pragma once
+
+#include "mbd_stage/contact_force_model.h"
+#include "mbd_stage/friction.h"
+#include "mbd_stage/kinematics.h"
+
+#include <array>
+#include <string>
+
+namespace clearjoint::mbd
+{
+  struct ClearanceGeometry
+  {
+    double R_B = 0.0;  ///< [m] bearing radius
+    double R_J = 0.0;  ///< [m] journal radius
+    double L_B = 0.0;  ///< [m] bearing length (between its end walls)
+    double L_J = 0.0;  ///< [m] journal length
+    double c_r() const { return R_B - R_J; }          ///< [m] radial clearance
+    double c_a() const { return 0.5 * (L_B - L_J); }  ///< [m] axial clearance per side
+  };
+
+  /// Evaluation of one contact (radial or an axial wall).
+  struct ContactResult
+  {
+    double delta = 0.0;       ///< [m] penetration (negative: gap)
+    double delta_dot = 0.0;   ///< [m/s] normal approach rate at P
+    double F_n = 0.0;         ///< [N] normal force (0 when inactive)
+    double F_el = 0.0;        ///< [N] its elastic part
+    double F_t = 0.0;         ///< [N] friction force magnitude
+    double E_el = 0.0;        ///< [J] elastic energy ∫F_el dδ (0 when inactive)
+    double P_friction = 0.0;  ///< [W] power of friction (≤ 0)
+    double P_damping = 0.0;   ///< [W] power of the damping term (≤ 0 when it dissipates)
+    Vector3 point = Vector3::Zero();   ///< [m] resultant contact point (weighted), ground
+    Vector3 normal = Vector3::Zero();  ///< [1] n (weighted), ground; journal penetrates along +n
+    Vector3 force_on_journal = Vector3::Zero();  ///< [N] ground frame
+  };
+
+  struct ClearanceOutput
+  {
+    std::array<ContactResult, 3> contacts;  ///< radial, axial +, axial −
+    double ecc_1 = 0.0, ecc_2 = 0.0;  ///< [m] journal-centre offset in the bearing frame (h1, h2)
+    double theta = 0.0;               ///< [rad] misalignment of the two axes
+  };
+
+  /// Discrete contact state, switched only at roots of the gap functions.
+  struct ContactState
+  {
+    bool active = false;
+    double delta_dot_impact = 0.0;  ///< [m/s] δ̇⁻ recorded at onset
+    unsigned long n_impacts = 0;
+  };
+
+  class ClearanceJoint
+  {
+  public:
+    static constexpr int n_contacts = 3;
+    static constexpr double aligned_angle = 1e-3;  ///< [rad] below this a face contact acts at
+                                                   ///< the face centre (see apply())
+    static constexpr double blend_fraction = 1e-3; ///< [1] blend_width = this × c_r
+
+    /// Centres [m] and axes [1] in the ground frame at the initial configuration k0.
+    ClearanceJoint(std::string name, int bearing_body, int journal_body,
+                   const Vector3 &bearing_center_G, const Vector3 &bearing_axis_G,
+                   const Vector3 &journal_center_G, const Vector3 &journal_axis_G,
+                   ClearanceGeometry geometry, ContactForceModel radial, ContactForceModel axial,
+                   CoulombFriction friction, const KinematicsView &k0);
+
+    /// g_k = δ_k for k = radial, axial +, axial − [m].
+    std::array<double, 3> gaps(const KinematicsView &k) const;
+    /// Adds the generalised forces [f_G; n_B] of both bodies to Q (length 6·n_bodies) and
+    /// fills `out` (if given).
+    void apply(const KinematicsView &k, Eigen::VectorXd &Q, ClearanceOutput *out) const;
+    /// Contact rates δ̇_k [m/s] (for onset and release decisions).
+    std::array<double, 3> rates(const KinematicsView &k) const;
+
+    ContactState &state(int contact) { return states_[contact]; }
+    const ContactState &state(int contact) const { return states_[contact]; }
+    const std::string &name() const { return name_; }
+    const ClearanceGeometry &geometry() const { return geometry_; }
+    const ContactForceModel &radial_model() const { return radial_; }
+    const ContactForceModel &axial_model() const { return axial_; }
+    const CoulombFriction &friction() const { return friction_; }
+    int bearing_body() const { return bearing_; }
+    int journal_body() const { return journal_; }
+
+  private:
+    struct Placement
+    {
+      Vector3 C_B, b, C_J, j;
+      double theta;
+      std::array<double, 3> delta;
+      // Up to two application points per contact (the two rims for the radial contact).
+      std::array<std::array<Vector3, 2>, 3> point, normal;
+      std::array<std::array<double, 2>, 3> weight;
+    };
+    Placement place(const KinematicsView &k) const;
+    ContactResult evaluate_contact(const KinematicsView &k, int contact, const Placement &p,
+                                   Eigen::VectorXd &Q) const;
+
+    std::string name_;
+    int bearing_, journal_;
+    Vector3 s_B_, b_B_, s_J_, j_J_, h1_B_, h2_B_;  // body-frame markers
+    ClearanceGeometry geometry_;
+    ContactForceModel radial_, axial_;
+    CoulombFriction friction_;
+    std::array<ContactState, 3> states_;
+  };
+} // namespace clearjoint::mbd

@@ -1,0 +1,344 @@
+#include "mbd_stage/integrator.h"
+
+#include "common/error.h"
+#include "laws/law_range_error.h"
+
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+
+namespace clearjoint::mbd
+{
+  namespace
+  {
+    std::string flag_name(const bool erk, const int flag)
+    {
+      char *s = erk ? ERKStepGetReturnFlagName(flag) : CVodeGetReturnFlagName(flag);
+      std::string out = s ? s : std::to_string(flag);
+      std::free(s);
+      return out;
+    }
+  } // namespace
+
+  struct Integrator::Impl
+  {
+    MultibodySystem *system = nullptr;
+    bool erk = true;
+    SUNContext ctx = nullptr;
+    N_Vector y = nullptr, atol = nullptr, dky = nullptr;
+    SUNMatrix A = nullptr;
+    SUNLinearSolver LS = nullptr;
+    void *mem = nullptr;
+    std::string pending_error;   // message of an exception thrown inside a callback
+    bool pending_fatal = false;
+
+    void check(const int flag, const char *what) const
+    {
+      if (flag < 0)
+        throw NumericalError(std::string(erk ? "ARKODE " : "CVODE ") + what + " failed: " +
+                             flag_name(erk, flag) +
+                             (pending_error.empty() ? "" : " (" + pending_error + ")"));
+    }
+
+    static int rhs(realtype t, N_Vector y, N_Vector ydot, void *user)
+    {
+      auto *self = static_cast<Impl *>(user);
+      try
+      {
+        self->system->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+        return 0;
+      }
+      catch (const laws::LawRangeError &e)
+      {
+        self->pending_error = e.what();
+        self->pending_fatal = true;
+        return -1;  // the scene asked for "error" outside the law's range: stop
+      }
+      catch (const NumericalError &e)
+      {
+        self->pending_error = e.what();
+        return 1;  // recoverable: the integrator retries with a smaller step
+      }
+      catch (const std::exception &e)
+      {
+        self->pending_error = e.what();
+        self->pending_fatal = true;
+        return -1;
+      }
+    }
+
+    static int roots(realtype, N_Vector y, realtype *g, void *user)
+    {
+      auto *self = static_cast<Impl *>(user);
+      try
+      {
+        self->system->gaps(N_VGetArrayPointer(y), g);
+        return 0;
+      }
+      catch (const std::exception &e)
+      {
+        self->pending_error = e.what();
+        self->pending_fatal = true;
+        return -1;
+      }
+    }
+
+    ~Impl()
+    {
+      if (mem)
+      {
+        if (erk)
+          ERKStepFree(&mem);
+        else
+          CVodeFree(&mem);
+      }
+      if (LS)
+        SUNLinSolFree(LS);
+      if (A)
+        SUNMatDestroy(A);
+      if (y)
+        N_VDestroy(y);
+      if (atol)
+        N_VDestroy(atol);
+      if (dky)
+        N_VDestroy(dky);
+      if (ctx)
+        SUNContext_Free(&ctx);
+    }
+  };
+
+  std::string Integrator::method_name(const IntegratorMethod m)
+  {
+    return m == IntegratorMethod::dopri5 ? "dopri5" : "bdf";
+  }
+
+  Integrator::Integrator(MultibodySystem &system, IntegratorSettings settings)
+    : impl_(new Impl)
+    , system_(system)
+    , settings_(settings)
+  {
+    impl_->system = &system;
+    impl_->erk = settings.method == IntegratorMethod::dopri5;
+  }
+
+  Integrator::~Integrator() { delete impl_; }
+
+  void Integrator::run(const double t0, const double t_end, const double output_interval,
+                       const std::function<void(double, const Eigen::VectorXd &)> &on_output,
+                       const std::function<void(double, const Eigen::VectorXd &)> &on_step)
+  {
+    Impl &m = *impl_;
+    const bool erk = m.erk;
+    const int n = system_.n_states(), ng = system_.n_gaps(), nb = system_.n_bodies();
+    if (SUNContext_Create(nullptr, &m.ctx) != 0)
+      throw NumericalError("SUNContext_Create failed");
+    m.y = N_VNew_Serial(n, m.ctx);
+    m.atol = N_VNew_Serial(n, m.ctx);
+    m.dky = N_VNew_Serial(n, m.ctx);
+    if (!m.y || !m.atol || !m.dky)
+      throw NumericalError("N_VNew_Serial failed");
+    double *yp = N_VGetArrayPointer(m.y), *ap = N_VGetArrayPointer(m.atol);
+    const Eigen::VectorXd &y0 = system_.initial_state();
+    for (int i = 0; i < n; ++i)
+    {
+      yp[i] = y0[i];
+      ap[i] = i < 7 * nb ? settings_.atol_position
+                         : (i < 13 * nb ? settings_.atol_velocity : settings_.atol_work);
+    }
+
+    const auto create = [&](const double t_start) {
+      if (erk)
+      {
+        if (!m.mem)
+        {
+          m.mem = ERKStepCreate(&Impl::rhs, t_start, m.y, m.ctx);
+          if (!m.mem)
+            throw NumericalError("ERKStepCreate failed");
+          m.check(ERKStepSetTableNum(m.mem, ARKODE_DORMAND_PRINCE_7_4_5), "SetTableNum");
+          m.check(ERKStepSetUserData(m.mem, &m), "SetUserData");
+          m.check(ERKStepSVtolerances(m.mem, settings_.rtol, m.atol), "SVtolerances");
+          m.check(ERKStepSetMaxNumSteps(m.mem, settings_.max_num_steps), "SetMaxNumSteps");
+          if (settings_.max_step > 0.0)
+            m.check(ERKStepSetMaxStep(m.mem, settings_.max_step), "SetMaxStep");
+          if (ng > 0)
+          {
+            m.check(ERKStepRootInit(m.mem, ng, &Impl::roots), "RootInit");
+            m.check(ERKStepSetNoInactiveRootWarn(m.mem), "SetNoInactiveRootWarn");
+          }
+        }
+        else
+          m.check(ERKStepReInit(m.mem, &Impl::rhs, t_start, m.y), "ReInit");
+        m.check(ERKStepSetStopTime(m.mem, t_end), "SetStopTime");
+      }
+      else
+      {
+        if (!m.mem)
+        {
+          m.mem = CVodeCreate(CV_BDF, m.ctx);
+          if (!m.mem)
+            throw NumericalError("CVodeCreate failed");
+          m.check(CVodeInit(m.mem, &Impl::rhs, t_start, m.y), "Init");
+          m.check(CVodeSetUserData(m.mem, &m), "SetUserData");
+          m.check(CVodeSVtolerances(m.mem, settings_.rtol, m.atol), "SVtolerances");
+          m.A = SUNDenseMatrix(n, n, m.ctx);
+          m.LS = SUNLinSol_Dense(m.y, m.A, m.ctx);
+          if (!m.A || !m.LS)
+            throw NumericalError("dense linear solver creation failed");
+          m.check(CVodeSetLinearSolver(m.mem, m.LS, m.A), "SetLinearSolver");
+          m.check(CVodeSetMaxNumSteps(m.mem, settings_.max_num_steps), "SetMaxNumSteps");
+          if (settings_.max_step > 0.0)
+            m.check(CVodeSetMaxStep(m.mem, settings_.max_step), "SetMaxStep");
+          if (ng > 0)
+          {
+            m.check(CVodeRootInit(m.mem, ng, &Impl::roots), "RootInit");
+            m.check(CVodeSetNoInactiveRootWarn(m.mem), "SetNoInactiveRootWarn");
+          }
+        }
+        else
+          m.check(CVodeReInit(m.mem, t_start, m.y), "ReInit");
+        m.check(CVodeSetStopTime(m.mem, t_end), "SetStopTime");
+      }
+    };
+
+    // Statistics accumulate over restarts (ReInit resets SUNDIALS' counters).
+    const auto harvest = [&]() {
+      long ns = 0, nf = 0, ne = 0, nj = 0, nn = 0;
+      if (erk)
+      {
+        long nfe = 0;
+        m.check(ERKStepGetNumSteps(m.mem, &ns), "GetNumSteps");
+        m.check(ERKStepGetNumRhsEvals(m.mem, &nfe), "GetNumRhsEvals");
+        m.check(ERKStepGetNumErrTestFails(m.mem, &ne), "GetNumErrTestFails");
+        nf = nfe;
+      }
+      else
+      {
+        m.check(CVodeGetNumSteps(m.mem, &ns), "GetNumSteps");
+        m.check(CVodeGetNumRhsEvals(m.mem, &nf), "GetNumRhsEvals");
+        m.check(CVodeGetNumErrTestFails(m.mem, &ne), "GetNumErrTestFails");
+        m.check(CVodeGetNumJacEvals(m.mem, &nj), "GetNumJacEvals");
+        m.check(CVodeGetNumNonlinSolvConvFails(m.mem, &nn), "GetNumNonlinSolvConvFails");
+      }
+      stats_.n_steps += ns;
+      stats_.n_rhs += nf;
+      stats_.n_error_test_failures += ne;
+      stats_.n_jacobians += nj;
+      stats_.n_nonlinear_failures += nn;
+    };
+
+    create(t0);
+    stats_ = StepStatistics{};
+    stats_.h_min = std::numeric_limits<double>::infinity();
+    Eigen::VectorXd y_out(n);
+    const auto emit = [&](const double t, const double *src) {
+      for (int i = 0; i < n; ++i)
+        y_out[i] = src[i];
+      on_output(t, y_out);
+    };
+    emit(t0, yp);
+    long k_out = 1;
+    const auto next_output = [&]() { return t0 + static_cast<double>(k_out) * output_interval; };
+    double t = t0;
+    const double t_eps = 1e-12 * std::max(1.0, std::abs(t_end));
+    std::vector<int> found(static_cast<std::size_t>(std::max(ng, 1)));
+
+    while (t < t_end - t_eps)
+    {
+      double t_reached = t;
+      const int flag = erk ? ERKStepEvolve(m.mem, t_end, m.y, &t_reached, ARK_ONE_STEP)
+                           : CVode(m.mem, t_end, m.y, &t_reached, CV_ONE_STEP);
+      if (flag < 0)
+      {
+        harvest();
+        m.check(flag, erk ? "ERKStepEvolve" : "CVode");
+      }
+      // Step size of the last accepted step.
+      double h_last = 0.0;
+      m.check(erk ? ERKStepGetLastStep(m.mem, &h_last) : CVodeGetLastStep(m.mem, &h_last),
+              "GetLastStep");
+      if (h_last > 0.0)
+      {
+        stats_.h_min = std::min(stats_.h_min, h_last);
+        stats_.h_max = std::max(stats_.h_max, h_last);
+      }
+      // Dense output at the grid points passed.
+      while (next_output() <= t_reached + t_eps && next_output() <= t_end + t_eps)
+      {
+        const double to = std::min(next_output(), t_reached);
+        m.check(erk ? ERKStepGetDky(m.mem, to, 0, m.dky) : CVodeGetDky(m.mem, to, 0, m.dky),
+                "GetDky");
+        emit(to, N_VGetArrayPointer(m.dky));
+        ++k_out;
+      }
+      if (on_step)
+      {
+        bool in_contact = false;
+        for (const auto &cj : system_.clearance_joints())
+          for (int c = 0; c < ClearanceJoint::n_contacts; ++c)
+            in_contact = in_contact || cj->state(c).active;
+        if (in_contact && settings_.n_step_samples > 1 && t_reached > t)
+        {
+          Eigen::VectorXd ys(n);
+          for (int k = 1; k < settings_.n_step_samples; ++k)
+          {
+            const double ts = t + (t_reached - t) * k / settings_.n_step_samples;
+            m.check(erk ? ERKStepGetDky(m.mem, ts, 0, m.dky) : CVodeGetDky(m.mem, ts, 0, m.dky),
+                    "GetDky");
+            ys = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(m.dky), n);
+            on_step(ts, ys);
+          }
+        }
+        Eigen::Map<const Eigen::VectorXd> ys(yp, n);
+        on_step(t_reached, ys);
+      }
+      t = t_reached;
+      const bool is_root = erk ? flag == ARK_ROOT_RETURN : flag == CV_ROOT_RETURN;
+      if (!is_root)
+        continue;
+      ++stats_.n_roots;
+      m.check(erk ? ERKStepGetRootInfo(m.mem, found.data()) : CVodeGetRootInfo(m.mem, found.data()),
+              "GetRootInfo");
+      const std::vector<double> rates = system_.contact_rates(yp);
+      bool changed = false;
+      int i = 0;
+      for (auto &cj : system_.clearance_joints())
+        for (int c = 0; c < ClearanceJoint::n_contacts; ++c, ++i)
+        {
+          if (found[i] == 0)
+            continue;
+          ContactState &s = cj->state(c);
+          if (found[i] > 0 && !s.active)
+          {
+            s.active = true;
+            s.delta_dot_impact = rates[i];
+            ++s.n_impacts;
+            events_.push_back({t, cj->name(), c, true, rates[i]});
+            changed = true;
+          }
+          else if (found[i] < 0 && s.active)
+          {
+            s.active = false;
+            events_.push_back({t, cj->name(), c, false, rates[i]});
+            changed = true;
+          }
+        }
+      if (changed)
+      {
+        harvest();
+        ++stats_.n_restarts;
+        create(t);
+      }
+    }
+    harvest();
+    if (!std::isfinite(stats_.h_min))
+      stats_.h_min = 0.0;
+  }
+} // namespace clearjoint::mbd

@@ -1,0 +1,348 @@
+#include "mbd_stage/multibody_system.h"
+
+#include "common/error.h"
+#include "common/log.h"
+
+#include <cmath>
+
+namespace clearjoint::mbd
+{
+  namespace
+  {
+    constexpr int n_pos = 7, n_vel = 6;
+  }
+
+  int MultibodySystem::add_body(const BodyProperties &props, const BodyKinematics &initial)
+  {
+    bodies_.push_back(props);
+    BodyKinematics k = initial;
+    k.A = rotation_matrix(k.e);
+    initial_.push_back(k);
+    return n_bodies() - 1;
+  }
+
+  int MultibodySystem::body_index(const std::string &name) const
+  {
+    if (name == "ground")
+      return ground_index;
+    for (int b = 0; b < n_bodies(); ++b)
+      if (bodies_[b].name == name)
+        return b;
+    return -2;
+  }
+
+  void MultibodySystem::add_joint(std::string name, const JointType type, const int body_i,
+                                  const int body_j, const Vector3 &point_G, const Vector3 &axis_G)
+  {
+    const KinematicsView k0(&initial_);
+    joints_.emplace_back(std::move(name), type, body_i, body_j, point_G, axis_G, k0);
+  }
+
+  void MultibodySystem::add_driver(std::string name, const int joint, const double speed)
+  {
+    drivers_.emplace_back(std::move(name), joints_.at(static_cast<std::size_t>(joint)), speed);
+  }
+
+  void MultibodySystem::add_clearance_joint(std::unique_ptr<ClearanceJoint> joint)
+  {
+    clearance_.push_back(std::move(joint));
+  }
+
+  int MultibodySystem::n_states() const
+  {
+    return (n_pos + n_vel) * n_bodies() + 2 * static_cast<int>(clearance_.size()) +
+           static_cast<int>(drivers_.size());
+  }
+
+  void MultibodySystem::constraint_rows(const KinematicsView &k, const double t,
+                                        std::vector<ConstraintRow> &rows) const
+  {
+    rows.clear();
+    for (const Joint &j : joints_)
+      j.evaluate(k, rows);
+    for (const Driver &d : drivers_)
+      d.evaluate(k, t, rows);
+  }
+
+  std::vector<BodyKinematics> MultibodySystem::unpack(const double *y) const
+  {
+    const int nb = n_bodies();
+    std::vector<BodyKinematics> k(static_cast<std::size_t>(nb));
+    for (int b = 0; b < nb; ++b)
+    {
+      BodyKinematics &kb = k[b];
+      kb.r = Eigen::Map<const Vector3>(y + n_pos * b);
+      kb.e = Eigen::Map<const Vector4>(y + n_pos * b + 3);
+      kb.A = rotation_matrix(kb.e);
+      kb.v = Eigen::Map<const Vector3>(y + n_pos * nb + n_vel * b);
+      kb.w_B = Eigen::Map<const Vector3>(y + n_pos * nb + n_vel * b + 3);
+    }
+    return k;
+  }
+
+  double MultibodySystem::finalize(const double t0)
+  {
+    const int nb = n_bodies(), nu = n_vel * nb;
+    const KinematicsView k(&initial_);
+    std::vector<ConstraintRow> rows;
+    constraint_rows(k, t0, rows);
+    n_rows_ = static_cast<int>(rows.size());
+
+    Eigen::VectorXd u0(nu), m_inv(nu);
+    for (int b = 0; b < nb; ++b)
+    {
+      u0.segment<3>(n_vel * b) = initial_[b].v;
+      u0.segment<3>(n_vel * b + 3) = initial_[b].w_B;
+      m_inv.segment<3>(n_vel * b).setConstant(1.0 / bodies_[b].mass);
+      m_inv.segment<3>(n_vel * b + 3) = bodies_[b].inertia.cwiseInverse();
+    }
+    if (n_rows_ > 0)
+    {
+      Eigen::MatrixXd D(n_rows_, nu);
+      Eigen::VectorXd phi(n_rows_), phi_t(n_rows_);
+      for (int r = 0; r < n_rows_; ++r)
+      {
+        D.row(r) = rows[r].D;
+        phi[r] = rows[r].phi;
+        phi_t[r] = rows[r].phi_t;
+      }
+      if (phi.cwiseAbs().maxCoeff() > 1e-9)
+        throw InputError("", "joints", format_value(phi.cwiseAbs().maxCoeff()),
+                         "|Phi| <= 1e-9 at t = 0",
+                         "the initial positions violate the joint constraints");
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(D.transpose());
+      qr.setThreshold(1e-10);
+      n_redundant_ = n_rows_ - static_cast<int>(qr.rank());
+      if (n_redundant_ > 0)
+        log::warning(std::to_string(n_redundant_) + " of " + std::to_string(n_rows_) +
+                     " constraint equations are redundant (e.g. a planar mechanism built from "
+                     "spatial joints): the motion is unique, joint reactions are the "
+                     "minimum-norm ones");
+      // Minimum-kinetic-energy velocity correction onto D·u = −Φ_t:
+      //   u = u0 − M⁻¹Dᵀ(D M⁻¹ Dᵀ)⁺(D·u0 + Φ_t).
+      const Eigen::MatrixXd S = D * m_inv.asDiagonal() * D.transpose();
+      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(S);
+      cod.setThreshold(1e-12);
+      const Eigen::VectorXd mu = cod.solve(D * u0 + phi_t);
+      const Eigen::VectorXd du = -(m_inv.asDiagonal() * D.transpose() * mu);
+      const Eigen::VectorXd m_diag = m_inv.cwiseInverse();
+      velocity_correction_ = std::sqrt(du.dot(m_diag.asDiagonal() * du));  // √(2·ΔE-like) [√J]
+      const double residual = (D * (u0 + du) + phi_t).cwiseAbs().maxCoeff();
+      if (residual > 1e-8)
+        throw InputError("", "bodies[*].velocity", format_value(residual),
+                         "velocities satisfying the joint constraints",
+                         "they could not be made consistent (conflicting drivers?)");
+      u0 += du;
+      // Corrections below 1e-6 (m/s, rad/s) are rounding of the input values: info only.
+      if (du.cwiseAbs().maxCoeff() > 1e-12)
+      {
+        std::string changes;
+        for (int b = 0; b < nb; ++b)
+          if (du.segment<6>(n_vel * b).cwiseAbs().maxCoeff() > 1e-9)
+          {
+            const Vector3 dv = du.segment<3>(n_vel * b);
+            const Vector3 dw = initial_[b].A * du.segment<3>(n_vel * b + 3);
+            changes += " " + bodies_[b].name + ": dv = (" + format_value(dv.x()) + ", " +
+                       format_value(dv.y()) + ", " + format_value(dv.z()) + ") m/s, dω = (" +
+                       format_value(dw.x()) + ", " + format_value(dw.y()) + ", " +
+                       format_value(dw.z()) + ") rad/s;";
+          }
+        const std::string msg =
+          "initial velocities violated the constraints (max |D·u + Φ_t| = " +
+          format_value((D * (u0 - du) + phi_t).cwiseAbs().maxCoeff()) +
+          "); corrected with the least kinetic-energy change:" + changes;
+        if (du.cwiseAbs().maxCoeff() > 1e-6)
+          log::warning(msg);
+        else
+          log::info(msg);
+      }
+    }
+    y0_.setZero(n_states());
+    for (int b = 0; b < nb; ++b)
+    {
+      y0_.segment<3>(n_pos * b) = initial_[b].r;
+      y0_.segment<4>(n_pos * b + 3) = initial_[b].e;
+      y0_.segment<6>(n_pos * nb + n_vel * b) = u0.segment<6>(n_vel * b);
+    }
+    return velocity_correction_;
+  }
+
+  void MultibodySystem::rhs(const double t, const double *y, double *ydot,
+                            SystemEvaluation *eval) const
+  {
+    const int nb = n_bodies(), nu = n_vel * nb;
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+
+    // Applied forces: gravity, gyroscopic terms, clearance joints.
+    Eigen::VectorXd Q = Eigen::VectorXd::Zero(nu), m_inv(nu), u(nu);
+    for (int b = 0; b < nb; ++b)
+    {
+      const BodyProperties &p = bodies_[b];
+      const BodyKinematics &kb = kin[b];
+      Q.segment<3>(n_vel * b) = p.mass * gravity_;
+      const Vector3 Jw = p.inertia.cwiseProduct(kb.w_B);
+      Q.segment<3>(n_vel * b + 3) = -kb.w_B.cross(Jw);
+      m_inv.segment<3>(n_vel * b).setConstant(1.0 / p.mass);
+      m_inv.segment<3>(n_vel * b + 3) = p.inertia.cwiseInverse();
+      u.segment<3>(n_vel * b) = kb.v;
+      u.segment<3>(n_vel * b + 3) = kb.w_B;
+    }
+    if (eval)
+      eval->clearance.resize(clearance_.size());
+    double P_friction_total = 0.0, P_damping_total = 0.0;
+    std::vector<double> P_fric(clearance_.size()), P_damp(clearance_.size());
+    for (std::size_t c = 0; c < clearance_.size(); ++c)
+    {
+      ClearanceOutput out;
+      clearance_[c]->apply(k, Q, &out);
+      for (const ContactResult &r : out.contacts)
+      {
+        P_fric[c] += r.P_friction;
+        P_damp[c] += r.P_damping;
+      }
+      P_friction_total += P_fric[c];
+      P_damping_total += P_damp[c];
+      if (eval)
+        eval->clearance[c] = out;
+    }
+
+    // Constraints.
+    std::vector<ConstraintRow> rows;
+    rows.reserve(static_cast<std::size_t>(n_rows_));
+    constraint_rows(k, t, rows);
+    const int nc = static_cast<int>(rows.size());
+    Eigen::VectorXd u_dot = m_inv.cwiseProduct(Q), lambda = Eigen::VectorXd::Zero(nc);
+    Eigen::MatrixXd D(nc, nu);
+    Eigen::VectorXd phi(nc), phi_dot(nc);
+    if (nc > 0)
+    {
+      Eigen::VectorXd rhs_c(nc);
+      for (int r = 0; r < nc; ++r)
+      {
+        D.row(r) = rows[r].D;
+        phi[r] = rows[r].phi;
+        phi_dot[r] = rows[r].D.dot(u) + rows[r].phi_t;
+        rhs_c[r] = rows[r].gamma - 2.0 * stab_.alpha * phi_dot[r] -
+                   stab_.beta * stab_.beta * phi[r];
+      }
+      const Eigen::MatrixXd DM = D * m_inv.asDiagonal();
+      const Eigen::MatrixXd S = DM * D.transpose();
+      const Eigen::VectorXd b = rhs_c - D * u_dot;
+      if (n_redundant_ == 0)
+      {
+        const Eigen::LLT<Eigen::MatrixXd> llt(S);
+        if (llt.info() != Eigen::Success)
+          throw NumericalError("constraint Jacobian lost rank at t = " + format_value(t) +
+                               " s (a singular configuration?)");
+        lambda = llt.solve(b);
+      }
+      else
+      {
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(S);
+        cod.setThreshold(1e-10);
+        lambda = cod.solve(b);
+      }
+      u_dot += DM.transpose() * lambda;
+    }
+
+    // ẏ
+    for (int b = 0; b < nb; ++b)
+    {
+      const BodyKinematics &kb = kin[b];
+      Eigen::Map<Vector3>(ydot + n_pos * b) = kb.v;
+      const double norm2 = kb.e.squaredNorm();
+      Eigen::Map<Vector4>(ydot + n_pos * b + 3) =
+        euler_parameter_rate(kb.e, kb.w_B) - stab_.euler_gain * (norm2 - 1.0) * kb.e;
+    }
+    for (int i = 0; i < nu; ++i)
+      ydot[n_pos * nb + i] = u_dot[i];
+    int w = (n_pos + n_vel) * nb;
+    for (std::size_t c = 0; c < clearance_.size(); ++c)
+    {
+      ydot[w++] = P_fric[c];
+      ydot[w++] = P_damp[c];
+    }
+    // Driver power: the constraint force Dᵀλ of the driver row times u.
+    for (std::size_t d = 0; d < drivers_.size(); ++d)
+    {
+      const int r = nc - static_cast<int>(drivers_.size()) + static_cast<int>(d);
+      ydot[w++] = lambda[r] * D.row(r).dot(u);
+    }
+    for (int i = 0; i < n_states(); ++i)
+      if (!std::isfinite(ydot[i]))
+        throw NumericalError("non-finite state derivative (component " + std::to_string(i) +
+                             ") at t = " + format_value(t) + " s");
+    (void)P_friction_total;
+    (void)P_damping_total;
+
+    if (eval)
+    {
+      eval->t = t;
+      eval->u_dot = u_dot;
+      eval->lambda = lambda;
+      eval->phi_norm = nc > 0 ? phi.cwiseAbs().maxCoeff() : 0.0;
+      eval->phi_dot_norm = nc > 0 ? phi_dot.cwiseAbs().maxCoeff() : 0.0;
+      eval->E_kin = eval->E_pot = eval->E_el = 0.0;
+      eval->euler_norm_error = 0.0;
+      for (int b = 0; b < nb; ++b)
+      {
+        const BodyProperties &p = bodies_[b];
+        const BodyKinematics &kb = kin[b];
+        eval->E_kin += 0.5 * p.mass * kb.v.squaredNorm() +
+                       0.5 * kb.w_B.dot(p.inertia.cwiseProduct(kb.w_B));
+        eval->E_pot += -p.mass * gravity_.dot(kb.r);
+        eval->euler_norm_error = std::max(eval->euler_norm_error, std::abs(kb.e.norm() - 1.0));
+      }
+      for (const auto &c : eval->clearance)
+        for (const ContactResult &r : c.contacts)
+          eval->E_el += r.E_el;
+      int s = (n_pos + n_vel) * nb;
+      eval->W_friction = eval->W_damping = eval->W_drivers = 0.0;
+      for (std::size_t c = 0; c < clearance_.size(); ++c)
+      {
+        eval->W_friction += y[s++];
+        eval->W_damping += y[s++];
+      }
+      for (std::size_t d = 0; d < drivers_.size(); ++d)
+        eval->W_drivers += y[s++];
+      // Joint reactions: force on body_j from each joint's rows, f = D_vᵀ·λ.
+      eval->joint_force_on_j.assign(joints_.size(), Vector3::Zero());
+      int r0 = 0;
+      for (std::size_t j = 0; j < joints_.size(); ++j)
+      {
+        const Joint &J = joints_[j];
+        const int ne = J.n_equations();
+        if (J.body_j() != ground_index)
+          eval->joint_force_on_j[j] =
+            D.block(r0, n_vel * J.body_j(), ne, 3).transpose() * lambda.segment(r0, ne);
+        else if (J.body_i() != ground_index)
+          eval->joint_force_on_j[j] =
+            -(D.block(r0, n_vel * J.body_i(), ne, 3).transpose() * lambda.segment(r0, ne));
+        r0 += ne;
+      }
+      eval->bodies = std::move(kin);
+    }
+  }
+
+  void MultibodySystem::gaps(const double *y, double *g) const
+  {
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    int i = 0;
+    for (const auto &c : clearance_)
+      for (const double d : c->gaps(k))
+        g[i++] = d;
+  }
+
+  std::vector<double> MultibodySystem::contact_rates(const double *y) const
+  {
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    std::vector<double> out;
+    for (const auto &c : clearance_)
+      for (const double r : c->rates(k))
+        out.push_back(r);
+    return out;
+  }
+} // namespace clearjoint::mbd

@@ -1,0 +1,118 @@
+#include "mbd_stage/output.h"
+
+#include "common/atomic_file.h"
+#include "common/csv.h"
+#include "common/error.h"
+#include "common/log.h"
+#include "common/manifest.h"
+
+#include <Eigen/Core>
+#include <sundials/sundials_config.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
+
+#ifndef CLEARJOINT_SOURCE_DIR
+#define CLEARJOINT_SOURCE_DIR "."
+#endif
+
+namespace fs = std::filesystem;
+
+namespace clearjoint::mbd
+{
+  OutputWriter::OutputWriter(std::string output_dir, const int argc, const char *const *argv)
+    : dir_(std::move(output_dir))
+    , argc_(argc)
+    , argv_(argv)
+  {
+    while (dir_.size() > 1 && dir_.back() == '/')
+      dir_.pop_back();
+    tmp_ = dir_ + ".tmp." + std::to_string(::getpid());
+    std::error_code ec;
+    const fs::path parent = fs::path(dir_).parent_path();
+    if (!parent.empty())
+      fs::create_directories(parent, ec);
+    fs::remove_all(tmp_, ec);
+    if (!fs::create_directories(tmp_, ec) || ec)
+      throw InputError("", "--output", dir_, "a directory that can be created",
+                       "cannot create " + tmp_ + ": " + ec.message());
+  }
+
+  OutputWriter::~OutputWriter()
+  {
+    std::error_code ec;
+    fs::remove_all(tmp_, ec);
+  }
+
+  std::string OutputWriter::plot_script()
+  {
+    if (const char *env = std::getenv("CLEARJOINT_PLOT_SCRIPT"))
+      return env;
+    return std::string(CLEARJOINT_SOURCE_DIR) + "/scripts/plot.py";
+  }
+
+  int OutputWriter::write(const Scene &scene, const SimulationResult &r, const bool make_plots)
+  {
+    {
+      CsvWriter csv(tmp_ + "/timeseries.csv", r.columns, r.units,
+                    {"clearjoint mbd_stage time series of scene '" + scene.name + "'",
+                     "energies: potential zero at z = 0; W_* are work done on the system "
+                     "(negative: dissipated)",
+                     "<joint>_F*: force the joint exerts on its body_j (ground frame)"});
+      for (const auto &row : r.rows)
+        csv.write_row(row);
+      if (r.complete)
+        csv.commit();
+      else
+        csv.commit_incomplete(r.failure);
+    }
+    write_file_atomically(tmp_ + "/summary.json", r.summary.dump(2) + "\n");
+
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+    fs::rename(tmp_, dir_, ec);
+    if (ec)
+      throw NumericalError("cannot rename " + tmp_ + " to " + dir_ + ": " + ec.message());
+
+    Manifest manifest("mbd_stage", dir_ + "/manifest.json", argc_, argv_);
+    manifest.add_input(scene.file);
+    for (const auto &f : scene.input_files)
+      manifest.add_input(f);
+    manifest.set_library_version("sundials", SUNDIALS_VERSION);
+    manifest.set_library_version("eigen", std::to_string(EIGEN_WORLD_VERSION) + "." +
+                                            std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                                            std::to_string(EIGEN_MINOR_VERSION));
+    manifest.add_output(dir_ + "/timeseries.csv");
+    manifest.add_output(dir_ + "/summary.json");
+
+    if (make_plots)
+    {
+      // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may
+      // not. $CLEARJOINT_PYTHON overrides.
+      std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+      if (const char *env = std::getenv("CLEARJOINT_PYTHON"))
+        python = env;
+      const std::string cmd = "'" + python + "' '" + plot_script() + "' mbd '" + dir_ + "'";
+      const int rc = std::system(cmd.c_str());
+      if (rc != 0)
+        log::warning("plotting failed (exit " + std::to_string(rc) + "): " + cmd);
+      if (fs::exists(dir_ + "/plots"))
+        for (const auto &p : fs::directory_iterator(dir_ + "/plots"))
+          manifest.add_output(p.path().string());
+    }
+    manifest.extra()["summary"] = {{"status", r.summary["status"]},
+                                   {"energy", r.summary["energy"]},
+                                   {"peaks", r.summary["peaks"]}};
+    if (r.complete)
+    {
+      manifest.write("complete");
+      log::info("mbd_stage: wrote " + dir_ + " (" + std::to_string(r.rows.size()) +
+                " rows, wall time " + log::format_duration(r.wall_time) + ")");
+      return exit_success;
+    }
+    manifest.write("failed", r.failure);
+    log::error("mbd_stage: simulation failed: " + r.failure + " (partial outputs in " + dir_ + ")");
+    return exit_numerical_error;
+  }
+} // namespace clearjoint::mbd

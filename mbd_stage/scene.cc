@@ -1,0 +1,351 @@
+#include "mbd_stage/scene.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/strict_reader.h"
+#include "laws/law_family.h"
+#include "laws/law_file.h"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+namespace clearjoint::mbd
+{
+  namespace
+  {
+    Vector3 vec3(StrictObject &o, const std::string &key, const Range &range = Range::any())
+    {
+      const auto v = o.number_array(key, range, 3);
+      if (v.size() != 3)
+        o.fail(key, std::to_string(v.size()) + " numbers", "exactly 3 numbers");
+      return {v[0], v[1], v[2]};
+    }
+
+    Vector3 unit_vec3(StrictObject &o, const std::string &key)
+    {
+      const Vector3 a = vec3(o, key);
+      if (!(a.norm() > 1e-12))
+        o.fail(key, "[0, 0, 0]", "a non-zero direction");
+      return a.normalized();
+    }
+
+    int body_ref(StrictObject &o, const std::string &key, const MultibodySystem &sys)
+    {
+      const std::string name = o.string(key);
+      const int b = sys.body_index(name);
+      if (b == -2)
+      {
+        std::string names = "ground";
+        for (const auto &p : sys.bodies())
+          names += "|" + p.name;
+        o.fail(key, name, "one of " + names, "no body of that name");
+      }
+      return b;
+    }
+
+    laws::DampingModel damping_of(StrictObject &o)
+    {
+      return laws::parse_damping_model(o.string("damping", laws::damping_model_names()));
+    }
+
+    std::string resolve(const std::string &base_dir, const std::string &p)
+    {
+      const std::filesystem::path path(p);
+      return path.is_absolute() ? p : (std::filesystem::path(base_dir) / path).lexically_normal().string();
+    }
+
+    ContactForceModel read_normal_model(StrictObject o, const ClearanceGeometry &G,
+                                        const double E_star, const std::string &base_dir,
+                                        std::vector<std::string> &inputs)
+    {
+      const std::string kind =
+        o.string("model", {"fe_law", "law_family", "hertz", "johnson", "pereira"});
+      const double scale = o.number_or("stiffness_scale", 1.0, Range::positive("1"));
+      const laws::RangePolicy policy =
+        laws::parse_range_policy(o.string_or("out_of_range", "extend", {"error", "clamp", "extend"}));
+      ContactForceModel model;
+      if (kind == "fe_law" || kind == "law_family")
+      {
+        const std::string path = resolve(base_dir, o.string("law_file"));
+        inputs.push_back(path);
+        try
+        {
+          if (kind == "fe_law")
+          {
+            laws::LawFile law = laws::read_law_file(path);
+            law.law.K *= scale;
+            model = ContactForceModel::law_file("fe_law", law, policy);
+          }
+          else
+          {
+            if (scale != 1.0)
+              o.fail("stiffness_scale", format_value(scale), "1 for law families");
+            model = ContactForceModel::law_family("law_family", laws::read_law_family(path), policy);
+          }
+        }
+        catch (const InputError &e)
+        {
+          o.fail("law_file", path, std::string("a readable ") +
+                                     (kind == "fe_law" ? laws::law_schema : laws::law_family_schema) +
+                                     " file",
+                 e.what());
+        }
+      }
+      else if (kind == "hertz")
+      {
+        laws::PowerLaw law = hertz_cylinder_law(G.R_B, G.R_J, E_star);
+        law.K *= scale;
+        model = ContactForceModel::power_law("hertz", law);
+      }
+      else if (kind == "pereira")
+      {
+        PereiraParameters p;
+        if (o.has("pereira"))
+        {
+          StrictObject po = o.object("pereira");
+          p.a = po.number("a", Range::any("1"));
+          p.b = po.number("b", Range::any("mm"));
+          po.finish();
+        }
+        else
+          o.number_or("pereira", 0.0, Range::any());  // mark as known
+        try
+        {
+          laws::PowerLaw law = pereira_law(G.R_B, G.R_J, G.L_J, E_star, p);
+          law.K *= scale;
+          model = ContactForceModel::power_law("pereira", law);
+        }
+        catch (const InputError &e)
+        {
+          o.fail("model", "pereira", "a clearance R_B − R_J in [0.005, 10.1] mm", e.what());
+        }
+      }
+      else  // johnson
+      {
+        if (scale != 1.0)
+          o.fail("stiffness_scale", format_value(scale), "1 for johnson");
+        model = ContactForceModel::johnson("johnson", JohnsonLaw(G.c_r(), G.L_J, E_star), policy);
+      }
+      const laws::DampingModel damping = damping_of(o);
+      const double c_e = o.number("restitution", Range{.lo = 0.0, .hi = 1.0, .lo_open = true, .unit = "1"});
+      const double v_min = o.number_or("min_impact_velocity", 1e-3, Range::positive("m/s"));
+      model.set_damping(damping, c_e, v_min);
+      o.finish();
+      return model;
+    }
+
+    ContactForceModel read_axial_model(StrictObject o)
+    {
+      const double K = o.number("K", Range::positive("N/m^n"));
+      const double n = o.number("n", Range::closed(1.0, 2.0, "1"));
+      ContactForceModel model = ContactForceModel::power_law("axial", {K, n});
+      const laws::DampingModel damping = damping_of(o);
+      const double c_e = o.number("restitution", Range{.lo = 0.0, .hi = 1.0, .lo_open = true, .unit = "1"});
+      const double v_min = o.number_or("min_impact_velocity", 1e-3, Range::positive("m/s"));
+      model.set_damping(damping, c_e, v_min);
+      o.finish();
+      return model;
+    }
+  } // namespace
+
+  Scene read_scene(const std::string &path)
+  {
+    const nlohmann::json doc = read_structured_file(path);
+    return scene_from_json(doc, path, std::filesystem::path(path).parent_path().string());
+  }
+
+  Scene scene_from_json(const nlohmann::json &doc, const std::string &file,
+                        const std::string &base_dir)
+  {
+    Scene scene;
+    scene.file = file;
+    scene.raw = doc;
+    StrictObject top(doc, file);
+    top.expect_schema(scene_schema);
+    scene.name = top.string("name");
+    scene.description = top.string_or("description", "");
+    scene.duration = top.number("duration", Range::positive("s"));
+    auto sys = std::make_shared<MultibodySystem>();
+    sys->set_gravity(vec3(top, "gravity"));
+
+    // Bodies
+    std::set<std::string> names{"ground"};
+    for (StrictObject b : top.object_array("bodies"))
+    {
+      BodyProperties p;
+      p.name = b.string("name");
+      if (!names.insert(p.name).second)
+        b.fail("name", p.name, "a unique name other than 'ground'");
+      p.mass = b.number("mass", Range::positive("kg"));
+      p.inertia = vec3(b, "inertia", Range::positive("kg*m^2"));
+      BodyKinematics k;
+      k.r = vec3(b, "position", Range::any("m"));
+      const auto e = b.number_array("euler_parameters", Range::closed(-1.0 - 1e-3, 1.0 + 1e-3), 4);
+      if (e.size() != 4)
+        b.fail("euler_parameters", std::to_string(e.size()) + " numbers", "exactly 4 numbers");
+      k.e = Vector4(e[0], e[1], e[2], e[3]);
+      const double norm = k.e.norm();
+      // 1e-6: tables quote e to 4–6 digits; anything further off is a typo, not rounding.
+      if (std::abs(norm - 1.0) > 1e-6)
+        b.fail("euler_parameters", "norm " + format_value(norm), "unit norm within 1e-6",
+               "Euler parameters must satisfy e0² + e1² + e2² + e3² = 1");
+      k.e /= norm;
+      k.A = rotation_matrix(k.e);
+      k.v = vec3(b, "velocity", Range::any("m/s"));
+      k.w_B = k.A.transpose() * vec3(b, "angular_velocity", Range::any("rad/s"));
+      b.finish();
+      sys->add_body(p, k);
+    }
+    if (sys->n_bodies() == 0)
+      top.fail("bodies", "[]", "at least one body");
+
+    // Joints
+    std::vector<std::string> joint_names;
+    for (StrictObject j : top.object_array("joints"))
+    {
+      const std::string name = j.string("name");
+      const JointType type = parse_joint_type(
+        j.string("type", {"revolute", "translational", "spherical", "fixed"}));
+      const int bi = body_ref(j, "body_i", *sys), bj = body_ref(j, "body_j", *sys);
+      if (bi == bj)
+        j.fail("body_j", j.raw("body_j").dump(), "a body other than body_i");
+      const Vector3 point = vec3(j, "point", Range::any("m"));
+      const Vector3 axis = type == JointType::spherical && !j.has("axis")
+                             ? Vector3::UnitX()
+                             : unit_vec3(j, "axis");
+      j.finish();
+      sys->add_joint(name, type, bi, bj, point, axis);
+      joint_names.push_back(name);
+    }
+    if (top.has("drivers"))
+      for (StrictObject d : top.object_array("drivers"))
+      {
+        const std::string name = d.string("name");
+        const std::string jn = d.string("joint");
+        int idx = -1;
+        for (std::size_t i = 0; i < joint_names.size(); ++i)
+          if (joint_names[i] == jn)
+            idx = static_cast<int>(i);
+        if (idx < 0)
+          d.fail("joint", jn, "the name of a revolute joint of this scene");
+        if (sys->joints()[idx].type() != JointType::revolute)
+          d.fail("joint", jn, "a revolute joint");
+        const double speed = d.number("speed", Range::any("rad/s"));
+        d.finish();
+        sys->add_driver(name, idx, speed);
+      }
+    else
+      top.number_or("drivers", 0.0, Range::any());
+
+    // Clearance joints
+    if (top.has("clearance_joints"))
+    {
+      for (StrictObject c : top.object_array("clearance_joints"))
+      {
+        const std::string name = c.string("name");
+        StrictObject bo = c.object("bearing"), jo = c.object("journal");
+        const int bb = body_ref(bo, "body", *sys), jb = body_ref(jo, "body", *sys);
+        if (bb == jb)
+          jo.fail("body", jo.raw("body").dump(), "a body other than the bearing's");
+        const Vector3 cb = vec3(bo, "center", Range::any("m")), ab = unit_vec3(bo, "axis");
+        const Vector3 cj = vec3(jo, "center", Range::any("m")), aj = unit_vec3(jo, "axis");
+        bo.finish();
+        jo.finish();
+        StrictObject go = c.object("geometry");
+        ClearanceGeometry G;
+        G.R_B = go.number("R_B", Range::positive("m"));
+        G.R_J = go.number("R_J", Range::positive("m"));
+        G.L_B = go.number("L_B", Range::positive("m"));
+        G.L_J = go.number("L_J", Range::positive("m"));
+        if (!(G.R_J < G.R_B))
+          go.fail("R_J", format_value(G.R_J), "(0, R_B = " + format_value(G.R_B) + ") m",
+                  "the radial clearance c_r = R_B − R_J must be > 0");
+        if (!(G.L_J < G.L_B))
+          go.fail("L_J", format_value(G.L_J), "(0, L_B = " + format_value(G.L_B) + ") m",
+                  "the axial clearance c_a = (L_B − L_J)/2 must be > 0");
+        go.finish();
+        StrictObject mo = c.object("material");
+        const double Eb = mo.number("E_bearing", Range::positive("Pa"));
+        const double nb = mo.number("nu_bearing", Range::open(-1.0, 0.5, "1"));
+        const double Ej = mo.number("E_journal", Range::positive("Pa"));
+        const double nj = mo.number("nu_journal", Range::open(-1.0, 0.5, "1"));
+        mo.finish();
+        const double E_star = effective_modulus(Eb, nb, Ej, nj);
+        ContactForceModel normal =
+          read_normal_model(c.object("normal"), G, E_star, base_dir, scene.input_files);
+        ContactForceModel axial = read_axial_model(c.object("axial"));
+        StrictObject fo = c.object("friction");
+        CoulombFriction fr;
+        fr.mu = fo.number("mu", Range::closed(0.0, 2.0, "1"));
+        fr.v0 = fo.number("v0", Range::positive("m/s"));
+        fr.v1 = fo.number("v1", Range::positive("m/s"));
+        if (!(fr.v1 > fr.v0))
+          fo.fail("v1", format_value(fr.v1), "> v0 = " + format_value(fr.v0) + " m/s");
+        fo.finish();
+        c.finish();
+        sys->add_clearance_joint(std::make_unique<ClearanceJoint>(
+          name, bb, jb, cb, ab, cj, aj, G, std::move(normal), std::move(axial), fr,
+          sys->initial_view()));
+      }
+    }
+    else
+      top.number_or("clearance_joints", 0.0, Range::any());
+
+    // Integrator
+    {
+      StrictObject io = top.object("integrator");
+      IntegratorSettings &s = scene.integrator;
+      s.method = io.string("method", {"dopri5", "bdf"}) == "dopri5" ? IntegratorMethod::dopri5
+                                                                     : IntegratorMethod::bdf;
+      s.rtol = io.number("rtol", Range::closed(1e-14, 1e-2, "1"));
+      s.atol_position = io.number("atol_position", Range::positive("m"));
+      s.atol_velocity = io.number("atol_velocity", Range::positive("m/s"));
+      s.max_step = io.number("max_step", Range::non_negative("s (0: no limit)"));
+      scene.output_interval = io.number("output_interval", Range::positive("s"));
+      io.finish();
+      if (scene.output_interval > scene.duration)
+        top.fail("integrator.output_interval", format_value(scene.output_interval),
+                 "(0, duration] s");
+    }
+    Stabilization stab{.alpha = 50.0, .beta = 50.0, .euler_gain = 50.0};
+    if (top.has("stabilization"))
+    {
+      StrictObject so = top.object("stabilization");
+      stab.alpha = so.number("alpha", Range::non_negative("1/s"));
+      stab.beta = so.number("beta", Range::non_negative("1/s"));
+      stab.euler_gain = so.number_or("euler_gain", stab.beta, Range::non_negative("1/s"));
+      so.finish();
+    }
+    else
+      top.number_or("stabilization", 0.0, Range::any());
+    sys->set_stabilization(stab);
+
+    if (top.has("outputs"))
+    {
+      StrictObject oo = top.object("outputs");
+      for (const char *key : {"slider", "crank"})
+        if (oo.has(key))
+        {
+          StrictObject ax = oo.object(key);
+          MonitoredAxis m;
+          m.body = ax.string("body");
+          if (sys->body_index(m.body) < 0)
+            ax.fail("body", m.body, "the name of a moving body");
+          m.axis = unit_vec3(ax, "axis");
+          ax.finish();
+          (std::string(key) == "slider" ? scene.slider : scene.crank) = m;
+        }
+        else
+          oo.number_or(key, 0.0, Range::any());
+      oo.finish();
+    }
+    else
+      top.number_or("outputs", 0.0, Range::any());
+    top.finish();
+
+    sys->finalize(0.0);
+    scene.system = sys;
+    return scene;
+  }
+} // namespace clearjoint::mbd

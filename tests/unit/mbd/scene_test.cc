@@ -1,0 +1,162 @@
+// Bad input (SPEC §6, issue 5 item 9): each case gives an InputError naming the field and its
+// valid range; the executable exits 1 and writes nothing. Plus one short good run through the
+// executable (outputs, units line, manifest status).
+#include "mbd_stage/scene.h"
+
+#include "common/error.h"
+#include "common/strict_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+using namespace clearjoint;
+using namespace clearjoint::mbd;
+namespace fs = std::filesystem;
+
+namespace
+{
+  const std::string scenes = std::string(CLEARJOINT_SOURCE_DIR) + "/mbd_stage/scenes";
+
+  nlohmann::json base()
+  {
+    return read_yaml_file(scenes + "/slider_crank_fe_law_damped.yaml");
+  }
+
+  /// Expects scene_from_json to throw an InputError whose message contains every `needle`.
+  void expect_error(const std::function<void(nlohmann::json &)> &mutate,
+                    const std::vector<std::string> &needles)
+  {
+    nlohmann::json doc = base();
+    mutate(doc);
+    try
+    {
+      scene_from_json(doc, "bad.yaml", scenes);
+      ADD_FAILURE() << "no error for " << needles.front();
+    }
+    catch (const InputError &e)
+    {
+      const std::string msg = e.what();
+      for (const auto &n : needles)
+        EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
+    }
+  }
+
+  std::string temp_dir(const std::string &name)
+  {
+    const fs::path p = fs::temp_directory_path() / ("clearjoint_mbd_test_" + name + "_" +
+                                                    std::to_string(::getpid()));
+    fs::remove_all(p);
+    return p.string();
+  }
+} // namespace
+
+TEST(Scene, TheShippedScenesAllRead)
+{
+  int n = 0;
+  for (const auto &f : fs::directory_iterator(scenes))
+    if (f.path().extension() == ".yaml")
+    {
+      EXPECT_NO_THROW(read_scene(f.path().string())) << f.path();
+      ++n;
+    }
+  EXPECT_GE(n, 10);
+}
+
+TEST(Scene, UnknownAndMissingKeys)
+{
+  expect_error([](auto &d) { d["bodies"][0]["colour"] = "red"; }, {"bodies[0].colour", "unknown key"});
+  expect_error([](auto &d) { d["bodies"][1].erase("mass"); }, {"bodies[1].mass", "missing"});
+  expect_error([](auto &d) { d.erase("integrator"); }, {"integrator", "missing"});
+  expect_error([](auto &d) { d["schema"] = "clearjoint.mbd/2"; }, {"schema", "clearjoint.mbd/1"});
+  expect_error([](auto &d) { d["clearance_joints"][0]["normal"]["damping"] = "magic"; },
+               {"normal.damping", "lankarani_nikravesh"});
+}
+
+TEST(Scene, JointNamingAMissingBody)
+{
+  expect_error([](auto &d) { d["joints"][1]["body_j"] = "piston"; },
+               {"joints[1].body_j", "piston", "crank"});
+  expect_error([](auto &d) { d["clearance_joints"][0]["journal"]["body"] = "pin"; },
+               {"clearance_joints[0].journal.body", "pin"});
+}
+
+TEST(Scene, NonPositiveMassAndInertia)
+{
+  expect_error([](auto &d) { d["bodies"][0]["mass"] = 0.0; }, {"bodies[0].mass", "(0, inf) kg"});
+  expect_error([](auto &d) { d["bodies"][2]["inertia"][1] = -0.001; },
+               {"bodies[2].inertia[1]", "kg*m^2"});
+}
+
+TEST(Scene, EulerParametersFarFromUnitNorm)
+{
+  expect_error([](auto &d) { d["bodies"][0]["euler_parameters"] = {1.0, 0.1, 0.0, 0.0}; },
+               {"bodies[0].euler_parameters", "unit norm"});
+}
+
+TEST(Scene, NonPositiveClearance)
+{
+  expect_error([](auto &d) { d["clearance_joints"][0]["geometry"]["R_J"] = 0.010; },
+               {"geometry.R_J", "c_r"});
+  expect_error([](auto &d) { d["clearance_joints"][0]["geometry"]["R_J"] = 0.011; },
+               {"geometry.R_J"});
+  expect_error([](auto &d) { d["clearance_joints"][0]["geometry"]["L_J"] = 0.025; },
+               {"geometry.L_J", "c_a"});
+}
+
+TEST(Scene, MissingOrWrongLawFile)
+{
+  expect_error([](auto &d) { d["clearance_joints"][0]["normal"]["law_file"] = "no_such_law.json"; },
+               {"normal.law_file", "no_such_law.json"});
+  // A file of the wrong schema: this scene file itself.
+  expect_error([](auto &d) {
+    d["clearance_joints"][0]["normal"]["law_file"] = "slider_crank_johnson.yaml";
+  }, {"normal.law_file", "clearjoint.law/1"});
+}
+
+TEST(Scene, ExecutableRejectsBadInputWithExit1AndNoOutputs)
+{
+  nlohmann::json doc = base();
+  doc["bodies"][0]["mass"] = -1.0;
+  doc["clearance_joints"][0]["normal"]["law_file"] = scenes + "/../../laws/paper_tB4.json";
+  const std::string dir = temp_dir("bad");
+  const std::string scene = dir + "_scene.json";
+  std::ofstream(scene) << doc.dump();
+  const std::string cmd = std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " + dir +
+                          " --no-plots -q 2>/dev/null";
+  const int rc = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(rc));
+  EXPECT_EQ(WEXITSTATUS(rc), 1);
+  EXPECT_FALSE(fs::exists(dir));
+  fs::remove(scene);
+}
+
+TEST(Scene, ExecutableWritesOutputsAtomically)
+{
+  nlohmann::json doc = base();
+  doc["duration"] = 0.004;  // s: through the first impact, quickly
+  doc["clearance_joints"][0]["normal"]["law_file"] = scenes + "/../../laws/paper_tB4.json";
+  const std::string dir = temp_dir("good");
+  const std::string scene = dir + "_scene.json";
+  std::ofstream(scene) << doc.dump();
+  const std::string cmd = std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " + dir +
+                          " --no-plots -q 2>/dev/null";
+  const int rc = std::system(cmd.c_str());
+  ASSERT_EQ(WEXITSTATUS(rc), 0);
+  for (const char *f : {"timeseries.csv", "summary.json", "manifest.json"})
+    EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
+  const nlohmann::json manifest = read_json_file(dir + "/manifest.json");
+  EXPECT_EQ(manifest["status"], "complete");
+  std::ifstream csv(dir + "/timeseries.csv");
+  std::string text((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("# units: s,m,m/s,m/s^2"), std::string::npos);
+  EXPECT_NE(text.find("# status: complete"), std::string::npos);
+  // No temporary directory left behind.
+  for (const auto &p : fs::directory_iterator(fs::path(dir).parent_path()))
+    EXPECT_EQ(p.path().string().find(dir + ".tmp"), std::string::npos);
+  fs::remove_all(dir);
+  fs::remove(scene);
+}
