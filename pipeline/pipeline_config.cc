@@ -24,17 +24,35 @@ namespace clearjoint::pipeline
     {
       const std::size_t dot = key_path.find('.', start);
       const std::string key = key_path.substr(start, dot == std::string::npos ? dot : dot - start);
-      if (!node->is_object())
-        throw InputError(source, key_path, node->dump(), "a key path through mappings",
-                         "'" + key + "' cannot be set inside a non-mapping");
-      if (dot == std::string::npos)
+      const bool last = dot == std::string::npos;
+      if (node->is_array())
       {
-        (*node)[key] = value;
+        // A numeric component indexes a list: "clearance_joints.0.normal.law_file".
+        const bool numeric = !key.empty() && key.find_first_not_of("0123456789") == std::string::npos;
+        if (!numeric || std::stoul(key) >= node->size())
+          throw InputError(source, key_path, key,
+                           "an index in [0, " + std::to_string(node->size()) + ") of the list");
+        node = &(*node)[std::stoul(key)];
+      }
+      else if (node->is_object())
+      {
+        if (last)
+        {
+          (*node)[key] = value;
+          return;
+        }
+        if (!node->contains(key))
+          (*node)[key] = nlohmann::json::object();
+        node = &(*node)[key];
+      }
+      else
+        throw InputError(source, key_path, node->dump(), "a key path through mappings and lists",
+                         "'" + key + "' cannot be set inside a scalar");
+      if (last)
+      {
+        *node = value;
         return;
       }
-      if (!node->contains(key))
-        (*node)[key] = nlohmann::json::object();
-      node = &(*node)[key];
       start = dot + 1;
     }
   }

@@ -86,4 +86,9 @@ TEST(PipelineConfig, SetKeyPath)
   EXPECT_EQ(j["a"]["b"], 5);
   EXPECT_EQ(j["a"]["d"]["e"], "f");
   EXPECT_THROW(set_key_path(j, "c.d", 1, "x"), InputError);
+  j["list"] = {{{"law", "a"}}, {{"law", "b"}}};
+  set_key_path(j, "list.1.law", "c", "x");
+  EXPECT_EQ(j["list"][1]["law"], "c");
+  EXPECT_THROW(set_key_path(j, "list.2.law", "c", "x"), InputError);
+  EXPECT_THROW(set_key_path(j, "list.first.law", "c", "x"), InputError);
 }
