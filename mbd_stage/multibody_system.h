@@ -96,6 +96,8 @@ namespace clearjoint::mbd
     void rhs(double t, const double *y, double *ydot, SystemEvaluation *eval = nullptr) const;
     /// g_k(t, y) = δ_k of every clearance-joint contact (3 per joint), [m].
     void gaps(const double *y, double *g) const;
+    /// Radial normal force [N] of every clearance joint (cheap: no constraint solve).
+    std::vector<double> radial_forces(const double *y) const;
     /// δ̇_k of every contact [m/s].
     std::vector<double> contact_rates(const double *y) const;
     /// Unpacks y into per-body kinematics.
