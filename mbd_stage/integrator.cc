@@ -281,15 +281,16 @@ namespace clearjoint::mbd
       }
       if (on_step)
       {
-        // Sample the step only where a contact force may peak inside it: an active contact
-        // whose rate δ̇ changed sign from + (compression) to − (restitution) within the step.
+        // Sample the step only where a contact force may peak inside it: an active contact that
+        // was in compression (δ̇ > 0) at the start of the step (with damping, the force peaks
+        // before the maximum compression).
         const std::vector<double> rates_now = system_.contact_rates(yp);
         bool in_contact = false;
         int ic = 0;
         for (const auto &cj : system_.clearance_joints())
           for (int c = 0; c < ClearanceJoint::n_contacts; ++c, ++ic)
             in_contact = in_contact || (cj->state(c).active && rates_prev.size() == rates_now.size() &&
-                                        rates_prev[ic] >= 0.0 && rates_now[ic] <= 0.0);
+                                        rates_prev[ic] > 0.0);
         rates_prev = rates_now;
         if (in_contact && settings_.n_step_samples > 1 && t_reached > t)
         {

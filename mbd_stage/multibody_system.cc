@@ -331,7 +331,7 @@ namespace clearjoint::mbd
     const KinematicsView k(&kin);
     int i = 0;
     for (const auto &c : clearance_)
-      for (const double d : c->gaps(k))
+      for (const double d : c->root_functions(k))
         g[i++] = d;
   }
 
