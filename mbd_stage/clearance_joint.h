@@ -96,7 +96,7 @@ namespace clearjoint::mbd
     /// at the point where the integrator restarts after an event (SUNDIALS would stop with
     /// "root found at and very near t" when a contact grazes).
     std::array<double, 3> root_functions(const KinematicsView &k) const;
-    double release_offset() const { return 1e-3 * geometry_.c_r(); }  ///< [m]
+    double release_offset() const { return 1e-6 * geometry_.c_r(); }  ///< [m]
     /// Contact rates δ̇_k [m/s] (for onset and release decisions).
     std::array<double, 3> rates(const KinematicsView &k) const;
 
