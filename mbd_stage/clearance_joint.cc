@@ -106,6 +106,15 @@ namespace clearjoint::mbd
     return place(k).delta;
   }
 
+  std::array<double, 3> ClearanceJoint::root_functions(const KinematicsView &k) const
+  {
+    std::array<double, 3> g = place(k).delta;
+    for (int c = 0; c < n_contacts; ++c)
+      if (states_[c].active)
+        g[c] += release_offset();
+    return g;
+  }
+
   std::array<double, 3> ClearanceJoint::rates(const KinematicsView &k) const
   {
     const Placement p = place(k);

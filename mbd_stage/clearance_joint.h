@@ -90,6 +90,13 @@ namespace clearjoint::mbd
     /// Adds the generalised forces [f_G; n_B] of both bodies to Q (length 6·n_bodies) and
     /// fills `out` (if given).
     void apply(const KinematicsView &k, Eigen::VectorXd &Q, ClearanceOutput *out) const;
+    /// Root functions for the integrator: δ_k for an inactive contact (onset when it rises
+    /// through 0), δ_k + release_offset for an active one (release once δ_k < −release_offset,
+    /// where the force is already 0). The offset keeps a root function from being exactly zero
+    /// at the point where the integrator restarts after an event (SUNDIALS would stop with
+    /// "root found at and very near t" when a contact grazes).
+    std::array<double, 3> root_functions(const KinematicsView &k) const;
+    double release_offset() const { return 1e-6 * geometry_.c_r(); }  ///< [m]
     /// Contact rates δ̇_k [m/s] (for onset and release decisions).
     std::array<double, 3> rates(const KinematicsView &k) const;
 

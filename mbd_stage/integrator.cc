@@ -133,7 +133,7 @@ namespace clearjoint::mbd
 
   void Integrator::run(const double t0, const double t_end, const double output_interval,
                        const std::function<void(double, const Eigen::VectorXd &)> &on_output,
-                       const std::function<void(double, const Eigen::VectorXd &)> &on_step)
+                       const std::function<void(double, const Eigen::VectorXd &, bool)> &on_step)
   {
     Impl &m = *impl_;
     const bool erk = m.erk;
@@ -249,6 +249,7 @@ namespace clearjoint::mbd
     double t = t0;
     const double t_eps = 1e-12 * std::max(1.0, std::abs(t_end));
     std::vector<int> found(static_cast<std::size_t>(std::max(ng, 1)));
+    std::vector<double> rates_prev = system_.contact_rates(yp);
 
     while (t < t_end - t_eps)
     {
@@ -280,10 +281,17 @@ namespace clearjoint::mbd
       }
       if (on_step)
       {
+        // Sample the step only where a contact force may peak inside it: an active contact that
+        // was in compression (δ̇ > 0) at the start of the step (with damping, the force peaks
+        // before the maximum compression).
+        const std::vector<double> rates_now = system_.contact_rates(yp);
         bool in_contact = false;
+        int ic = 0;
         for (const auto &cj : system_.clearance_joints())
-          for (int c = 0; c < ClearanceJoint::n_contacts; ++c)
-            in_contact = in_contact || cj->state(c).active;
+          for (int c = 0; c < ClearanceJoint::n_contacts; ++c, ++ic)
+            in_contact = in_contact || (cj->state(c).active && rates_prev.size() == rates_now.size() &&
+                                        rates_prev[ic] > 0.0);
+        rates_prev = rates_now;
         if (in_contact && settings_.n_step_samples > 1 && t_reached > t)
         {
           Eigen::VectorXd ys(n);
@@ -293,11 +301,11 @@ namespace clearjoint::mbd
             m.check(erk ? ERKStepGetDky(m.mem, ts, 0, m.dky) : CVodeGetDky(m.mem, ts, 0, m.dky),
                     "GetDky");
             ys = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(m.dky), n);
-            on_step(ts, ys);
+            on_step(ts, ys, true);
           }
         }
         Eigen::Map<const Eigen::VectorXd> ys(yp, n);
-        on_step(t_reached, ys);
+        on_step(t_reached, ys, false);
       }
       t = t_reached;
       const bool is_root = erk ? flag == ARK_ROOT_RETURN : flag == CV_ROOT_RETURN;

@@ -60,12 +60,13 @@ namespace clearjoint::mbd
     Integrator &operator=(const Integrator &) = delete;
 
     /// Integrates from t0 to t_end. `on_output(t, y)` is called at t0 and at every multiple of
-    /// output_interval (dense output), and `on_step(t, y)` after every accepted step — and, while
-    /// a contact is active, also at n_step_samples − 1 interior points of the step (dense
-    /// output), so peaks of the contact force are not missed between step ends.
+    /// output_interval (dense output), and `on_step(t, y, false)` after every accepted step — and
+    /// (with interior = true) at n_step_samples − 1 interior points (dense output) of each step in
+    /// which an active contact turns from compression to restitution, so the peak contact force
+    /// is not missed between step ends.
     void run(double t0, double t_end, double output_interval,
              const std::function<void(double, const Eigen::VectorXd &)> &on_output,
-             const std::function<void(double, const Eigen::VectorXd &)> &on_step = {});
+             const std::function<void(double, const Eigen::VectorXd &, bool interior)> &on_step = {});
 
     const StepStatistics &statistics() const { return stats_; }
     const std::vector<ContactEvent> &events() const { return events_; }

@@ -331,8 +331,23 @@ namespace clearjoint::mbd
     const KinematicsView k(&kin);
     int i = 0;
     for (const auto &c : clearance_)
-      for (const double d : c->gaps(k))
+      for (const double d : c->root_functions(k))
         g[i++] = d;
+  }
+
+  std::vector<double> MultibodySystem::radial_forces(const double *y) const
+  {
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    Eigen::VectorXd Q = Eigen::VectorXd::Zero(6 * n_bodies());
+    std::vector<double> out;
+    for (const auto &c : clearance_)
+    {
+      ClearanceOutput o;
+      c->apply(k, Q, &o);
+      out.push_back(o.contacts[0].F_n);
+    }
+    return out;
   }
 
   std::vector<double> MultibodySystem::contact_rates(const double *y) const

@@ -94,8 +94,11 @@ namespace clearjoint::mbd
 
     /// ẏ = f(t, y); fills `eval` when given. Throws NumericalError on a non-finite result.
     void rhs(double t, const double *y, double *ydot, SystemEvaluation *eval = nullptr) const;
-    /// g_k(t, y) = δ_k of every clearance-joint contact (3 per joint), [m].
+    /// Root functions of every clearance-joint contact (3 per joint), [m]: see
+    /// ClearanceJoint::root_functions.
     void gaps(const double *y, double *g) const;
+    /// Radial normal force [N] of every clearance joint (cheap: no constraint solve).
+    std::vector<double> radial_forces(const double *y) const;
     /// δ̇_k of every contact [m/s].
     std::vector<double> contact_rates(const double *y) const;
     /// Unpacks y into per-body kinematics.

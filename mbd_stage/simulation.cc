@@ -189,9 +189,27 @@ namespace clearjoint::mbd
       track_peaks(t, ev);
     };
     SystemEvaluation ev_step;
-    const auto on_step = [&](const double t, const Eigen::VectorXd &y) {
-      sys.rhs(t, y.data(), ydot.data(), &ev_step);
-      track_peaks(t, ev_step);
+    const auto on_step = [&](const double t, const Eigen::VectorXd &y, const bool interior) {
+      if (!interior)
+      {
+        sys.rhs(t, y.data(), ydot.data(), &ev_step);
+        track_peaks(t, ev_step);
+        return;
+      }
+      // Interior samples while in contact: only the contact-force peaks (no constraint solve).
+      const std::vector<double> F = sys.radial_forces(y.data());
+      for (std::size_t c = 0; c < F.size(); ++c)
+      {
+        peak_F[c] = std::max(peak_F[c], F[c]);
+        if (F[c] > res.peak_contact_force)
+        {
+          res.peak_contact_force = F[c];
+          peak_force_t = t;
+        }
+        const ContactState &s = sys.clearance_joints()[c]->state(0);
+        if (c == 0 && s.n_impacts == 1 && s.active)
+          res.first_impact_peak_force = std::max(res.first_impact_peak_force, F[c]);
+      }
     };
 
     Integrator integrator(sys, scene.integrator);

@@ -2,6 +2,7 @@
 
     plot.py mbd DIR                          -> DIR/plots/*.png
     plot.py mbd --compare OUT.png DIR1 DIR2 ...   -> one figure overlaying the runs (Figs. 14–16)
+    plot.py mbd --bench BENCH_DIR            -> BENCH_DIR/mbd_tolerance.png from mbd_benchmark
 
 DIR holds timeseries.csv and summary.json written by mbd_stage.
 """
@@ -145,10 +146,38 @@ def compare(out_png, dirs):
     return 0
 
 
+def bench(d):
+    cols, units, data = read_table(os.path.join(d, "mbd_tolerance.csv"))
+    names = {0: "DP5", 1: "DP5, max step 1e-5 s", 2: "CVODE BDF"}
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
+    for m, label in names.items():
+        idx = [i for i, v in enumerate(data["method"]) if int(v) == m]
+        if not idx:
+            continue
+        w = [data["wall_time"][i] for i in idx]
+        ax[0].loglog(w, [max(data["first_peak_rel_error"][i], 1e-9) for i in idx], "o-", label=label)
+        ax[1].loglog(w, [max(data["v_error_20ms"][i], 1e-9) for i in idx], "o-", label=label)
+        for i in idx:
+            ax[0].annotate("%.0e" % data["rtol"][i], (data["wall_time"][i], max(data["first_peak_rel_error"][i], 1e-9)),
+                           fontsize=6)
+    ax[0].set_xlabel("wall time [s] (0.1 s scene)")
+    ax[0].set_ylabel("first-impact peak force, relative error")
+    ax[1].set_xlabel("wall time [s] (0.1 s scene)")
+    ax[1].set_ylabel("max slider velocity error, t ≤ 0.02 s [m/s]")
+    for a in ax:
+        a.legend(fontsize=8)
+        a.grid(True, which="both", lw=0.3)
+    fig.suptitle("MBD: wall time against error (FE law with dissipation), reference DP5 rtol 1e-12")
+    _save(fig, os.path.join(d, "mbd_tolerance.png"))
+    return 0
+
+
 def main(argv):
     if not argv or argv[0] in ("-h", "--help"):
         print(__doc__)
         return 0 if argv else 1
+    if argv[0] == "--bench":
+        return bench(argv[1])
     if argv[0] == "--compare":
         if len(argv) < 3:
             print("mbd --compare OUT.png DIR1 [DIR2 ...]", file=sys.stderr)
