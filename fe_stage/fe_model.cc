@@ -271,6 +271,19 @@ namespace clearjoint::fe
       std::vector<std::pair<double, std::string>> pvd_records_;
       std::vector<std::string> field_files_;
       std::chrono::steady_clock::time_point start_;
+      double t_assemble_ = 0, t_solve_ = 0, t_amg_ = 0, t_evaluate_ = 0;
+    };
+
+    /// Adds the seconds since construction to `target` on destruction.
+    struct ScopedTimer
+    {
+      explicit ScopedTimer(double &target) : target_(target), t0_(std::chrono::steady_clock::now()) {}
+      ~ScopedTimer()
+      {
+        target_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+      }
+      double &target_;
+      std::chrono::steady_clock::time_point t0_;
     };
 
     ContactModel::ContactModel(const FeScene &scene, const RunOptions &options)
@@ -741,6 +754,7 @@ namespace clearjoint::fe
 
     void ContactModel::build_amg()
     {
+      ScopedTimer timer(t_amg_);
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
       data.elliptic = true;
       data.higher_order_elements = fe_->degree > 1;
@@ -919,6 +933,7 @@ namespace clearjoint::fe
                              AffineConstraints<double>::left_object_wins, true);
           constraints_.close();
 
+          std::unique_ptr<ScopedTimer> assemble_timer = std::make_unique<ScopedTimer>(t_assemble_);
           A_.copy_from(A_static_);
           rhs_ = 0.0;
           Vector<double> cell_rhs(fe_->n_dofs_per_cell());
@@ -930,9 +945,14 @@ namespace clearjoint::fe
             }
           A_.compress(VectorOperation::add);
           rhs_.compress(VectorOperation::add);
+          assemble_timer.reset();
 
           constraints_.set_zero(solution_owned_);  // start from the previous solution
-          rec.linear_iterations += solve_linear(solution_owned_, rhs_);
+          {
+            ScopedTimer timer(t_solve_);
+            rec.linear_iterations += solve_linear(solution_owned_, rhs_);
+          }
+          ScopedTimer eval_timer(t_evaluate_);
           constraints_.distribute(solution_owned_);
           solution_ = solution_owned_;
           evaluate_contact(delta);
@@ -1065,14 +1085,15 @@ namespace clearjoint::fe
       const bool fields = options_.write_fields && !options_.output_dir.empty();
       if (fields && rank_ == 0)
         std::filesystem::create_directories(options_.output_dir + "/fields");
+      const unsigned int n_candidates = Utilities::MPI::sum(
+        (unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
+                                    [](const ContactNode &c) { return c.owned && c.candidate; }),
+        comm_);  // collective: outside the rank-0 branch
       if (rank_ == 0)
         log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
-                  std::to_string(result.n_dofs) + " DoFs, " +
-                  std::to_string(Utilities::MPI::sum(
-                    (unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
-                                                [](const ContactNode &c) { return c.owned; }),
-                    comm_)) +
-                  " contact candidate nodes, " + (use_direct_ ? "direct" : "CG+AMG") +
+                  std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
+                  " contact candidate nodes, " + std::to_string(contact_cell_matrices_.size()) +
+                  " contact cells (rank 0), " + (use_direct_ ? "direct" : "CG+AMG") +
                   " solver, setup " + log::format_duration(result.setup_time));
 
       const auto &L = scene_.loading;
@@ -1149,6 +1170,11 @@ namespace clearjoint::fe
         }
       result.complete = true;
       result.wall_time = seconds();
+      if (rank_ == 0)
+        log::info("fe_stage: time in contact assembly " + log::format_duration(t_assemble_) +
+                  ", linear solves " + log::format_duration(t_solve_) + " (of which AMG setup " +
+                  log::format_duration(t_amg_) + "), contact evaluation " +
+                  log::format_duration(t_evaluate_));
       result.field_files = field_files_;
       if (rank_ == 0 && fields)
         result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
