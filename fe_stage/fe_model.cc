@@ -1,0 +1,1204 @@
+// The FE contact model (deal.II). One translation unit on purpose: a deal.II file costs ~30 s and
+// 1.5 GB to compile, and dim = 3 is the only instantiation.
+//
+// Method (docs/fe.md has the equations):
+//   - small-strain linear elasticity, FE_Q(p)^3 on hexahedra with a curved mapping MappingQ(max(2,p))
+//     and cylindrical manifolds, parallel::distributed::Triangulation, Trilinos matrices;
+//   - contact against a rigid obstacle (cylinder = the journal, sphere, plane) enforced EXACTLY
+//     at the contact nodes by a primal–dual active set (as deal.II's step-41/42): an active node
+//     gets the linearised non-penetration constraint n·u = −g0 as an AffineConstraints line on its
+//     dominant displacement component; the contact force at a node is λ = (K u)·n from the
+//     unconstrained stiffness K; a node is active next iteration iff λ − c·ĝ > c·ε. The converged
+//     solution does not depend on c;
+//   - the stiffness is constant (linear elasticity), so K and the part of the condensed matrix
+//     from cells without contact nodes are assembled once; only the cells that hold contact nodes
+//     are re-added when the active set changes; the AMG (ML, with the six rigid-body modes) is
+//     built once and reused while it stays effective.
+#include "fe_stage/fe_model.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/revision.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <Epetra_Map.h>
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+
+namespace clearjoint::fe
+{
+  using namespace dealii;
+  constexpr int dim = 3;
+
+  namespace
+  {
+    // Boundary ids of the generated meshes.
+    constexpr types::boundary_id bid_free = 0;
+    constexpr types::boundary_id bid_contact = 1;   // contact candidate surface
+    constexpr types::boundary_id bid_fixed = 2;     // supports (radial: all components; blocks: u_y)
+    constexpr types::boundary_id bid_sym_x = 3;     // symmetry plane x = 0: u_x = 0
+    constexpr types::boundary_id bid_sym_z = 4;     // symmetry plane z = 0: u_z = 0
+
+    /// A rigid obstacle moved by δ along −y. gap() returns the signed distance g0 of a reference
+    /// point X from the obstacle surface (> 0 outside) and the unit normal n pointing from the
+    /// obstacle toward X, so that the linearised gap of the displaced point is ĝ = g0 + n·u.
+    struct Obstacle
+    {
+      enum class Kind { cylinder, sphere, plane } kind = Kind::cylinder;
+      double radius = 0.0;      // [m] cylinder / sphere radius
+      double offset = 0.0;      // [m] cylinder: centre at y = −offset − δ; sphere: y = radius − δ
+      double half_length = std::numeric_limits<double>::infinity();  // [m] cylinder |z| extent
+
+      /// Returns false if X can never touch the obstacle (beyond the cylinder's end).
+      bool gap(const Point<dim> &X, const double delta, double &g0, Tensor<1, dim> &n) const
+      {
+        switch (kind)
+          {
+            case Kind::cylinder:
+              {
+                if (std::abs(X[2]) > half_length * (1.0 + 1e-10))
+                  return false;
+                const Point<dim> C(0.0, -offset - delta, X[2]);
+                Tensor<1, dim> d = X - C;
+                d[2] = 0.0;
+                const double r = d.norm();
+                n = d / r;
+                g0 = r - radius;
+                return true;
+              }
+            case Kind::sphere:
+              {
+                const Point<dim> C(0.0, radius - delta, 0.0);
+                const Tensor<1, dim> d = X - C;
+                const double r = d.norm();
+                n = d / r;
+                g0 = r - radius;
+                return true;
+              }
+            case Kind::plane:
+              {
+                n = Tensor<1, dim>();
+                n[1] = -1.0;
+                g0 = -delta - X[1];
+                return true;
+              }
+          }
+        return false;
+      }
+    };
+
+    /// A contact candidate node: its three displacement DoFs, reference position and the
+    /// component whose DoF carries the contact constraint.
+    struct ContactNode
+    {
+      std::array<types::global_dof_index, dim> dofs;
+      Point<dim> X;
+      unsigned int constrained_component = 1;
+      bool owned = false;   // owned by this rank (its x-DoF is locally owned)
+      bool candidate = true;  // false: only watched for penetration, never constrained
+      bool active = false;
+      // Values of the last evaluation:
+      double lambda = 0.0;  // [N] normal contact force on the body (≥ 0 in contact)
+      double gap = 0.0;     // [m] linearised gap ĝ = g0 + n·u
+      double weight = 0.0;  // [m²] ∫ φ_i dA over the contact surface (nodal area)
+      Tensor<1, dim> n;
+      double g0 = 0.0;
+    };
+
+    /// Stress, strain, von Mises stress and principal strains from the displacement gradient.
+    class StressPostprocessor : public DataPostprocessor<dim>
+    {
+    public:
+      StressPostprocessor(const double lambda, const double mu) : lambda_(lambda), mu_(mu) {}
+
+      void evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &in,
+                                 std::vector<Vector<double>> &out) const override
+      {
+        for (unsigned int q = 0; q < in.solution_gradients.size(); ++q)
+          {
+            Tensor<2, dim> grad;
+            for (unsigned int i = 0; i < dim; ++i)
+              grad[i] = in.solution_gradients[q][i];
+            const SymmetricTensor<2, dim> eps = symmetrize(grad);
+            const SymmetricTensor<2, dim> sig =
+              lambda_ * trace(eps) * unit_symmetric_tensor<dim>() + 2.0 * mu_ * eps;
+            unsigned int k = 0;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                out[q][k++] = sig[i][j];
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                out[q][k++] = eps[i][j];
+            const SymmetricTensor<2, dim> s = deviator(sig);
+            out[q][k++] = std::sqrt(1.5 * (s * s));
+            const auto ev = eigenvalues(eps);  // descending
+            for (unsigned int i = 0; i < dim; ++i)
+              out[q][k++] = ev[i];
+          }
+      }
+
+      std::vector<std::string> get_names() const override
+      {
+        std::vector<std::string> names(9, "stress");
+        names.resize(18, "strain");
+        names.push_back("von_mises_stress");
+        names.push_back("principal_strain_1");
+        names.push_back("principal_strain_2");
+        names.push_back("principal_strain_3");
+        return names;
+      }
+
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      get_data_component_interpretation() const override
+      {
+        std::vector<DataComponentInterpretation::DataComponentInterpretation> v(
+          18, DataComponentInterpretation::component_is_part_of_tensor);
+        v.resize(22, DataComponentInterpretation::component_is_scalar);
+        return v;
+      }
+
+      UpdateFlags get_needed_update_flags() const override { return update_gradients; }
+
+    private:
+      double lambda_, mu_;
+    };
+
+    struct Failure
+    {
+      std::string reason;
+    };
+
+    class ContactModel
+    {
+    public:
+      ContactModel(const FeScene &scene, const RunOptions &options);
+      RunResult run();
+
+    private:
+      void make_grid();
+      void make_radial_grid();
+      void make_block_grid();
+      void setup_system();
+      void find_contact_nodes();
+      void assemble_static();
+      void compute_nodal_weights();
+      void set_obstacle_position(double delta);
+      /// One increment to `delta` from the current state; throws Failure.
+      IncrementRecord solve_increment(double delta);
+      unsigned int solve_linear(TrilinosWrappers::MPI::Vector &x,
+                                const TrilinosWrappers::MPI::Vector &b);
+      void build_amg();
+      void evaluate_contact(double delta);
+      void write_fields(unsigned int counter, double delta);
+      unsigned int n_active_global() const;
+
+      const FeScene &scene_;
+      RunOptions options_;
+      MPI_Comm comm_;
+      const unsigned int rank_, n_ranks_;
+
+      parallel::distributed::Triangulation<dim> tria_;
+      std::unique_ptr<FESystem<dim>> fe_;
+      std::unique_ptr<MappingQ<dim>> mapping_;
+      DoFHandler<dim> dof_handler_;
+      IndexSet owned_, relevant_;
+
+      Obstacle obstacle_;
+      double symmetry_factor_ = 1.0;
+      double h_min_ = 0.0;
+      double lame_lambda_ = 0.0, lame_mu_ = 0.0;
+
+      AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports
+      AffineConstraints<double> constraints_;         // + contact lines of the active set
+      TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions)
+      TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
+      TrilinosWrappers::SparseMatrix A_;              // condensed system of this iteration
+      TrilinosWrappers::MPI::Vector solution_owned_, rhs_, residual_owned_;
+      TrilinosWrappers::MPI::Vector solution_, residual_;  // ghosted
+      std::vector<types::global_dof_index> support_y_dofs_;  // owned y-DoFs of the supports
+
+      std::vector<ContactNode> nodes_;                 // locally relevant candidates
+      std::vector<int> contact_cell_of_;               // active_cell_index → index or −1
+      std::vector<FullMatrix<double>> contact_cell_matrices_;
+      std::vector<std::vector<types::global_dof_index>> contact_cell_dofs_;
+
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
+      std::unique_ptr<Epetra_MultiVector> null_space_;
+      unsigned int amg_reference_iterations_ = 0;
+      bool use_direct_ = false;
+
+      std::vector<std::pair<double, std::string>> pvd_records_;
+      std::vector<std::string> field_files_;
+      std::chrono::steady_clock::time_point start_;
+      double t_assemble_ = 0, t_solve_ = 0, t_amg_ = 0, t_evaluate_ = 0;
+    };
+
+    /// Adds the seconds since construction to `target` on destruction.
+    struct ScopedTimer
+    {
+      explicit ScopedTimer(double &target) : target_(target), t0_(std::chrono::steady_clock::now()) {}
+      ~ScopedTimer()
+      {
+        target_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+      }
+      double &target_;
+      std::chrono::steady_clock::time_point t0_;
+    };
+
+    ContactModel::ContactModel(const FeScene &scene, const RunOptions &options)
+      : scene_(scene)
+      , options_(options)
+      , comm_(options.comm)
+      , rank_(Utilities::MPI::this_mpi_process(options.comm))
+      , n_ranks_(Utilities::MPI::n_mpi_processes(options.comm))
+      , tria_(options.comm, Triangulation<dim>::limit_level_difference_at_vertices)
+      , dof_handler_(tria_)
+      , start_(std::chrono::steady_clock::now())
+    {
+      const double E = scene.material.E, nu = scene.material.nu;
+      lame_lambda_ = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+      lame_mu_ = E / (2.0 * (1.0 + nu));
+    }
+
+    // ------------------------------------------------------------------------------------------
+    // Geometry
+    // ------------------------------------------------------------------------------------------
+
+    /// The bearing ring: 2D (r, φ) grid mapped to the annulus, extruded along z, with a
+    /// cylindrical manifold on every cell so refinement and the mapping follow the curved
+    /// surfaces. φ is measured from −y toward +x: point = (r sin φ, −r cos φ).
+    void ContactModel::make_radial_grid()
+    {
+      const auto &G = scene_.geometry;
+      const auto &M = scene_.mesh;
+      const bool full = scene_.full_model;
+      const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
+      const unsigned int n_r =
+        M.n_radial > 0 ? M.n_radial :
+                         std::max(1u, static_cast<unsigned int>(std::lround(G.t_B / 2.0e-3)));
+      const double R_o = G.R_B + G.t_B;
+
+      // 2D vertices (r_j, φ_i); the full ring closes at φ = ±π.
+      const unsigned int n_phi_vertices = full ? n_phi : n_phi + 1;
+      const double phi0 = full ? -units::pi : 0.0;
+      const double dphi = (full ? 2.0 * units::pi : units::pi) / n_phi;
+      std::vector<Point<2>> vertices;
+      for (unsigned int i = 0; i < n_phi_vertices; ++i)
+        for (unsigned int j = 0; j <= n_r; ++j)
+          {
+            const double phi = phi0 + i * dphi;
+            const double r = G.R_B + (R_o - G.R_B) * j / n_r;
+            vertices.emplace_back(r * std::sin(phi), -r * std::cos(phi));
+          }
+      auto vid = [&](unsigned int i, unsigned int j) {
+        return (i % n_phi_vertices) * (n_r + 1) + j;
+      };
+      std::vector<CellData<2>> cells;
+      for (unsigned int i = 0; i < n_phi; ++i)
+        for (unsigned int j = 0; j < n_r; ++j)
+          {
+            CellData<2> c;
+            // local x along r (outward), local y along φ: positive orientation.
+            c.vertices[0] = vid(i, j);
+            c.vertices[1] = vid(i, j + 1);
+            c.vertices[2] = vid(i + 1, j);
+            c.vertices[3] = vid(i + 1, j + 1);
+            cells.push_back(c);
+          }
+      Triangulation<2> ring;
+      ring.create_triangulation(vertices, cells, SubCellData());
+
+      // Axial slices: the journal's end L_J/2 is a mesh plane.
+      const double zJ = 0.5 * G.L_J(), zB = 0.5 * G.L_B;
+      const unsigned int n_in = std::max(1u, M.n_axial > 1 ? M.n_axial - 1 : 1u);
+      std::vector<double> half_slices;
+      for (unsigned int k = 0; k <= n_in; ++k)
+        half_slices.push_back(zJ * k / n_in);
+      const unsigned int n_out =
+        std::max(1u, static_cast<unsigned int>(std::lround((zB - zJ) / (zJ / n_in))));
+      for (unsigned int k = 1; k <= n_out; ++k)
+        half_slices.push_back(zJ + (zB - zJ) * k / n_out);
+      std::vector<double> slices;
+      if (full)
+        for (auto it = half_slices.rbegin(); it != half_slices.rend(); ++it)
+          if (*it > 0.0)
+            slices.push_back(-*it);
+      slices.insert(slices.end(), half_slices.begin(), half_slices.end());
+
+      Triangulation<dim> serial;
+      GridGenerator::extrude_triangulation(ring, slices, serial);
+
+      // Boundary ids from face centres; the manifold on every cell and face.
+      const double tol = 1e-8 * G.R_B;
+      for (const auto &cell : serial.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const Point<dim> c = cell->face(f)->center();
+              const double r = std::hypot(c[0], c[1]);
+              types::boundary_id id = bid_free;
+              // face centres of curved faces lie slightly inside the cylinder (flat vertices)
+              bool on_inner = true, on_outer = true, on_x0 = true;
+              for (const auto v : cell->face(f)->vertex_indices())
+                {
+                  const Point<dim> &p = cell->face(f)->vertex(v);
+                  const double rv = std::hypot(p[0], p[1]);
+                  on_inner = on_inner && std::abs(rv - G.R_B) < tol;
+                  on_outer = on_outer && std::abs(rv - R_o) < tol;
+                  on_x0 = on_x0 && std::abs(p[0]) < tol;
+                }
+              (void)r;
+              if (on_inner)
+                id = bid_contact;
+              else if (on_outer)
+                id = (c[1] > 0.0) ? bid_fixed : bid_free;
+              else if (!full && on_x0)
+                id = bid_sym_x;
+              else if (!full && std::abs(c[2]) < tol)
+                id = bid_sym_z;
+              cell->face(f)->set_boundary_id(id);
+            }
+      serial.set_all_manifold_ids(0);
+
+      tria_.copy_triangulation(serial);
+      tria_.set_manifold(0, CylindricalManifold<dim>(2));
+
+      for (unsigned int k = 0; k < M.global_refinements; ++k)
+        tria_.refine_global(1);
+      const double window = M.contact_window_deg * units::deg;
+      for (unsigned int k = 0; k < M.contact_refinements; ++k)
+        {
+          for (const auto &cell : tria_.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                const Point<dim> c = cell->center();
+                const double phi = std::atan2(c[0], -c[1]);  // from −y
+                if (std::abs(phi) < window)
+                  cell->set_refine_flag();
+              }
+          tria_.execute_coarsening_and_refinement();
+        }
+
+      obstacle_.kind = Obstacle::Kind::cylinder;
+      obstacle_.radius = G.R_J();
+      obstacle_.offset = G.c_r;
+      obstacle_.half_length = 0.5 * G.L_J();
+      symmetry_factor_ = full ? 1.0 : 4.0;
+    }
+
+    /// The verification block [0,W]×[−H,0]×[0,W] (quarter model: symmetry planes x = 0, z = 0),
+    /// roller support u_y = 0 at y = −H, contact on y = 0.
+    void ContactModel::make_block_grid()
+    {
+      const auto &V = scene_.verification;
+      const unsigned int n = V.n_cells;
+      GridGenerator::subdivided_hyper_rectangle(tria_, {n, n, n},
+                                                Point<dim>(0.0, -V.block_height, 0.0),
+                                                Point<dim>(V.block_width, 0.0, V.block_width));
+      const double tol = 1e-10 * V.block_width;
+      for (const auto &cell : tria_.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const Point<dim> c = cell->face(f)->center();
+              types::boundary_id id = bid_free;
+              if (std::abs(c[1]) < tol)
+                id = bid_contact;
+              else if (std::abs(c[1] + V.block_height) < tol)
+                id = bid_fixed;
+              else if (std::abs(c[0]) < tol)
+                id = bid_sym_x;
+              else if (std::abs(c[2]) < tol)
+                id = bid_sym_z;
+              cell->face(f)->set_boundary_id(id);
+            }
+      if (scene_.study == Study::patch)
+        {
+          tria_.refine_global(V.contact_refinements);
+          obstacle_.kind = Obstacle::Kind::plane;
+        }
+      else
+        {
+          // Graded: round k refines the cells within refine_radius·2^(n−1−k) of the contact
+          // point, so the contact zone is uniformly fine and hanging nodes stay outside it.
+          const unsigned int nr = V.contact_refinements;
+          for (unsigned int k = 0; k < nr; ++k)
+            {
+              const double radius = V.refine_radius * std::pow(2.0, double(nr - 1 - k));
+              for (const auto &cell : tria_.active_cell_iterators())
+                if (cell->is_locally_owned())
+                  {
+                    // distance from the origin to the cell's bounding box
+                    const auto box = cell->bounding_box();
+                    double d2 = 0.0;
+                    for (unsigned int i = 0; i < dim; ++i)
+                      {
+                        const double lo = box.lower_bound(i), hi = box.upper_bound(i);
+                        const double di = std::max({lo, 0.0 - hi, 0.0});
+                        d2 += di * di;
+                      }
+                    if (std::sqrt(d2) < radius)
+                      cell->set_refine_flag();
+                  }
+              tria_.execute_coarsening_and_refinement();
+            }
+          obstacle_.kind = Obstacle::Kind::sphere;
+          obstacle_.radius = V.sphere_radius;
+        }
+      symmetry_factor_ = 4.0;
+    }
+
+    void ContactModel::make_grid()
+    {
+      if (scene_.study == Study::radial)
+        make_radial_grid();
+      else
+        make_block_grid();
+      h_min_ = Utilities::MPI::min(
+        [&] {
+          double h = std::numeric_limits<double>::max();
+          for (const auto &cell : tria_.active_cell_iterators())
+            if (cell->is_locally_owned())
+              h = std::min(h, cell->minimum_vertex_distance());
+          return h;
+        }(),
+        comm_);
+    }
+
+    // ------------------------------------------------------------------------------------------
+    // DoFs, constraints, static matrices
+    // ------------------------------------------------------------------------------------------
+
+    void ContactModel::setup_system()
+    {
+      const unsigned int p = scene_.study == Study::radial ? scene_.mesh.degree : 2;
+      fe_ = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
+      mapping_ = std::make_unique<MappingQ<dim>>(std::max(2u, p));
+      dof_handler_.distribute_dofs(*fe_);
+      owned_ = dof_handler_.locally_owned_dofs();
+      DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
+
+      const FEValuesExtractors::Scalar ux(0), uy(1), uz(2);
+      fixed_constraints_.clear();
+      fixed_constraints_.reinit(relevant_);
+      DoFTools::make_hanging_node_constraints(dof_handler_, fixed_constraints_);
+      const Functions::ZeroFunction<dim> zero(dim);
+      VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_x, zero,
+                                               fixed_constraints_, fe_->component_mask(ux));
+      VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_z, zero,
+                                               fixed_constraints_, fe_->component_mask(uz));
+      if (scene_.study == Study::radial)
+        VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
+                                                 fixed_constraints_);
+      else
+        VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
+                                                 fixed_constraints_, fe_->component_mask(uy));
+      fixed_constraints_.close();
+
+      {
+        const IndexSet sy = DoFTools::extract_boundary_dofs(dof_handler_, fe_->component_mask(uy),
+                                                           {bid_fixed});
+        for (const auto i : sy)
+          if (owned_.is_element(i))
+            support_y_dofs_.push_back(i);
+      }
+
+      DynamicSparsityPattern dsp(relevant_);
+      DoFTools::make_sparsity_pattern(dof_handler_, dsp, fixed_constraints_, true);
+      SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
+      K_.reinit(owned_, owned_, dsp, comm_);
+      A_static_.reinit(owned_, owned_, dsp, comm_);
+      A_.reinit(owned_, owned_, dsp, comm_);
+
+      solution_owned_.reinit(owned_, comm_);
+      rhs_.reinit(owned_, comm_);
+      residual_owned_.reinit(owned_, comm_);
+      solution_.reinit(owned_, relevant_, comm_);
+      residual_.reinit(owned_, relevant_, comm_);
+
+      const auto n_dofs = dof_handler_.n_dofs();
+      switch (scene_.solver.linear)
+        {
+          case LinearSolver::direct: use_direct_ = true; break;
+          case LinearSolver::cg_amg: use_direct_ = false; break;
+          case LinearSolver::automatic:
+            use_direct_ = n_dofs < scene_.solver.direct_below_dofs;
+            break;
+        }
+    }
+
+    void ContactModel::find_contact_nodes()
+    {
+      std::map<types::global_dof_index, Point<dim>> support;
+      DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+
+      // Candidates: surface nodes that could touch within the push (gap at δ_max below the
+      // push itself, with a factor 2 margin). After every solve all surface nodes are checked
+      // for penetration, so a window that was too small is an error, not a silent miss.
+      const double window_gap = 2.0 * scene_.loading.delta_max;
+      std::map<types::global_dof_index, ContactNode> by_x_dof;
+      std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+              {
+                cell->face(f)->get_dof_indices(face_dofs);
+                std::map<unsigned int, std::array<types::global_dof_index, dim>> per_node;
+                for (unsigned int k = 0; k < face_dofs.size(); ++k)
+                  {
+                    const auto ci = fe_->face_system_to_component_index(k);
+                    per_node[ci.second][ci.first] = face_dofs[k];
+                  }
+                for (const auto &[node, dofs] : per_node)
+                  {
+                    if (by_x_dof.count(dofs[0]))
+                      continue;
+                    ContactNode cn;
+                    cn.dofs = dofs;
+                    cn.X = support.at(dofs[0]);
+                    double g0;
+                    Tensor<1, dim> n;
+                    if (!obstacle_.gap(cn.X, scene_.loading.delta_max, g0, n))
+                      continue;
+                    cn.owned = owned_.is_element(dofs[0]);
+                    if (g0 > window_gap)
+                      {
+                        cn.candidate = false;  // watched only
+                        by_x_dof.emplace(dofs[0], cn);
+                        continue;
+                      }
+                    // the dominant normal component not already constrained
+                    std::array<unsigned int, dim> order = {0, 1, 2};
+                    std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+                      return std::abs(n[a]) > std::abs(n[b]);
+                    });
+                    bool found = false;
+                    for (const unsigned int c : order)
+                      if (std::abs(n[c]) > 0.3 && !fixed_constraints_.is_constrained(dofs[c]))
+                        {
+                          cn.constrained_component = c;
+                          found = true;
+                          break;
+                        }
+                    // Hanging or supported nodes are skipped: they follow their masters.
+                    if (!found)
+                      continue;
+                    by_x_dof.emplace(dofs[0], cn);
+                  }
+              }
+      nodes_.clear();
+      for (auto &[d, cn] : by_x_dof)
+        nodes_.push_back(cn);
+
+      // Cells that hold a candidate DoF: their condensed contributions change with the active
+      // set; all other cells go into A_static once.
+      std::vector<bool> dummy;
+      IndexSet candidate_dofs(dof_handler_.n_dofs());
+      for (const auto &cn : nodes_)
+        if (cn.candidate)
+          for (const auto d : cn.dofs)
+            candidate_dofs.add_index(d);
+      candidate_dofs.compress();
+      contact_cell_of_.assign(tria_.n_active_cells(), -1);
+      std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
+      unsigned int n = 0;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(cell_dofs);
+            for (const auto d : cell_dofs)
+              if (candidate_dofs.is_element(d))
+                {
+                  contact_cell_of_[cell->active_cell_index()] = n++;
+                  break;
+                }
+          }
+      contact_cell_matrices_.resize(n);
+      contact_cell_dofs_.resize(n);
+    }
+
+    void ContactModel::assemble_static()
+    {
+      const unsigned int p = fe_->degree;
+      const QGauss<dim> quadrature(p + 1);
+      FEValues<dim> fe_values(*mapping_, *fe_, quadrature, update_gradients | update_JxW_values);
+      const unsigned int n_dofs = fe_->n_dofs_per_cell();
+      FullMatrix<double> cell_matrix(n_dofs, n_dofs);
+      Vector<double> cell_rhs(n_dofs);
+      std::vector<types::global_dof_index> dofs(n_dofs);
+      const FEValuesExtractors::Vector u(0);
+      std::vector<SymmetricTensor<2, dim>> eps(n_dofs);
+      std::vector<double> div(n_dofs);
+
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            cell_matrix = 0.0;
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              {
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    eps[i] = fe_values[u].symmetric_gradient(i, q);
+                    div[i] = trace(eps[i]);
+                  }
+                const double JxW = fe_values.JxW(q);
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  for (unsigned int j = i; j < n_dofs; ++j)
+                    cell_matrix(i, j) +=
+                      (lame_lambda_ * div[i] * div[j] + 2.0 * lame_mu_ * (eps[i] * eps[j])) * JxW;
+              }
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              for (unsigned int j = 0; j < i; ++j)
+                cell_matrix(i, j) = cell_matrix(j, i);
+            cell->get_dof_indices(dofs);
+            K_.add(dofs, cell_matrix);
+            const int k = contact_cell_of_[cell->active_cell_index()];
+            if (k >= 0)
+              {
+                contact_cell_matrices_[k] = cell_matrix;
+                contact_cell_dofs_[k] = dofs;
+              }
+            else
+              {
+                cell_rhs = 0.0;
+                fixed_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs,
+                                                              A_static_, rhs_);
+              }
+          }
+      K_.compress(VectorOperation::add);
+      A_static_.compress(VectorOperation::add);
+      rhs_ = 0.0;  // supports are homogeneous: the static part contributes no right-hand side
+    }
+
+    /// Nodal areas w_i = ∫ φ_i dA over the contact surface: the contact pressure of node i is
+    /// λ_i / w_i (exact for a uniform pressure; Q2 face weights are all positive).
+    void ContactModel::compute_nodal_weights()
+    {
+      const QGauss<dim - 1> fq(fe_->degree + 1);
+      FEFaceValues<dim> fv(*mapping_, *fe_, fq, update_values | update_JxW_values);
+      TrilinosWrappers::MPI::Vector w(owned_, comm_);
+      std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
+      Vector<double> cell_w(fe_->n_dofs_per_cell());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+              {
+                fv.reinit(cell, f);
+                cell_w = 0.0;
+                for (unsigned int i = 0; i < fe_->n_dofs_per_cell(); ++i)
+                  for (const unsigned int q : fv.quadrature_point_indices())
+                    cell_w(i) += fv.shape_value(i, q) * fv.JxW(q);
+                cell->get_dof_indices(dofs);
+                w.add(dofs, cell_w);
+              }
+      w.compress(VectorOperation::add);
+      TrilinosWrappers::MPI::Vector wg(owned_, relevant_, comm_);
+      wg = w;
+      for (auto &cn : nodes_)
+        cn.weight = wg[cn.dofs[0]];
+    }
+
+    void ContactModel::set_obstacle_position(const double delta)
+    {
+      for (auto &cn : nodes_)
+        obstacle_.gap(cn.X, delta, cn.g0, cn.n);
+    }
+
+    // ------------------------------------------------------------------------------------------
+    // Linear solver
+    // ------------------------------------------------------------------------------------------
+
+    void ContactModel::build_amg()
+    {
+      ScopedTimer timer(t_amg_);
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic = true;
+      data.higher_order_elements = fe_->degree > 1;
+      data.smoother_sweeps = 2;
+      data.aggregation_threshold = 0.02;
+      data.n_cycles = 1;
+      data.w_cycle = false;
+      Teuchos::ParameterList list;
+      std::unique_ptr<Epetra_MultiVector> translation_modes;
+      data.set_parameters(list, translation_modes, A_);
+
+      // All six rigid-body modes (SPEC §5: with only the translations ML needs ~3x the
+      // iterations). deal.II 9.4 passes only translations, so they go in through ML's list.
+      std::map<types::global_dof_index, Point<dim>> support;
+      DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+      const Epetra_Map &map = A_.trilinos_matrix().DomainMap();
+      null_space_ = std::make_unique<Epetra_MultiVector>(map, 6);
+      std::vector<std::pair<types::global_dof_index, unsigned int>> comp(owned_.n_elements());
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              if (owned_.is_element(dofs[i]))
+                {
+                  const unsigned int local = owned_.index_within_set(dofs[i]);
+                  const unsigned int c = fe_->system_to_component_index(i).first;
+                  const Point<dim> &x = support.at(dofs[i]);
+                  for (unsigned int m = 0; m < 6; ++m)
+                    (*null_space_)[m][local] = 0.0;
+                  (*null_space_)[c][local] = 1.0;
+                  // rotations about x, y, z: ω × x
+                  if (c == 0)
+                    {
+                      (*null_space_)[4][local] = x[2];
+                      (*null_space_)[5][local] = -x[1];
+                    }
+                  else if (c == 1)
+                    {
+                      (*null_space_)[3][local] = -x[2];
+                      (*null_space_)[5][local] = x[0];
+                    }
+                  else
+                    {
+                      (*null_space_)[3][local] = x[1];
+                      (*null_space_)[4][local] = -x[0];
+                    }
+                }
+          }
+      list.set("null space: type", "pre-computed");
+      list.set("null space: dimension", 6);
+      list.set("null space: vectors", null_space_->Values());
+      amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+      amg_->initialize(A_, list);
+      amg_reference_iterations_ = 0;
+    }
+
+    unsigned int ContactModel::solve_linear(TrilinosWrappers::MPI::Vector &x,
+                                            const TrilinosWrappers::MPI::Vector &b)
+    {
+      const double b_norm = b.l2_norm();
+      if (!std::isfinite(b_norm))
+        throw Failure{"non-finite right-hand side"};
+      if (use_direct_)
+        {
+          SolverControl control(1, 0);
+          TrilinosWrappers::SolverDirect::AdditionalData ad(false, "Amesos_Klu");
+          TrilinosWrappers::SolverDirect direct(control, ad);
+          try
+            {
+              direct.solve(A_, x, b);
+            }
+          catch (const std::exception &e)
+            {
+              throw Failure{std::string("direct solver (Amesos KLU) failed: ") + e.what()};
+            }
+          return 1;
+        }
+      if (b_norm == 0.0)
+        {
+          x = 0.0;
+          return 0;
+        }
+      for (unsigned int attempt = 0; attempt < 2; ++attempt)
+        {
+          if (!amg_)
+            build_amg();
+          SolverControl control(scene_.solver.max_linear_iterations,
+                                scene_.solver.tolerance * b_norm);
+          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+          try
+            {
+              cg.solve(A_, x, b, *amg_);
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              if (attempt == 0)
+                {
+                  amg_.reset();  // the reused preconditioner may be stale: rebuild once
+                  continue;
+                }
+              throw Failure{"CG did not converge in " + std::to_string(e.last_step) +
+                            " iterations (residual " + format_value(e.last_residual) + ")"};
+            }
+          const unsigned int its = control.last_step();
+          if (amg_reference_iterations_ == 0)
+            amg_reference_iterations_ = std::max(1u, its);
+          else if (its > 2 * amg_reference_iterations_ + 10)
+            amg_.reset();  // reuse only while it stays effective; rebuilt at the next solve
+          return its;
+        }
+      throw Failure{"linear solver failed"};
+    }
+
+    // ------------------------------------------------------------------------------------------
+    // Contact: evaluation and active-set increments
+    // ------------------------------------------------------------------------------------------
+
+    /// λ_i = (K u)_i · n_i and ĝ_i = g0_i + n_i · u_i for every candidate node (ghosted values,
+    /// so every rank evaluates the same numbers for the nodes it shares).
+    void ContactModel::evaluate_contact(const double delta)
+    {
+      (void)delta;
+      K_.vmult(residual_owned_, solution_owned_);
+      residual_ = residual_owned_;
+      for (auto &cn : nodes_)
+        {
+          double lambda = 0.0, un = 0.0;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              lambda += residual_[cn.dofs[c]] * cn.n[c];
+              un += solution_[cn.dofs[c]] * cn.n[c];
+            }
+          cn.lambda = lambda;
+          cn.gap = cn.g0 + un;
+        }
+    }
+
+    unsigned int ContactModel::n_active_global() const
+    {
+      unsigned int n = 0;
+      for (const auto &cn : nodes_)
+        if (cn.owned && cn.active)
+          ++n;
+      return Utilities::MPI::sum(n, comm_);
+    }
+
+    IncrementRecord ContactModel::solve_increment(const double delta)
+    {
+      IncrementRecord rec;
+      rec.delta = delta;
+      set_obstacle_position(delta);
+      const double c = scene_.contact.active_set_scale * scene_.material.E * h_min_;  // [N/m]
+      // ε_g: a penetration below this is round-off, not contact (makes the active set
+      // deterministic across rank counts). 1e-9 of the push is far below any physical effect.
+      const double eps_g = 1e-9 * scene_.loading.delta_max;
+
+      unsigned int it = 0;
+      for (; it < scene_.contact.max_iterations; ++it)
+        {
+          constraints_.clear();
+          constraints_.reinit(relevant_);
+          for (const auto &cn : nodes_)
+            if (cn.active)
+              {
+                const unsigned int cc = cn.constrained_component;
+                const auto d = cn.dofs[cc];
+                constraints_.add_line(d);
+                for (unsigned int k = 0; k < dim; ++k)
+                  if (k != cc)
+                    constraints_.add_entry(d, cn.dofs[k], -cn.n[k] / cn.n[cc]);
+                constraints_.set_inhomogeneity(d, -cn.g0 / cn.n[cc]);
+              }
+          constraints_.merge(fixed_constraints_,
+                             AffineConstraints<double>::left_object_wins, true);
+          constraints_.close();
+
+          std::unique_ptr<ScopedTimer> assemble_timer = std::make_unique<ScopedTimer>(t_assemble_);
+          A_.copy_from(A_static_);
+          rhs_ = 0.0;
+          Vector<double> cell_rhs(fe_->n_dofs_per_cell());
+          for (unsigned int k = 0; k < contact_cell_matrices_.size(); ++k)
+            {
+              cell_rhs = 0.0;
+              constraints_.distribute_local_to_global(contact_cell_matrices_[k], cell_rhs,
+                                                      contact_cell_dofs_[k], A_, rhs_);
+            }
+          A_.compress(VectorOperation::add);
+          rhs_.compress(VectorOperation::add);
+          assemble_timer.reset();
+
+          constraints_.set_zero(solution_owned_);  // start from the previous solution
+          {
+            ScopedTimer timer(t_solve_);
+            rec.linear_iterations += solve_linear(solution_owned_, rhs_);
+          }
+          ScopedTimer eval_timer(t_evaluate_);
+          constraints_.distribute(solution_owned_);
+          solution_ = solution_owned_;
+          evaluate_contact(delta);
+
+          unsigned int n_changed = 0;
+          for (auto &cn : nodes_)
+            {
+              if (!cn.candidate)
+                continue;
+              const bool now = cn.lambda - c * cn.gap > c * eps_g;
+              if (now != cn.active && cn.owned)
+                ++n_changed;
+              cn.active = now;
+            }
+          n_changed = Utilities::MPI::sum(n_changed, comm_);
+          if (n_changed == 0)
+            {
+              ++it;
+              break;
+            }
+          if (it + 1 == scene_.contact.max_iterations)
+            throw Failure{"active set did not settle in " + std::to_string(it + 1) +
+                          " iterations (" + std::to_string(n_changed) + " nodes still changing)"};
+        }
+      rec.contact_iterations = it;
+
+      // Forces and checks.
+      double f_contact = 0.0, max_pen = 0.0;
+      double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
+      unsigned int n_act = 0;
+      for (const auto &cn : nodes_)
+        if (cn.owned)
+          {
+            max_pen = std::max(max_pen, -cn.gap);
+            if (cn.active)
+              {
+                ++n_act;
+                f_contact -= cn.lambda * cn.n[1];
+                if (cn.weight > 0.0)
+                  {
+                    p_min = std::min(p_min, cn.lambda / cn.weight);
+                    p_max = std::max(p_max, cn.lambda / cn.weight);
+                  }
+              }
+          }
+      double f_support = 0.0;
+      for (const auto d : support_y_dofs_)
+        f_support += residual_owned_[d];
+      rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
+      rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
+      rec.n_active = Utilities::MPI::sum(n_act, comm_);
+      rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
+      rec.pressure_min = Utilities::MPI::min(p_min, comm_);
+      rec.pressure_max = Utilities::MPI::max(p_max, comm_);
+      if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
+        throw Failure{"non-finite contact force"};
+      // Watched (non-candidate) nodes must not penetrate: if one does, the candidate window was
+      // too small and the result would be wrong, so the run stops instead.
+      if (rec.max_penetration > 1e-6 * scene_.loading.delta_max)
+        throw Failure{"penetration " + format_value(rec.max_penetration) +
+                      " m at a contact-surface node (candidate window too small)"};
+      return rec;
+    }
+
+    void ContactModel::write_fields(const unsigned int counter, const double delta)
+    {
+      const std::string dir = options_.output_dir + "/fields";
+      // contact fields at the nodes, in the x/y/z slots of a system vector
+      TrilinosWrappers::MPI::Vector cf_owned(owned_, comm_);
+      for (const auto &cn : nodes_)
+        if (cn.owned)
+          {
+            cf_owned[cn.dofs[0]] = cn.active && cn.weight > 0.0 ? cn.lambda / cn.weight : 0.0;
+            cf_owned[cn.dofs[1]] = cn.gap;
+            cf_owned[cn.dofs[2]] = cn.active ? 1.0 : 0.0;
+          }
+      cf_owned.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector cf(owned_, relevant_, comm_);
+      cf = cf_owned;
+
+      StressPostprocessor post(lame_lambda_, lame_mu_);
+      DataOut<dim> out;
+      out.attach_dof_handler(dof_handler_);
+      std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
+        dim, DataComponentInterpretation::component_is_part_of_vector);
+      out.add_data_vector(solution_, std::vector<std::string>(dim, "displacement"),
+                          DataOut<dim>::type_dof_data, vec);
+      out.add_data_vector(solution_, post);
+      std::vector<DataComponentInterpretation::DataComponentInterpretation> sc(
+        dim, DataComponentInterpretation::component_is_scalar);
+      out.add_data_vector(cf, std::vector<std::string>{"contact_pressure", "contact_gap",
+                                                       "contact_active"},
+                          DataOut<dim>::type_dof_data, sc);
+      Vector<float> subdomain(tria_.n_active_cells());
+      for (auto &s : subdomain)
+        s = static_cast<float>(tria_.locally_owned_subdomain());
+      out.add_data_vector(subdomain, "subdomain");
+      out.build_patches(*mapping_, fe_->degree, DataOut<dim>::curved_inner_cells);
+      const std::string pvtu =
+        out.write_vtu_with_pvtu_record(dir + "/", "solution", counter, comm_, 4, 0);
+      if (rank_ == 0)
+        {
+          pvd_records_.emplace_back(delta, pvtu);
+          const std::string pvd = dir + "/solution.pvd";
+          std::ofstream f(pvd + ".tmp");
+          DataOutBase::write_pvd_record(f, pvd_records_);
+          f.close();
+          std::filesystem::rename(pvd + ".tmp", pvd);
+          field_files_.push_back(dir + "/" + pvtu);
+        }
+    }
+
+    RunResult ContactModel::run()
+    {
+      RunResult result;
+      result.n_ranks = n_ranks_;
+      make_grid();
+      setup_system();
+      find_contact_nodes();
+      assemble_static();
+      compute_nodal_weights();
+      result.n_dofs = dof_handler_.n_dofs();
+      result.n_cells = tria_.n_global_active_cells();
+      result.symmetry_factor = symmetry_factor_;
+      result.h_min = h_min_;
+      auto seconds = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      };
+      result.setup_time = seconds();
+      const bool fields = options_.write_fields && !options_.output_dir.empty();
+      if (fields && rank_ == 0)
+        std::filesystem::create_directories(options_.output_dir + "/fields");
+      const unsigned int n_candidates = Utilities::MPI::sum(
+        (unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
+                                    [](const ContactNode &c) { return c.owned && c.candidate; }),
+        comm_);  // collective: outside the rank-0 branch
+      if (rank_ == 0)
+        log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
+                  std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
+                  " contact candidate nodes, " + std::to_string(contact_cell_matrices_.size()) +
+                  " contact cells (rank 0), " + (use_direct_ ? "direct" : "CG+AMG") +
+                  " solver, setup " + log::format_duration(result.setup_time));
+
+      const auto &L = scene_.loading;
+      const double step0 = L.delta_max / L.n_increments;
+      solution_owned_ = 0.0;
+      solution_ = 0.0;
+      if (fields)
+        {
+          set_obstacle_position(0.0);
+          evaluate_contact(0.0);
+          write_fields(0, 0.0);
+        }
+      std::unique_ptr<log::Progress> progress;
+      if (rank_ == 0)
+        progress = std::make_unique<log::Progress>("fe_stage increments", L.delta_max * 1e6, "um");
+      double delta_done = 0.0;
+      for (unsigned int inc = 1; inc <= L.n_increments; ++inc)
+        {
+          const double target = (inc == L.n_increments) ? L.delta_max : inc * step0;
+          double step = target - delta_done;
+          unsigned int cuts = 0;
+          IncrementRecord rec;
+          unsigned int total_contact_its = 0, total_linear_its = 0;
+          while (delta_done < target)
+            {
+              const double try_delta = std::min(target, delta_done + step);
+              // keep what converged so far, to restore after a failed attempt
+              const TrilinosWrappers::MPI::Vector saved = solution_owned_;
+              std::vector<bool> saved_active;
+              for (const auto &cn : nodes_)
+                saved_active.push_back(cn.active);
+              try
+                {
+                  rec = solve_increment(try_delta);
+                  total_contact_its += rec.contact_iterations;
+                  total_linear_its += rec.linear_iterations;
+                  delta_done = try_delta;
+                }
+              catch (const Failure &f)
+                {
+                  solution_owned_ = saved;
+                  solution_ = solution_owned_;
+                  for (unsigned int i = 0; i < nodes_.size(); ++i)
+                    nodes_[i].active = saved_active[i];
+                  if (cuts >= L.max_cuts)
+                    {
+                      result.message = "increment " + std::to_string(inc) + " to delta = " +
+                                       format_value(try_delta) + " m failed after " +
+                                       std::to_string(cuts) + " cuts: " + f.reason;
+                      if (rank_ == 0)
+                        log::error("fe_stage: " + result.message);
+                      result.wall_time = seconds();
+                      result.field_files = field_files_;
+                      return result;
+                    }
+                  ++cuts;
+                  step *= 0.5;
+                  if (rank_ == 0)
+                    log::warning("fe_stage: increment " + std::to_string(inc) + " to delta = " +
+                                 format_value(try_delta) + " m failed (" + f.reason +
+                                 "); retrying with step " + format_value(step) + " m");
+                }
+            }
+          rec.contact_iterations = total_contact_its;
+          rec.linear_iterations = total_linear_its;
+          rec.wall_time = seconds();
+          result.increments.push_back(rec);
+          if (options_.on_increment)
+            options_.on_increment(rec);
+          if (fields)
+            write_fields(inc, target);
+          if (progress)
+            progress->update(target * 1e6);
+        }
+      result.complete = true;
+      result.wall_time = seconds();
+      if (rank_ == 0)
+        log::info("fe_stage: time in contact assembly " + log::format_duration(t_assemble_) +
+                  ", linear solves " + log::format_duration(t_solve_) + " (of which AMG setup " +
+                  log::format_duration(t_amg_) + "), contact evaluation " +
+                  log::format_duration(t_evaluate_));
+      result.field_files = field_files_;
+      if (rank_ == 0 && fields)
+        result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
+      return result;
+    }
+  } // namespace
+
+  RunResult run_scene(const FeScene &scene, const RunOptions &options)
+  {
+    ContactModel model(scene, options);
+    return model.run();
+  }
+
+  std::shared_ptr<void> make_runtime(int &argc, char **&argv)
+  {
+    return std::make_shared<Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
+  }
+
+  std::vector<std::pair<std::string, std::string>> fe_library_versions()
+  {
+    return {{"deal.II", DEAL_II_PACKAGE_VERSION},
+            {"deal.II git", DEAL_II_GIT_SHORTREV},
+            {"Trilinos", std::to_string(DEAL_II_TRILINOS_VERSION_MAJOR) + "." +
+                           std::to_string(DEAL_II_TRILINOS_VERSION_MINOR) + "." +
+                           std::to_string(DEAL_II_TRILINOS_VERSION_SUBMINOR)}};
+  }
+} // namespace clearjoint::fe

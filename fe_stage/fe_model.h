@@ -1,0 +1,66 @@
+// The FE contact model's interface: run one scene (one force–penetration curve) and get the
+// rows of force_penetration.csv back. No deal.II types here, so tests and main() compile fast;
+// the deal.II code lives in fe_model.cc.
+#pragma once
+
+#include "fe_stage/scene.h"
+
+#include <mpi.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace clearjoint::fe
+{
+  /// One converged load increment.
+  struct IncrementRecord
+  {
+    double delta = 0.0;           // [m] push beyond first touch
+    double force = 0.0;           // [N] contact force of the FULL body (symmetry factor applied)
+    double force_support = 0.0;   // [N] reaction at the supports (fixed set), full body
+    unsigned int contact_iterations = 0;  // active-set iterations
+    unsigned int linear_iterations = 0;   // summed over the active-set iterations
+    unsigned int n_active = 0;            // active contact nodes (of the modelled part)
+    double max_penetration = 0.0;  // [m] largest penetration at any contact candidate node
+    double pressure_min = 0.0;     // [Pa] min/max nodal pressure over the active nodes
+    double pressure_max = 0.0;
+    double wall_time = 0.0;        // [s] since the start of the run
+  };
+
+  struct RunResult
+  {
+    std::vector<IncrementRecord> increments;  // without the origin row
+    bool complete = false;
+    std::string message;           // why the run stopped early (empty if complete)
+    unsigned long n_dofs = 0;
+    unsigned long n_cells = 0;
+    double symmetry_factor = 1.0;  // full-body force / modelled-part force
+    double h_min = 0.0;            // [m] smallest cell diameter
+    double wall_time = 0.0;        // [s]
+    double setup_time = 0.0;       // [s] mesh, DoFs, static matrices
+    unsigned int n_ranks = 1;
+    std::vector<std::string> field_files;  // written VTU/PVTU/PVD (rank 0 lists them)
+  };
+
+  struct RunOptions
+  {
+    std::string output_dir;  // fields go to output_dir/fields; empty: no fields written
+    bool write_fields = true;
+    MPI_Comm comm = MPI_COMM_WORLD;
+    /// Called on every rank after each converged increment (main() streams the CSV from it).
+    std::function<void(const IncrementRecord &)> on_increment;
+  };
+
+  /// Runs one scene (no sweep). Throws InputError for scene problems found late; numerical
+  /// failures are returned as an incomplete RunResult (what was reached is kept).
+  RunResult run_scene(const FeScene &scene, const RunOptions &options);
+
+  /// Initialises MPI, p4est and deal.II's thread settings (one thread per rank: the ranks share
+  /// two cores) for the lifetime of the returned object. Call first in main().
+  std::shared_ptr<void> make_runtime(int &argc, char **&argv);
+
+  /// deal.II, Trilinos, p4est versions for the manifest.
+  std::vector<std::pair<std::string, std::string>> fe_library_versions();
+} // namespace clearjoint::fe

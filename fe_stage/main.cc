@@ -1,0 +1,242 @@
+// fe_stage: the FE contact model of a revolute joint with clearance (SPEC §2).
+//
+//   fe_stage SCENE.yaml --output DIR [--full-model] [--no-fields]
+//   fe_stage --print-defaults
+//
+// Writes DIR/force_penetration.csv (delta, force, solver statistics per increment),
+// DIR/fields/ (VTU/PVTU + PVD) and DIR/manifest.json; with a `sweep` block, one such folder per
+// swept value under DIR plus DIR/manifest.json and DIR/sweep.csv.
+// Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete).
+#include "common/csv.h"
+#include "common/error.h"
+#include "common/log.h"
+#include "common/manifest.h"
+#include "common/units.h"
+#include "fe_stage/fe_model.h"
+#include "fe_stage/scene.h"
+
+#include <CLI/CLI.hpp>
+#include <mpi.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+using namespace clearjoint;
+
+namespace
+{
+  int rank_of(MPI_Comm comm)
+  {
+    int r = 0;
+    MPI_Comm_rank(comm, &r);
+    return r;
+  }
+
+  std::string mm_label(const double t)
+  {
+    std::ostringstream o;
+    o << units::to_mm(t);
+    return o.str();
+  }
+
+  /// One case: CSV + fields + manifest in `dir`. Returns true if complete.
+  bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
+                double &force_at_max)
+  {
+    const bool root = rank_of(MPI_COMM_WORLD) == 0;
+    if (root)
+      std::filesystem::create_directories(dir);
+    MPI_Barrier(MPI_COMM_WORLD);
+    std::unique_ptr<Manifest> manifest;
+    std::unique_ptr<CsvWriter> csv;
+    const std::string csv_path = dir + "/force_penetration.csv";
+    if (root)
+      {
+        manifest = std::make_unique<Manifest>("fe_stage", dir + "/manifest.json", argc, argv);
+        if (!scene.source_file.empty())
+          manifest->add_input(scene.source_file);
+        for (const auto &[k, v] : fe::fe_library_versions())
+          manifest->set_library_version(k, v);
+        manifest->extra()["scene"] = fe::scene_to_json(scene);
+        std::vector<std::string> comments = {
+          "clearjoint fe_stage: force-penetration curve, study " + fe::to_string(scene.study) +
+            ", journal loading " + fe::to_string(scene.loading.journal),
+          "force = total contact force of the FULL body: the modelled part's nodal contact "
+          "forces times the symmetry factor (4 for the quarter model, 1 for --full-model)",
+          "force_support = the same force measured as the reaction of the supports (equilibrium "
+          "check)",
+          "delta = push of the rigid obstacle beyond first touch"};
+        if (scene.contact.mu > 0.0)
+          comments.push_back("WARNING: friction mu = " + format_value(scene.contact.mu) +
+                             " requested but NOT modelled in this version: frictionless solve");
+        csv = std::make_unique<CsvWriter>(
+          csv_path,
+          std::vector<std::string>{"delta", "force", "force_support", "contact_iterations",
+                                   "linear_iterations", "active_contact_points",
+                                   "max_penetration", "pressure_min", "pressure_max",
+                                   "wall_time"},
+          std::vector<std::string>{"m", "N", "N", "1", "1", "1", "m", "Pa", "Pa", "s"},
+          comments);
+        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+      }
+    fe::RunOptions options;
+    options.output_dir = dir;
+    options.write_fields = scene.output.fields;
+    options.on_increment = [&](const fe::IncrementRecord &r) {
+      if (csv)
+        csv->write_row({r.delta, r.force, r.force_support, double(r.contact_iterations),
+                        double(r.linear_iterations), double(r.n_active), r.max_penetration,
+                        r.pressure_min, r.pressure_max, r.wall_time});
+    };
+    const fe::RunResult result = fe::run_scene(scene, options);
+    force_at_max = result.increments.empty() ? 0.0 : result.increments.back().force;
+    if (root)
+      {
+        if (result.complete)
+          csv->commit();
+        else
+          csv->commit_incomplete(result.message);
+        manifest->add_output(csv_path);
+        for (const auto &f : result.field_files)
+          manifest->add_output(f);
+        auto &x = manifest->extra();
+        x["n_dofs"] = result.n_dofs;
+        x["n_cells"] = result.n_cells;
+        x["n_mpi_ranks"] = result.n_ranks;
+        x["symmetry_factor"] = result.symmetry_factor;
+        x["h_min"] = {{"value", result.h_min}, {"unit", "m"}};
+        x["setup_time"] = {{"value", result.setup_time}, {"unit", "s"}};
+        x["friction_modelled"] = false;
+        if (!result.increments.empty())
+          x["force_at_delta_max"] = {{"value", result.increments.back().force}, {"unit", "N"}};
+        manifest->write(result.complete ? "complete" : "incomplete", result.message);
+        log::info("fe_stage: " + dir + ": F(" + format_value(result.increments.empty() ?
+                                                               0.0 :
+                                                               result.increments.back().delta) +
+                  " m) = " + format_value(force_at_max) + " N, " +
+                  log::format_duration(result.wall_time));
+      }
+    return result.complete;
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const auto runtime = fe::make_runtime(argc, argv);
+  const bool root = rank_of(MPI_COMM_WORLD) == 0;
+  if (!root)
+    log::set_level(log::Level::error);
+
+  CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint).\n"
+               "Exit codes: 0 success, 1 input error, 2 numerical failure."};
+  std::string scene_path, output_dir;
+  bool print_defaults = false, full_model = false, no_fields = false, quiet = false;
+  app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
+  app.add_option("--output,-o", output_dir, "output directory");
+  app.add_flag("--print-defaults", print_defaults, "print the default scene with units and exit");
+  app.add_flag("--full-model", full_model, "model the full joint instead of the quarter model");
+  app.add_flag("--no-fields", no_fields, "do not write VTU fields");
+  app.add_flag("--quiet,-q", quiet, "warnings and errors only");
+  try
+    {
+      app.parse(argc, argv);
+    }
+  catch (const CLI::ParseError &e)
+    {
+      return app.exit(e) == 0 ? exit_success : exit_input_error;
+    }
+  if (quiet)
+    log::set_level(log::Level::warning);
+  if (print_defaults)
+    {
+      if (root)
+        std::cout << fe::default_scene_yaml();
+      return exit_success;
+    }
+  try
+    {
+      if (scene_path.empty())
+        throw InputError("", "scene", "(none)", "a scene file", "usage: fe_stage SCENE.yaml --output DIR");
+      if (output_dir.empty())
+        throw InputError("", "--output", "(none)", "a directory", "usage: fe_stage SCENE.yaml --output DIR");
+      fe::FeScene scene = fe::read_scene(scene_path);  // all input errors before any output
+      if (full_model)
+        scene.full_model = true;
+      if (no_fields)
+        scene.output.fields = false;
+      fe::validate_scene(scene);
+      if (scene.contact.mu > 0.0 && root)
+        log::warning("fe_stage: contact.mu = " + format_value(scene.contact.mu) +
+                     " but friction is not modelled in this version; the solve is frictionless "
+                     "(SPEC §2: mu = 0.1 changes F by about 0.5 %)");
+
+      bool complete = true;
+      if (scene.sweep_t_B.empty())
+        {
+          double f;
+          complete = run_case(scene, output_dir, argc, argv, f);
+        }
+      else
+        {
+          std::unique_ptr<Manifest> top;
+          std::unique_ptr<CsvWriter> table;
+          if (root)
+            {
+              std::filesystem::create_directories(output_dir);
+              top = std::make_unique<Manifest>("fe_stage", output_dir + "/manifest.json", argc, argv);
+              top->add_input(scene_path);
+              table = std::make_unique<CsvWriter>(
+                output_dir + "/sweep.csv", std::vector<std::string>{"t_B", "force_at_delta_max"},
+                std::vector<std::string>{"m", "N"},
+                std::vector<std::string>{"fe_stage thickness sweep; one folder per case"});
+            }
+          for (const double t : scene.sweep_t_B)
+            {
+              fe::FeScene s = scene;
+              s.sweep_t_B.clear();
+              s.geometry.t_B = t;
+              const std::string dir = output_dir + "/t_B_" + mm_label(t) + "mm";
+              double f = 0.0;
+              const bool ok = run_case(s, dir, argc, argv, f);
+              complete = complete && ok;
+              if (root)
+                {
+                  table->write_row({t, f});
+                  top->add_output(dir + "/manifest.json");
+                }
+              if (!ok)
+                break;
+            }
+          if (root)
+            {
+              if (complete)
+                table->commit();
+              else
+                table->commit_incomplete("a case failed; see its manifest");
+              top->add_output(output_dir + "/sweep.csv");
+              top->write(complete ? "complete" : "incomplete");
+            }
+        }
+      return complete ? exit_success : exit_numerical_error;
+    }
+  catch (const InputError &e)
+    {
+      if (root)
+        log::error(e.what());
+      return exit_input_error;
+    }
+  catch (const NumericalError &e)
+    {
+      if (root)
+        log::error(e.what());
+      return exit_numerical_error;
+    }
+  catch (const std::exception &e)
+    {
+      if (root)
+        log::error(std::string("fe_stage: ") + e.what());
+      return exit_numerical_error;
+    }
+}

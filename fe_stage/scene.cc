@@ -1,0 +1,303 @@
+#include "fe_stage/scene.h"
+
+#include "common/error.h"
+#include "common/strict_reader.h"
+#include "common/units.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace clearjoint::fe
+{
+  std::string to_string(const Study s)
+  {
+    switch (s)
+      {
+        case Study::radial: return "radial";
+        case Study::hertz: return "hertz";
+        case Study::patch: return "patch";
+      }
+    return "?";
+  }
+
+  std::string to_string(const JournalLoading l)
+  {
+    switch (l)
+      {
+        case JournalLoading::end_faces: return "end_faces";
+        case JournalLoading::axis_line: return "axis_line";
+        case JournalLoading::rigid: return "rigid";
+      }
+    return "?";
+  }
+
+  namespace
+  {
+    unsigned int uint_or(StrictObject &o, const std::string &key, unsigned int fallback, long lo,
+                         long hi)
+    {
+      return static_cast<unsigned int>(o.integer_or(key, fallback, lo, hi));
+    }
+  } // namespace
+
+  FeScene scene_from_json(const nlohmann::json &j, const std::string &source)
+  {
+    FeScene s;
+    s.source_file = source;
+    StrictObject top(j, source);
+    top.expect_schema("clearjoint.fe/1");
+
+    const std::string study = top.string_or("study", "radial", {"radial", "hertz", "patch"});
+    s.study = study == "radial" ? Study::radial : study == "hertz" ? Study::hertz : Study::patch;
+    s.full_model = top.boolean_or("full_model", false);
+
+    if (top.has("geometry"))
+      {
+        auto g = top.object("geometry");
+        auto &G = s.geometry;
+        G.R_B = g.number_or("R_B", G.R_B, Range::positive("m"));
+        G.t_B = g.number_or("t_B", G.t_B, Range::positive("m"));
+        G.L_B = g.number_or("L_B", G.L_B, Range::positive("m"));
+        G.c_r = g.number_or("c_r", G.c_r, Range::positive("m"));
+        G.c_a = g.number_or("c_a", G.c_a, Range::positive("m"));
+        // "Journal larger than bearing": R_J = R_B - c_r must stay positive, L_J = L_B - 2 c_a too.
+        if (!(G.c_r < G.R_B))
+          g.fail("c_r", format_value(G.c_r), "(0, R_B) m = (0, " + format_value(G.R_B) + ") m",
+                 "the journal radius R_J = R_B - c_r must be positive");
+        if (!(2.0 * G.c_a < G.L_B))
+          g.fail("c_a", format_value(G.c_a),
+                 "(0, L_B/2) m = (0, " + format_value(0.5 * G.L_B) + ") m",
+                 "the journal length L_J = L_B - 2 c_a must be positive and below L_B");
+        g.finish();
+      }
+    if (top.has("material"))
+      {
+        auto m = top.object("material");
+        auto &M = s.material;
+        M.E = m.number_or("E", M.E, Range::positive("Pa"));
+        M.nu = m.number_or("nu", M.nu, Range::open(-1.0, 0.5, ""));
+        M.rho = m.number_or("rho", M.rho, Range::positive("kg/m^3"));
+        m.finish();
+      }
+    if (top.has("contact"))
+      {
+        auto c = top.object("contact");
+        auto &C = s.contact;
+        C.mu = c.number_or("mu", C.mu, Range::closed(0.0, 10.0, ""));
+        C.active_set_scale = c.number_or("active_set_scale", C.active_set_scale,
+                                         Range::open(0.0, 1.0e12, ""));
+        C.max_iterations = uint_or(c, "max_iterations", C.max_iterations, 1, 10000);
+        c.finish();
+      }
+    if (top.has("loading"))
+      {
+        auto l = top.object("loading");
+        auto &L = s.loading;
+        const std::string journal =
+          l.string_or("journal", "rigid", {"end_faces", "axis_line", "rigid"});
+        if (journal != "rigid")
+          l.fail("journal", journal, "rigid",
+                 "the deformable journal (end_faces, axis_line) is not implemented in this "
+                 "version of fe_stage (issue 3, step 3)");
+        L.journal = JournalLoading::rigid;
+        L.delta_max = l.number_or("delta_max", L.delta_max, Range::positive("m"));
+        L.n_increments = uint_or(l, "n_increments", L.n_increments, 1, 100000);
+        L.max_cuts = uint_or(l, "max_cuts", L.max_cuts, 0, 20);
+        l.finish();
+      }
+    if (top.has("mesh"))
+      {
+        auto m = top.object("mesh");
+        auto &M = s.mesh;
+        M.degree = uint_or(m, "degree", M.degree, 1, 2);
+        M.n_circumferential = uint_or(m, "n_circumferential", M.n_circumferential, 4, 4096);
+        if (M.n_circumferential % 4 != 0)
+          m.fail("n_circumferential", std::to_string(M.n_circumferential),
+                 "a multiple of 4 in [4, 4096]");
+        M.n_radial = uint_or(m, "n_radial", M.n_radial, 0, 1024);
+        M.n_axial = uint_or(m, "n_axial", M.n_axial, 1, 4096);
+        M.global_refinements = uint_or(m, "global_refinements", M.global_refinements, 0, 6);
+        M.contact_refinements = uint_or(m, "contact_refinements", M.contact_refinements, 0, 8);
+        M.contact_window_deg =
+          m.number_or("contact_window_deg", M.contact_window_deg, Range::open(0.0, 180.0, "deg"));
+        m.finish();
+      }
+    if (top.has("solver"))
+      {
+        auto o = top.object("solver");
+        auto &S = s.solver;
+        const std::string lin = o.string_or("linear", "automatic", {"automatic", "cg_amg", "direct"});
+        S.linear = lin == "automatic" ? LinearSolver::automatic :
+                   lin == "cg_amg"    ? LinearSolver::cg_amg :
+                                        LinearSolver::direct;
+        S.tolerance = o.number_or("tolerance", S.tolerance, Range::open(0.0, 1.0e-2, ""));
+        S.max_linear_iterations =
+          uint_or(o, "max_linear_iterations", S.max_linear_iterations, 1, 1000000);
+        S.direct_below_dofs = uint_or(o, "direct_below_dofs", S.direct_below_dofs, 0, 100000000);
+        o.finish();
+      }
+    if (top.has("verification"))
+      {
+        auto v = top.object("verification");
+        auto &V = s.verification;
+        V.sphere_radius = v.number_or("sphere_radius", V.sphere_radius, Range::positive("m"));
+        V.block_width = v.number_or("block_width", V.block_width, Range::positive("m"));
+        V.block_height = v.number_or("block_height", V.block_height, Range::positive("m"));
+        V.n_cells = uint_or(v, "n_cells", V.n_cells, 1, 256);
+        V.contact_refinements = uint_or(v, "contact_refinements", V.contact_refinements, 0, 10);
+        V.refine_radius = v.number_or("refine_radius", V.refine_radius, Range::positive("m"));
+        v.finish();
+      }
+    if (top.has("output"))
+      {
+        auto o = top.object("output");
+        s.output.fields = o.boolean_or("fields", s.output.fields);
+        o.finish();
+      }
+    if (top.has("sweep"))
+      {
+        auto w = top.object("sweep");
+        s.sweep_t_B = w.number_array("t_B", Range::positive("m"), 1);
+        w.finish();
+      }
+    top.finish();
+    validate_scene(s);
+    return s;
+  }
+
+  void validate_scene(const FeScene &s)
+  {
+    const auto &G = s.geometry;
+    const std::string &f = s.source_file;
+    if (!(G.c_r > 0.0))
+      throw InputError(f, "geometry.c_r", format_value(G.c_r), "(0, R_B) m");
+    if (!(G.t_B > 0.0))
+      throw InputError(f, "geometry.t_B", format_value(G.t_B), "(0, inf) m");
+    if (!(G.c_r < G.R_B))
+      throw InputError(f, "geometry.c_r", format_value(G.c_r), "(0, R_B) m",
+                       "journal larger than the bearing");
+    if (!(G.c_a > 0.0 && 2.0 * G.c_a < G.L_B))
+      throw InputError(f, "geometry.c_a", format_value(G.c_a), "(0, L_B/2) m",
+                       "L_J = L_B - 2 c_a must lie in (0, L_B)");
+    if (!(s.loading.delta_max > 0.0))
+      throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max), "(0, inf) m");
+    if (s.study == Study::radial && s.full_model && s.mesh.n_circumferential < 8)
+      throw InputError(f, "mesh.n_circumferential", std::to_string(s.mesh.n_circumferential),
+                       ">= 8 for the full model");
+    for (const double t : s.sweep_t_B)
+      if (!(t > 0.0))
+        throw InputError(f, "sweep.t_B", format_value(t), "(0, inf) m");
+    if (s.study == Study::radial && s.loading.delta_max >= G.R_J())
+      throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max),
+                       "(0, R_J) m", "the push must be smaller than the journal radius");
+  }
+
+  FeScene read_scene(const std::string &path)
+  {
+    return scene_from_json(read_structured_file(path), path);
+  }
+
+  std::string default_scene_yaml()
+  {
+    const FeScene d;
+    std::ostringstream o;
+    o.precision(10);
+    o << "# fe_stage scene, schema clearjoint.fe/1. SI units everywhere (m, Pa, kg/m^3).\n"
+      << "# Every key is optional except schema; shown here with its default.\n"
+      << "schema: clearjoint.fe/1\n"
+      << "study: radial            # radial | hertz | patch (verification problems)\n"
+      << "full_model: false        # false: quarter model (symmetry planes x = 0 and z = 0)\n"
+      << "geometry:\n"
+      << "  R_B: " << d.geometry.R_B << "   # [m] bearing inner radius, (0, inf)\n"
+      << "  t_B: " << d.geometry.t_B << "   # [m] bearing thickness, (0, inf)\n"
+      << "  L_B: " << d.geometry.L_B << "   # [m] bearing length, (0, inf)\n"
+      << "  c_r: " << d.geometry.c_r << "  # [m] radial clearance, (0, R_B); R_J = R_B - c_r\n"
+      << "  c_a: " << d.geometry.c_a << "   # [m] axial clearance, (0, L_B/2); L_J = L_B - 2 c_a\n"
+      << "material:\n"
+      << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
+      << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
+      << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
+      << "contact:\n"
+      << "  mu: " << d.contact.mu
+      << "          # [1] Coulomb friction, [0, 10]. NOT MODELLED in this version: the solve\n"
+      << "                    #     is frictionless and the run warns when mu > 0\n"
+      << "  active_set_scale: " << d.contact.active_set_scale
+      << "  # [1] complementarity constant c = scale*E*h; does not change the solution\n"
+      << "  max_iterations: " << d.contact.max_iterations
+      << "   # active-set iterations per increment before the increment is cut\n"
+      << "loading:\n"
+      << "  journal: rigid      # rigid (end_faces, axis_line: not implemented in this version)\n"
+      << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
+      << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
+      << "  max_cuts: " << d.loading.max_cuts << "        # halvings of a failed increment\n"
+      << "mesh:\n"
+      << "  degree: " << d.mesh.degree << "            # 1 or 2 (Q1/Q2 hexahedra, curved mapping)\n"
+      << "  n_circumferential: " << d.mesh.n_circumferential
+      << "  # coarse cells over 180 degrees (multiple of 4)\n"
+      << "  n_radial: " << d.mesh.n_radial << "          # coarse cells through t_B; 0: one per 2 mm\n"
+      << "  n_axial: " << d.mesh.n_axial << "           # coarse cells over L_B/2\n"
+      << "  global_refinements: " << d.mesh.global_refinements << "\n"
+      << "  contact_refinements: " << d.mesh.contact_refinements
+      << "  # extra refinements of the cells inside the contact window\n"
+      << "  contact_window_deg: " << d.mesh.contact_window_deg
+      << "  # [deg] half-angle of the refined zone about the bottom\n"
+      << "solver:\n"
+      << "  linear: automatic   # automatic | cg_amg | direct\n"
+      << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
+      << "  max_linear_iterations: " << d.solver.max_linear_iterations << "\n"
+      << "  direct_below_dofs: " << d.solver.direct_below_dofs
+      << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n"
+      << "verification:         # study hertz / patch: block [0,W]x[-H,0]x[0,W] (quarter)\n"
+      << "  sphere_radius: " << d.verification.sphere_radius << "  # [m] hertz sphere radius\n"
+      << "  block_width: " << d.verification.block_width << "    # [m] W\n"
+      << "  block_height: " << d.verification.block_height << "   # [m] H\n"
+      << "  n_cells: " << d.verification.n_cells << "            # coarse cells per edge\n"
+      << "  contact_refinements: " << d.verification.contact_refinements << "\n"
+      << "  refine_radius: " << d.verification.refine_radius
+      << "  # [m] hertz: cells within this distance of the contact point are refined\n"
+      << "output:\n"
+      << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
+      << "# sweep:              # optional: one run (and output folder) per value\n"
+      << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n";
+    return o.str();
+  }
+
+  nlohmann::json scene_to_json(const FeScene &s)
+  {
+    nlohmann::json j;
+    j["schema"] = "clearjoint.fe/1";
+    j["study"] = to_string(s.study);
+    j["full_model"] = s.full_model;
+    j["geometry"] = {{"R_B", s.geometry.R_B}, {"t_B", s.geometry.t_B}, {"L_B", s.geometry.L_B},
+                     {"c_r", s.geometry.c_r}, {"c_a", s.geometry.c_a}};
+    j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho}};
+    j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
+                    {"max_iterations", s.contact.max_iterations}};
+    j["loading"] = {{"journal", to_string(s.loading.journal)},
+                    {"delta_max", s.loading.delta_max},
+                    {"n_increments", s.loading.n_increments},
+                    {"max_cuts", s.loading.max_cuts}};
+    j["mesh"] = {{"degree", s.mesh.degree},
+                 {"n_circumferential", s.mesh.n_circumferential},
+                 {"n_radial", s.mesh.n_radial},
+                 {"n_axial", s.mesh.n_axial},
+                 {"global_refinements", s.mesh.global_refinements},
+                 {"contact_refinements", s.mesh.contact_refinements},
+                 {"contact_window_deg", s.mesh.contact_window_deg}};
+    const char *lin = s.solver.linear == LinearSolver::automatic ? "automatic" :
+                      s.solver.linear == LinearSolver::cg_amg    ? "cg_amg" :
+                                                                   "direct";
+    j["solver"] = {{"linear", lin},
+                   {"tolerance", s.solver.tolerance},
+                   {"max_linear_iterations", s.solver.max_linear_iterations},
+                   {"direct_below_dofs", s.solver.direct_below_dofs}};
+    j["verification"] = {{"sphere_radius", s.verification.sphere_radius},
+                         {"block_width", s.verification.block_width},
+                         {"block_height", s.verification.block_height},
+                         {"n_cells", s.verification.n_cells},
+                         {"contact_refinements", s.verification.contact_refinements},
+                         {"refine_radius", s.verification.refine_radius}};
+    j["output"] = {{"fields", s.output.fields}};
+    return j;
+  }
+} // namespace clearjoint::fe

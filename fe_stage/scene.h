@@ -1,0 +1,129 @@
+// The FE stage's scene (schema clearjoint.fe/1): every parameter of SPEC §2 with its default and
+// unit, read strictly (unknown keys, wrong types and out-of-range values are InputErrors naming
+// the file, key path, value and valid range). Plain C++: no deal.II here, so tests and other
+// tools can include it cheaply.
+//
+// All lengths are in metres, moduli in pascals, densities in kg/m³ (SI in every file, SPEC §1).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace clearjoint::fe
+{
+  /// What is simulated. `radial` is the paper's §2.2/§3.1 study; `hertz` and `patch` are the
+  /// verification problems of SPEC §2 (a rigid sphere / a rigid flat pressed onto an elastic
+  /// block).
+  enum class Study { radial, hertz, patch };
+
+  /// How the journal is loaded (SPEC §2). Only `rigid` is implemented in this version; the
+  /// reader rejects the others with an explained InputError rather than silently substituting.
+  enum class JournalLoading { end_faces, axis_line, rigid };
+
+  enum class LinearSolver { automatic, cg_amg, direct };
+
+  struct Geometry
+  {
+    double R_B = 10.0e-3;  // [m] bearing inner radius
+    double t_B = 4.0e-3;   // [m] bearing wall thickness (outer radius R_B + t_B)
+    double L_B = 20.0e-3;  // [m] bearing length
+    double c_r = 0.5e-3;   // [m] radial clearance, R_J = R_B - c_r (paper Eq. 1)
+    double c_a = 1.0e-3;   // [m] axial clearance, L_J = L_B - 2 c_a (paper Eq. 2)
+
+    double R_J() const { return R_B - c_r; }  // [m] journal radius
+    double L_J() const { return L_B - 2.0 * c_a; }  // [m] journal length
+  };
+
+  struct Material
+  {
+    double E = 207.0e9;  // [Pa] Young's modulus
+    double nu = 0.3;     // [1] Poisson's ratio
+    double rho = 7800.0; // [kg/m³] density (kept for the dynamic studies; unused when static)
+  };
+
+  struct Contact
+  {
+    double mu = 0.1;  // [1] Coulomb friction coefficient (SPEC §2 default)
+    /// [1] scale of the active-set complementarity constant c = scale · E · h_min. The converged
+    /// solution does not depend on it (non-penetration is exact at the contact nodes); it only
+    /// steers how the active set is guessed between iterations.
+    double active_set_scale = 1.0;
+    unsigned int max_iterations = 40;  // active-set iterations per increment before a cut
+  };
+
+  struct Loading
+  {
+    JournalLoading journal = JournalLoading::rigid;
+    double delta_max = 0.05e-3;  // [m] final push beyond first touch
+    unsigned int n_increments = 10;
+    unsigned int max_cuts = 3;  // an increment that fails is halved at most this many times
+  };
+
+  struct Mesh
+  {
+    unsigned int degree = 2;            // polynomial degree of the elements (1 or 2)
+    unsigned int n_circumferential = 24;  // coarse cells over 180°
+    unsigned int n_radial = 0;          // coarse cells through t_B; 0: one per 2 mm (at least 1)
+    unsigned int n_axial = 6;           // coarse cells over the half length L_B/2
+    unsigned int global_refinements = 0;
+    unsigned int contact_refinements = 1;  // extra refinements inside the contact window
+    double contact_window_deg = 40.0;   // [deg] half-angle of the refined zone about the bottom
+  };
+
+  struct Solver
+  {
+    LinearSolver linear = LinearSolver::automatic;
+    double tolerance = 1.0e-10;      // [1] relative residual of the linear solve
+    unsigned int max_linear_iterations = 2000;
+    unsigned int direct_below_dofs = 3000;  // `automatic`: direct (Amesos KLU) below this
+  };
+
+  /// Verification block (study hertz / patch): a block [0,W]×[−H,0]×[0,W] (quarter model).
+  struct Verification
+  {
+    double sphere_radius = 10.0e-3;  // [m] hertz: radius of the rigid sphere
+    double block_width = 20.0e-3;    // [m] W
+    double block_height = 20.0e-3;   // [m] H
+    unsigned int n_cells = 4;        // coarse cells per edge
+    unsigned int contact_refinements = 4;
+    double refine_radius = 1.0e-3;   // [m] hertz: cells within this distance get refined
+  };
+
+  struct Output
+  {
+    bool fields = true;  // write VTU/PVTU + PVD fields
+  };
+
+  struct FeScene
+  {
+    Study study = Study::radial;
+    Geometry geometry;
+    Material material;
+    Contact contact;
+    Loading loading;
+    Mesh mesh;
+    Solver solver;
+    Verification verification;
+    Output output;
+    bool full_model = false;  // false: the symmetry planes the scene allows (quarter model)
+    std::vector<double> sweep_t_B;  // [m] if non-empty, one run per value, one folder each
+    std::string source_file;        // for messages and the manifest
+  };
+
+  /// Reads and validates a scene file (YAML or JSON). Throws InputError.
+  FeScene read_scene(const std::string &path);
+  /// Same from already-parsed JSON (tests); `source` names it in messages.
+  FeScene scene_from_json(const nlohmann::json &j, const std::string &source);
+  /// Checks the combined constraints (geometry possible, etc.). Throws InputError.
+  void validate_scene(const FeScene &scene);
+
+  /// The annotated default scene (YAML text with units), what --print-defaults prints.
+  std::string default_scene_yaml();
+  /// The scene as JSON (for manifests).
+  nlohmann::json scene_to_json(const FeScene &scene);
+
+  std::string to_string(Study s);
+  std::string to_string(JournalLoading l);
+} // namespace clearjoint::fe

@@ -1,0 +1,128 @@
+// Scene reading (clearjoint.fe/1): defaults, strictness, and the bad-input errors of issue 3
+// item 10 — each names the field and its valid range; fe_stage exits 1 and writes nothing.
+#include "common/error.h"
+#include "common/strict_reader.h"
+#include "fe_stage/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+using namespace clearjoint;
+using namespace clearjoint::fe;
+
+namespace
+{
+  FeScene parse(const std::string &yaml)
+  {
+    return scene_from_json(parse_yaml_string(yaml, "test.yaml"), "test.yaml");
+  }
+
+  /// Expects an InputError whose message contains every one of `parts`.
+  void expect_error(const std::string &yaml, const std::vector<std::string> &parts)
+  {
+    try
+      {
+        parse(yaml);
+        FAIL() << "no error for:\n" << yaml;
+      }
+    catch (const InputError &e)
+      {
+        const std::string msg = e.what();
+        for (const auto &p : parts)
+          EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' missing in: " << msg;
+      }
+  }
+} // namespace
+
+TEST(FeScene, DefaultsAreTheSpecValues)
+{
+  const FeScene s = parse("schema: clearjoint.fe/1\n");
+  EXPECT_DOUBLE_EQ(s.geometry.R_B, 10e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.t_B, 4e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.L_B, 20e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.R_J(), 9.5e-3);
+  EXPECT_DOUBLE_EQ(s.geometry.L_J(), 18e-3);
+  EXPECT_DOUBLE_EQ(s.material.E, 207e9);
+  EXPECT_DOUBLE_EQ(s.material.nu, 0.3);
+  EXPECT_DOUBLE_EQ(s.contact.mu, 0.1);
+  EXPECT_DOUBLE_EQ(s.loading.delta_max, 0.05e-3);
+  EXPECT_GE(s.loading.n_increments, 10u);
+  EXPECT_FALSE(s.full_model);
+}
+
+TEST(FeScene, PrintedDefaultsParseBackToTheDefaults)
+{
+  const FeScene s = parse(default_scene_yaml());
+  const FeScene d;
+  EXPECT_EQ(scene_to_json(s).dump(), scene_to_json(d).dump());
+}
+
+TEST(FeScene, SweepIsRead)
+{
+  const FeScene s = parse("schema: clearjoint.fe/1\nsweep: {t_B: [2.0e-3, 4.0e-3, 6.0e-3]}\n");
+  ASSERT_EQ(s.sweep_t_B.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.sweep_t_B[2], 6e-3);
+}
+
+TEST(FeScene, BadInputNamesFieldAndRange)
+{
+  expect_error("schema: clearjoint.fe/1\ngeometry: {c_r: 0}\n", {"geometry.c_r", "(0, inf) m"});
+  expect_error("schema: clearjoint.fe/1\ngeometry: {c_r: -1e-3}\n", {"geometry.c_r"});
+  expect_error("schema: clearjoint.fe/1\ngeometry: {t_B: 0}\n", {"geometry.t_B", "(0, inf) m"});
+  expect_error("schema: clearjoint.fe/1\ngeometry: {c_a: 0}\n", {"geometry.c_a"});
+  // L_J = L_B − 2 c_a ≤ 0: the journal would be at least as long as... nothing left
+  expect_error("schema: clearjoint.fe/1\ngeometry: {c_a: 0.011}\n", {"geometry.c_a", "L_B/2"});
+  // journal larger than the bearing: c_r ≥ R_B leaves no journal radius
+  expect_error("schema: clearjoint.fe/1\ngeometry: {c_r: 0.011}\n", {"geometry.c_r", "R_B"});
+  expect_error("schema: clearjoint.fe/1\nloading: {delta_max: 0}\n",
+               {"loading.delta_max", "(0, inf) m"});
+  expect_error("schema: clearjoint.fe/1\nloading: {delta_max: -1e-5}\n", {"loading.delta_max"});
+  expect_error("schema: clearjoint.fe/1\ngeometry: {R_b: 0.01}\n", {"geometry.R_b"});
+  expect_error("schema: clearjoint.fe/1\nbogus: 1\n", {"bogus"});
+  expect_error("schema: clearjoint.fe/2\n", {"schema"});
+  expect_error("geometry: {t_B: 4e-3}\n", {"schema"});
+  expect_error("schema: clearjoint.fe/1\nmaterial: {nu: 0.5}\n", {"material.nu"});
+  expect_error("schema: clearjoint.fe/1\nmesh: {n_circumferential: 10}\n",
+               {"mesh.n_circumferential", "multiple of 4"});
+}
+
+TEST(FeScene, UnimplementedDeformableJournalIsRejectedNotSubstituted)
+{
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: end_faces}\n",
+               {"loading.journal", "not implemented"});
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: axis_line}\n", {"loading.journal"});
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: spring}\n", {"loading.journal"});
+}
+
+TEST(FeStageCli, BadInputExitsOneAndWritesNothing)
+{
+  const auto dir = std::filesystem::temp_directory_path() / "clearjoint_fe_cli_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto scene = dir / "bad.yaml";
+  std::ofstream(scene) << "schema: clearjoint.fe/1\ngeometry: {t_B: -0.004}\n";
+  const auto out = dir / "out";
+  const std::string cmd = std::string(FE_STAGE_EXE) + " " + scene.string() + " --output " +
+                          out.string() + " > " + (dir / "log.txt").string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_FALSE(std::filesystem::exists(out)) << "no outputs on bad input";
+  std::ifstream log(dir / "log.txt");
+  const std::string text((std::istreambuf_iterator<char>(log)), {});
+  EXPECT_NE(text.find("geometry.t_B"), std::string::npos) << text;
+
+  // --print-defaults exits 0 and prints the schema line
+  const std::string cmd2 = std::string(FE_STAGE_EXE) + " --print-defaults > " +
+                           (dir / "defaults.yaml").string() + " 2>&1";
+  const int status2 = std::system(cmd2.c_str());
+  ASSERT_TRUE(WIFEXITED(status2));
+  EXPECT_EQ(WEXITSTATUS(status2), 0);
+  std::ifstream d(dir / "defaults.yaml");
+  const std::string defaults((std::istreambuf_iterator<char>(d)), {});
+  EXPECT_NE(defaults.find("schema: clearjoint.fe/1"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,54 @@
+// Helpers shared by the FE tests: MPI/deal.II runtime in main(), scenes from YAML text, and a
+// least-squares power-law fit in log–log space (the fit stage's job; here only to check Hertz).
+#pragma once
+
+#include "common/strict_reader.h"
+#include "fe_stage/fe_model.h"
+#include "fe_stage/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace clearjoint::fe::test
+{
+  inline FeScene scene(const std::string &yaml_body)
+  {
+    return scene_from_json(parse_yaml_string("schema: clearjoint.fe/1\n" + yaml_body, "test"),
+                           "test");
+  }
+
+  inline RunResult run(const FeScene &s, MPI_Comm comm = MPI_COMM_WORLD)
+  {
+    RunOptions o;
+    o.write_fields = false;
+    o.comm = comm;
+    return run_scene(s, o);
+  }
+
+  /// Least squares of log F = log K + n log δ over the increments; returns {K, n}.
+  inline std::pair<double, double> fit_power_law(const RunResult &r)
+  {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    const double m = r.increments.size();
+    for (const auto &i : r.increments)
+      {
+        const double x = std::log(i.delta), y = std::log(i.force);
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+      }
+    const double n = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    return {std::exp((sy - n * sx) / m), n};
+  }
+
+  inline int rank(MPI_Comm comm = MPI_COMM_WORLD)
+  {
+    int r;
+    MPI_Comm_rank(comm, &r);
+    return r;
+  }
+} // namespace clearjoint::fe::test

@@ -1,0 +1,148 @@
+// Verification of the FE contact model against closed forms and invariances (SPEC §2, issue 3
+// item 7). Tolerances carry their reason beside them.
+#include "fe_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace clearjoint::fe;
+using namespace clearjoint::fe::test;
+
+namespace
+{
+  // A coarse quarter model of the default joint: enough to exercise every part of the radial
+  // study in seconds (about 3.5 k DoFs).
+  const std::string coarse_radial =
+    "contact: {mu: 0}\n"
+    "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 0}\n"
+    "loading: {n_increments: 3}\n";
+} // namespace
+
+// Rigid sphere on an elastic block (quarter model): Hertz, F = (4/3) E* √R δ^{3/2} with
+// 1/E* = (1 − ν²)/E (only the block deforms). Issue 3: fitted n within 0.03 of 1.5, K within
+// 3 %. The block (20 mm) is 30x the largest contact radius (0.32 mm), so the finite-body
+// correction is of order a/H ≈ 1.6 % at most; the contact zone has ≥ 8 cells across its radius.
+TEST(FeHertz, RigidSphereOnBlockMatchesHertz)
+{
+  const FeScene s = scene("study: hertz\ncontact: {mu: 0}\n"
+                          "loading: {delta_max: 1.0e-5, n_increments: 4}\n"
+                          "verification: {n_cells: 8, contact_refinements: 5, "
+                          "refine_radius: 0.5e-3}\n");
+  const RunResult r = run(s);
+  ASSERT_TRUE(r.complete) << r.message;
+  ASSERT_EQ(r.increments.size(), 4u);
+  const auto [K, n] = fit_power_law(r);
+  const double E_star = s.material.E / (1.0 - s.material.nu * s.material.nu);
+  const double K_hertz = 4.0 / 3.0 * E_star * std::sqrt(s.verification.sphere_radius);
+  RecordProperty("n", std::to_string(n));
+  RecordProperty("K_over_K_hertz", std::to_string(K / K_hertz));
+  std::printf("Hertz: n = %.5f, K/K_hertz = %.5f\n", n, K / K_hertz);
+  EXPECT_NEAR(n, 1.5, 0.03);
+  EXPECT_NEAR(K / K_hertz, 1.0, 0.03);
+}
+
+// Contact patch test: a rigid flat pushed δ into a block on rollers (free lateral faces) gives
+// uniaxial stress σ = E δ/H exactly, which Q2 represents exactly: the total force must equal
+// E δ/H · (2W)² to solver tolerance and the nodal pressure λ_i/w_i must be uniform.
+TEST(FePatch, RigidFlatGivesExactForceAndUniformPressure)
+{
+  const FeScene s = scene("study: patch\ncontact: {mu: 0}\n"
+                          "loading: {delta_max: 1.0e-5, n_increments: 2}\n"
+                          "verification: {n_cells: 2, contact_refinements: 1}\n");
+  const RunResult r = run(s);
+  ASSERT_TRUE(r.complete) << r.message;
+  const auto &V = s.verification;
+  for (const auto &inc : r.increments)
+    {
+      const double p_exact = s.material.E * inc.delta / V.block_height;
+      const double F_exact = p_exact * 4.0 * V.block_width * V.block_width;
+      // 1e-8: linear solver tolerance 1e-10 plus round-off of summing ~100 nodal forces
+      EXPECT_NEAR(inc.force / F_exact, 1.0, 1e-8);
+      EXPECT_NEAR(inc.force_support / F_exact, 1.0, 1e-8);
+      // SPEC: uniform within 0.1 % on matching meshes
+      EXPECT_NEAR(inc.pressure_min / p_exact, 1.0, 1e-3);
+      EXPECT_NEAR(inc.pressure_max / p_exact, 1.0, 1e-3);
+      EXPECT_EQ(inc.n_active, 81u);  // every node of the 4 x 4 Q2 top face (9 x 9)
+    }
+}
+
+// The method's own parameter: the active-set constant c only steers the iteration; the
+// converged solution satisfies n·u = −g0 exactly at active nodes, so F must not change when c
+// is made 10x and 1000x larger (issue 3 item 3 asks < 0.5 % for 10x; we demand solver accuracy).
+TEST(FeRadial, ActiveSetConstantDoesNotChangeTheForce)
+{
+  const RunResult r1 = run(scene(coarse_radial));
+  FeScene s10 = scene(coarse_radial);
+  s10.contact.active_set_scale = 10.0;
+  FeScene s1000 = scene(coarse_radial);
+  s1000.contact.active_set_scale = 1000.0;
+  const RunResult a = run(s10), b = run(s1000);
+  ASSERT_TRUE(r1.complete && a.complete && b.complete);
+  const double F = r1.increments.back().force;
+  EXPECT_GT(F, 0.0);
+  // 1e-8: two CG solves to 1e-10 relative residual
+  EXPECT_NEAR(a.increments.back().force / F, 1.0, 1e-8);
+  EXPECT_NEAR(b.increments.back().force / F, 1.0, 1e-8);
+  EXPECT_EQ(a.increments.back().n_active, r1.increments.back().n_active);
+  EXPECT_EQ(b.increments.back().n_active, r1.increments.back().n_active);
+  for (const auto &inc : r1.increments)
+    EXPECT_LT(inc.max_penetration, 1e-9 * s10.loading.delta_max);  // exact non-penetration
+}
+
+// Equilibrium: the contact force equals the support reaction; the force grows with δ; the full
+// model gives the quarter model's force (the quarter's symmetry factor 4 is right).
+TEST(FeRadial, EquilibriumMonotonicityAndQuarterEqualsFull)
+{
+  const FeScene quarter = scene(coarse_radial);
+  FeScene full = quarter;
+  full.full_model = true;
+  const RunResult q = run(quarter), f = run(full);
+  ASSERT_TRUE(q.complete && f.complete);
+  EXPECT_DOUBLE_EQ(q.symmetry_factor, 4.0);
+  EXPECT_DOUBLE_EQ(f.symmetry_factor, 1.0);
+  double previous = 0.0;
+  for (std::size_t i = 0; i < q.increments.size(); ++i)
+    {
+      const auto &a = q.increments[i];
+      EXPECT_GT(a.force, previous);
+      previous = a.force;
+      // 1e-7: both are sums of K·u with u from a 1e-10 solve; they differ by round-off only
+      EXPECT_NEAR(a.force_support / a.force, 1.0, 1e-7);
+      // 1e-6: same mesh mirrored; differences come from the linear solver only
+      EXPECT_NEAR(f.increments[i].force / a.force, 1.0, 1e-6);
+    }
+}
+
+// Issue 3 item 6: two MPI ranks give F within 1e-6 relative of one rank. Run under
+// `mpirun -np 2` by ctest (fe_mpi_np2_matches_np1); with one rank it compares a run with
+// itself and is skipped.
+TEST(FeMpi, TwoRanksMatchOneRank)
+{
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size < 2)
+    GTEST_SKIP() << "needs mpirun -np 2";
+  FeScene s = scene(coarse_radial);
+  s.solver.linear = LinearSolver::cg_amg;
+  const RunResult parallel = run(s, MPI_COMM_WORLD);
+  ASSERT_TRUE(parallel.complete) << parallel.message;
+  EXPECT_EQ(parallel.n_ranks, static_cast<unsigned int>(size));
+  MPI_Comm self;
+  MPI_Comm_split(MPI_COMM_WORLD, rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
+  if (rank() == 0)
+    {
+      const RunResult serial = run(s, self);
+      ASSERT_TRUE(serial.complete);
+      EXPECT_EQ(serial.n_ranks, 1u);
+      ASSERT_EQ(serial.increments.size(), parallel.increments.size());
+      for (std::size_t i = 0; i < serial.increments.size(); ++i)
+        {
+          EXPECT_NEAR(parallel.increments[i].force / serial.increments[i].force, 1.0, 1e-6);
+          EXPECT_EQ(parallel.increments[i].n_active, serial.increments[i].n_active);
+        }
+      std::printf("np=1 F = %.12g N, np=%d F = %.12g N\n", serial.increments.back().force, size,
+                  parallel.increments.back().force);
+      MPI_Comm_free(&self);
+    }
+}
