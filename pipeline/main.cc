@@ -19,7 +19,7 @@ int main(int argc, char **argv)
     "run_pipeline — the clearjoint pipeline: FE sweeps → fitted laws → MBD scenes → report.\n"
     "\n"
     "  run_pipeline [pipeline.yaml] [--preset fast|standard|accurate] [--force]\n"
-    "               [--only fe|fit|mbd|report] [--no-plots]\n"
+    "               [--only fe|fit|mbd|report] [--no-plots] [--output-root DIR]\n"
     "\n"
     "Results go to <output_root>/<run>/ (default out/default/): fe/, fit/, mbd/, scenes/,\n"
     "pipeline_summary.json, manifest.json and report.html. A task whose inputs (input files,\n"
@@ -38,6 +38,8 @@ int main(int argc, char **argv)
     ->check(CLI::IsMember({"fe", "fit", "mbd", "report"}));
   app.add_flag("--no-plots", [&](std::int64_t) { options.plots = false; }, "no plots, no report");
   app.add_option("--build-dir", build_dir, "where the stages were built (default: ours)");
+  std::string output_root;
+  app.add_option("--output-root", output_root, "overrides the file's output_root (results folder)");
   try
   {
     app.parse(argc, argv);
@@ -61,6 +63,8 @@ int main(int argc, char **argv)
     auto config = pipeline::read_pipeline_config(pipeline_file);
     if (!preset.empty())
       config.preset = preset;
+    if (!output_root.empty())
+      config.output_root = output_root;
     pipeline::PipelineRunner runner(config, options);
     fs::create_directories(runner.run_dir());
     manifest = std::make_unique<Manifest>("run_pipeline", runner.run_dir() + "/manifest.json",
