@@ -154,9 +154,13 @@ namespace clearjoint::pipeline
         a.replace(p, 5, partial);
       words.push_back(a);
     }
-    const std::string log_path = partial + "/stage.log";
+    // The log and the command line sit beside the partial folder while the stage runs (a stage
+    // may replace its whole output folder), and move into the result when it succeeds.
+    const std::string log_path = t.output_dir + ".log";
+    const std::string command_path = t.output_dir + ".command.txt";
+    fs::remove(log_path);
     {
-      AtomicFile cmd(partial + "/command.txt");
+      AtomicFile cmd(command_path);
       for (const auto &w : words)
         cmd.stream() << w << ' ';
       cmd.stream() << '\n';
@@ -187,6 +191,8 @@ namespace clearjoint::pipeline
     }
     fs::remove_all(t.output_dir);
     fs::rename(partial, t.output_dir);
+    fs::rename(log_path, t.output_dir + "/stage.log");
+    fs::rename(command_path, t.output_dir + "/command.txt");
     repoint_manifests(t.output_dir, partial);
     const nlohmann::json stamp = {{"schema", "clearjoint.task/1"},
                                   {"task", t.name},

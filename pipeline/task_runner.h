@@ -6,8 +6,9 @@
 // stamp "<dir>/.task.json" (with the identity) written atomically. So:
 //   - a second run with nothing changed finds every stamp and runs nothing;
 //   - changing one input re-runs exactly the tasks whose identity it enters;
-//   - an interrupted or failed task leaves only "<dir>.partial/", which never looks complete,
-//     and is redone next time.
+//   - an interrupted or failed task leaves only "<dir>.partial/" (with "<dir>.log" and
+//     "<dir>.command.txt" beside it), which never looks complete, and is redone next time.
+// A finished task's folder holds stage.log and command.txt (the exact command line).
 #pragma once
 
 #include <atomic>

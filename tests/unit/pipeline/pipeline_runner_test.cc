@@ -152,7 +152,8 @@ TEST(RunPipeline, InterruptLeavesNothingCompleteAndTheNextRunFinishesTheJob)
   }
   // Wait until the first FE task is running, then interrupt the pipeline.
   const fs::path partial = dir.file("out/r/fe/thickness/t_B=0.002.partial");
-  for (int i = 0; i < 200 && !fs::exists(partial / "command.txt"); ++i)
+  const fs::path started = dir.file("out/r/fe/thickness/t_B=0.002.command.txt");
+  for (int i = 0; i < 200 && !fs::exists(started); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, SIGINT);
@@ -169,6 +170,8 @@ TEST(RunPipeline, InterruptLeavesNothingCompleteAndTheNextRunFinishesTheJob)
   ASSERT_EQ(again.exit_code, 0) << again.log;
   EXPECT_EQ(with(again, "ran").size(), 12u);
   EXPECT_FALSE(fs::exists(partial)) << "the partial output was replaced";
+  EXPECT_TRUE(fs::exists(dir.file("out/r/fe/thickness/t_B=0.002/stage.log")));
+  EXPECT_TRUE(fs::exists(dir.file("out/r/mbd/paper/command.txt")));
 }
 
 TEST(RunPipeline, AFailingStageStopsThePipelineWithItsMessage)
