@@ -48,6 +48,20 @@ namespace clearjoint::geometry
           line.pop_back();
         return true;
       }
+      long expect_count(const std::string &what)
+      {
+        const std::string l = expect(what);
+        try
+        {
+          std::size_t used = 0;
+          const long n = std::stol(l, &used);
+          if (n >= 0 && l.find_first_not_of(" \t", used) == std::string::npos)
+            return n;
+        }
+        catch (const std::exception &)
+        {}
+        malformed(file, "expected " + what + ", found '" + l + "'", line_no);
+      }
       std::string expect(const std::string &what)
       {
         std::string line;
@@ -197,7 +211,7 @@ namespace clearjoint::geometry
       }
       else if (line == "$PhysicalNames")
       {
-        const long n = std::stol(r.expect("number of physical names"));
+        const long n = r.expect_count("number of physical names");
         for (long i = 0; i < n; ++i)
         {
           const std::string l = r.expect("physical name");
@@ -216,7 +230,7 @@ namespace clearjoint::geometry
       }
       else if (line == "$Nodes")
       {
-        const long n = std::stol(r.expect("number of nodes"));
+        const long n = r.expect_count("number of nodes");
         mesh.nodes.reserve(n);
         for (long i = 0; i < n; ++i)
         {
@@ -234,7 +248,7 @@ namespace clearjoint::geometry
       }
       else if (line == "$Elements")
       {
-        const long n = std::stol(r.expect("number of elements"));
+        const long n = r.expect_count("number of elements");
         for (long i = 0; i < n; ++i)
         {
           std::istringstream s(r.expect("element"));

@@ -201,4 +201,9 @@ TEST(MshCheck, OtherFormatsAreRejected)
   EXPECT_TRUE(has(error_of(dir.file("absent.msh")), "cannot open"));
   write_text(dir.file("cut.msh"), tiny_msh({}).substr(0, 400));
   EXPECT_TRUE(has(error_of(dir.file("cut.msh")), "not a valid MSH 2.2 ASCII file"));
+  std::string bad_count = tiny_msh({});
+  bad_count.replace(bad_count.find("$Nodes\n16"), 9, "$Nodes\nxx");
+  write_text(dir.file("count.msh"), bad_count);
+  const auto m = error_of(dir.file("count.msh"));
+  EXPECT_TRUE(has(m, "count.msh:") && has(m, "expected number of nodes, found 'xx'")) << m;
 }
