@@ -353,6 +353,22 @@ namespace clearjoint::geometry
     MeshCheckReport rep;
     rep.n_nodes = mesh.nodes.size();
 
+    // Units: a joint mesh spanning more than 1 m was most likely drawn in millimetres.
+    if (!mesh.nodes.empty())
+    {
+      double extent = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const auto [lo, hi] = std::minmax_element(
+          mesh.nodes.begin(), mesh.nodes.end(),
+          [k](const auto &a, const auto &b) { return a[k] < b[k]; });
+        extent = std::max(extent, (*hi)[k] - (*lo)[k]);
+      }
+      if (extent > 1.0)
+        rep.warnings.push_back("the mesh spans " + format_value(extent) +
+                               " m: coordinates are read as metres (drawn in millimetres?)");
+    }
+
     // Groups: all missing ones named at once; dimension must match.
     std::vector<std::string> missing;
     for (const auto &req : required_joint_groups())

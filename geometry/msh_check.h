@@ -66,6 +66,8 @@ namespace clearjoint::geometry
   {
     std::size_t n_nodes = 0, n_hexahedra = 0, n_volume_non_hex = 0, n_inverted = 0;
     std::vector<std::string> problems;  ///< empty: the mesh is usable
+    /// Not errors, but likely mistakes: e.g. a mesh larger than 1 m (drawn in mm?).
+    std::vector<std::string> warnings;
     bool ok() const { return problems.empty(); }
     /// Problems joined as "file: problem; problem".
     std::string message(const std::string &file) const;
@@ -75,7 +77,9 @@ namespace clearjoint::geometry
   /// dimensions, non-hexahedral volume elements (counted by type), volume elements outside the
   /// bearing/journal groups, non-quadrilateral surface elements, hexahedra with a corner Jacobian
   /// ≤ 0 (inverted or degenerate, first few element numbers listed), surface-group faces that are
-  /// not boundary faces of their body, and nodes shared by bearing and journal.
+  /// not boundary faces of their body, and nodes shared by bearing and journal. Warns (does not
+  /// fail) when the mesh extends over more than 1 m: coordinates are metres, and a joint that
+  /// size was most likely drawn in millimetres.
   MeshCheckReport check_joint_mesh(const MshMesh &mesh);
 
   /// read_msh22 + check_joint_mesh; throws InputError listing the problems and naming the file.

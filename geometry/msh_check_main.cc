@@ -32,6 +32,8 @@ int main(int argc, char **argv)
         std::printf("  volume %.9g m^3", group_volume(mesh, g.name));
       std::printf("\n");
     }
+    for (const auto &w : rep.warnings)
+      std::cerr << "msh_check: warning: " << argv[1] << ": " << w << "\n";
     if (!rep.ok())
     {
       for (const auto &p : rep.problems)

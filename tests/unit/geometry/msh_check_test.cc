@@ -126,6 +126,9 @@ TEST(MshCheck, TinyValidMeshPasses)
   const auto rep = check_joint_mesh(mesh);
   EXPECT_TRUE(rep.ok()) << rep.message(path);
   EXPECT_EQ(rep.n_hexahedra, 2u);
+  // The tiny mesh spans 3 m: a joint that size was probably drawn in mm (warning only).
+  ASSERT_EQ(rep.warnings.size(), 1u);
+  EXPECT_TRUE(has(rep.warnings[0], "spans 3 m") && has(rep.warnings[0], "millimetres"));
   // Unit cube from the reference cube [-1,1]³: det J = (1/2)³ at every corner, volume 1
   // (exact arithmetic on small integers and halves: 1e-15).
   for (double d : hex_corner_jacobians(mesh, *mesh.elements_of("bearing")[0]))

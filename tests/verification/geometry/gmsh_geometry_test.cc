@@ -106,6 +106,7 @@ TEST_F(GmshGeometry, DefaultJointQuarterModel)
   EXPECT_TRUE(rep.ok()) << rep.message(m.file);
   EXPECT_EQ(rep.n_volume_non_hex, 0u);
   EXPECT_EQ(rep.n_inverted, 0u);
+  EXPECT_TRUE(rep.warnings.empty());  // metres: spans 28 mm
   std::printf("default_joint h = %g m: %zu nodes, %zu hexahedra\n", h, rep.n_nodes,
               rep.n_hexahedra);
 
