@@ -210,3 +210,35 @@ TEST(Scene, LawRangeErrorPolicyStopsTheRunWithExit2AndMarksOutputsFailed)
   fs::remove_all(dir);
   fs::remove(scene);
 }
+
+TEST(Scene, DuplicateNamesAreRejected)
+{
+  expect_error([](auto &d) { d["joints"][1]["name"] = "ground_crank"; }, {"joints[1].name", "ground_crank"});
+  expect_error([](auto &d) { d["clearance_joints"][0]["name"] = "crank_rod"; },
+               {"clearance_joints[0].name"});
+}
+
+TEST(Scene, ExecutableRefusesToReplaceAForeignDirectory)
+{
+  const std::string dir = temp_dir("foreign");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/precious.txt") << "keep me\n";
+  nlohmann::json doc = base();
+  doc["duration"] = 0.001;
+  doc["clearance_joints"][0]["normal"]["law_file"] = scenes + "/../../laws/paper_tB4.json";
+  const std::string scene = dir + "_scene.json";
+  std::ofstream(scene) << doc.dump();
+  const int rc = std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                              dir + " --no-plots -q 2>/dev/null").c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 1);
+  EXPECT_TRUE(fs::exists(dir + "/precious.txt"));
+  EXPECT_FALSE(fs::exists(dir + "/manifest.json"));
+  // A previous mbd_stage output, however, is replaced.
+  fs::remove_all(dir);
+  ASSERT_EQ(WEXITSTATUS(std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                                     dir + " --no-plots -q 2>/dev/null").c_str())), 0);
+  EXPECT_EQ(WEXITSTATUS(std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                                     dir + " --no-plots -q 2>/dev/null").c_str())), 0);
+  fs::remove_all(dir);
+  fs::remove(scene);
+}
