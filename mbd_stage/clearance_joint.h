@@ -3,13 +3,15 @@
 // journal (radius R_J, length L_J) in another.
 //
 // Contacts, each with its own gap function g = δ for the integrator's root finding:
-//  0 radial: the journal's end rims E− and E+ have radial offsets e_k from the bearing axis;
-//    the penetration of rim k is δ_k = |e_k| + R_J·√(1 − (n_k·j)²) − R_B (the rim's farthest
-//    point along n_k = e_k/|e_k|; = |e| − c_r when aligned). δ = max(δ−, δ+) — the deepest
-//    journal point, the same quantity as the FE push beyond first touch — and F_n = F(δ).
-//    The force acts at the rim points P_k along n_k with weights w_k (w− + w+ = 1): all on the
-//    deeper rim when tilted (rim contact), half on each when aligned (line contact: resultant
-//    at mid-length), blended linearly while |δ+ − δ−| < ε = blend_width. To make the force the
+//  0 radial: for each end rim of the journal, X_k is its point farthest from the bearing axis
+//    (Newton on the rim angle); rim k penetrates by δ_k = |P(X_k − C_B)| − R_B, P = I − b bᵀ,
+//    along n_k = P(X_k − C_B)/|…| (= |e| − c_r when aligned). The law's δ is the deepest journal
+//    point — the same quantity as the FE push beyond first touch — and F_n = F(δ).
+//    The force acts at the material points X_k along n_k with weights w_k (w− + w+ = 1): all
+//    on the deeper rim when tilted (rim contact), half on each when aligned (line contact:
+//    resultant
+//    at mid-length), blended linearly while |δ+ − δ−| < ε = blend_width. As X_k is the true
+//    maximiser, dδ_k/dt is the normal relative velocity of the material points there. To make the force the
 //    exact gradient of the law's energy E(δ) everywhere, δ is the smooth maximum
 //    δ = δ− + g(δ+ − δ−), g(d) = 0 (d ≤ −ε), (d + ε)²/(4ε) (|d| < ε), d (d ≥ ε), whose
 //    partial derivatives are the weights; it differs from max(δ−, δ+) by at most ε/4
