@@ -9,11 +9,10 @@
 //    point — the same quantity as the FE push beyond first touch — and F_n = F(δ).
 //    The force acts at the material points X_k along n_k with weights w_k (w− + w+ = 1): all
 //    on the deeper rim when tilted (rim contact), half on each when aligned (line contact:
-//    resultant
-//    at mid-length), blended linearly while |δ+ − δ−| < ε = blend_width. As X_k is the true
-//    maximiser, dδ_k/dt is the normal relative velocity of the material points there. To make the force the
-//    exact gradient of the law's energy E(δ) everywhere, δ is the smooth maximum
-//    δ = δ− + g(δ+ − δ−), g(d) = 0 (d ≤ −ε), (d + ε)²/(4ε) (|d| < ε), d (d ≥ ε), whose
+//    resultant at mid-length), blended linearly while |δ+ − δ−| < ε = blend_width. As X_k is
+//    the true maximiser, dδ_k/dt is the normal relative velocity of the material points there.
+//    To make the force the exact gradient of the law's energy E(δ) everywhere, δ is the smooth
+//    maximum δ = δ− + g(δ+ − δ−), g(d) = 0 (d ≤ −ε), (d + ε)²/(4ε) (|d| < ε), d (d ≥ ε), whose
 //    partial derivatives are the weights; it differs from max(δ−, δ+) by at most ε/4
 //    (0.125 nm for c_r = 0.5 mm).
 //  1, 2 axial (+b, −b walls): u = (C_J − C_B)·b, h = (L_J/2)·cos θ + R_J·φ(sin θ), and
