@@ -72,23 +72,59 @@ namespace clearjoint::mbd
     std::array<double, 2> d_end;
     for (int end = 0; end < 2; ++end)
     {
-      Vector3 n;
+      // The rim point X farthest from the bearing axis: X(φ) = E + R_J(cos φ u1 + sin φ u2)
+      // on the rim circle (u1, u2 ⟂ j), f(φ) = |P(X − C_B)|², P = I − b bᵀ, maximised by Newton
+      // from the rim point along the rim centre's offset (quadratic convergence; the optimum
+      // is close to it as long as |e| ≫ R_J(1 − cos θ)). With X the true maximiser, dδ/dt is
+      // the normal relative velocity of the material points at X (envelope theorem), so the
+      // force is the exact gradient of the law's energy.
       const Vector3 E = E_minus + end * G.L_J * p.j;
-      const double d = radial_offset(E, n);
-      const double nj = n.dot(p.j);
-      d_end[end] = d + G.R_J * std::sqrt(std::max(0.0, 1.0 - nj * nj)) - G.R_B;
+      Vector3 n;
+      radial_offset(E, n);
+      Vector3 u1 = n - n.dot(p.j) * p.j;
+      if (u1.norm() < 1e-12)
+      {
+        Vector3 h2;
+        make_perpendiculars(p.j, u1, h2);
+      }
+      u1.normalize();
+      const Vector3 u2 = p.j.cross(u1);
+      const auto perp = [&](const Vector3 &v) { return Vector3(v - v.dot(p.b) * p.b); };
+      double phi = 0.0;
+      for (int it = 0; it < 20; ++it)
+      {
+        const double c = std::cos(phi), s = std::sin(phi);
+        const Vector3 PX = perp(E - p.C_B + G.R_J * (c * u1 + s * u2));
+        const Vector3 PX1 = perp(G.R_J * (-s * u1 + c * u2));
+        const Vector3 PX2 = perp(-G.R_J * (c * u1 + s * u2));
+        const double f1 = 2.0 * PX.dot(PX1), f2 = 2.0 * (PX1.dot(PX1) + PX.dot(PX2));
+        if (!(f2 < 0.0))
+          break;  // not near a maximum (should not happen for a rim inside the bearing)
+        const double step = -f1 / f2;
+        phi += step;
+        if (std::abs(step) < 1e-15)
+          break;
+      }
+      const Vector3 X = E + G.R_J * (std::cos(phi) * u1 + std::sin(phi) * u2);
+      radial_offset(X, n);
       p.normal[0][end] = n;
-      p.point[0][end] = p.C_B + (E - p.C_B).dot(p.b) * p.b + G.R_B * n;
+      p.point[0][end] = X;
+      const Vector3 w = X - p.C_B;
+      d_end[end] = (w - w.dot(p.b) * p.b).norm() - G.R_B;
     }
-    p.delta[0] = std::max(d_end[0], d_end[1]);
-    const double blend = blend_fraction * G.c_r();
-    const double w_plus = std::clamp(0.5 + 0.5 * (d_end[1] - d_end[0]) / blend, 0.0, 1.0);
+    // Smooth maximum of the rim penetrations; its partial derivatives are the weights.
+    const double eps = blend_fraction * G.c_r(), dd = d_end[1] - d_end[0];
+    const double g = dd <= -eps ? 0.0 : (dd >= eps ? dd : (dd + eps) * (dd + eps) / (4.0 * eps));
+    p.delta[0] = d_end[0] + g;
+    const double w_plus = std::clamp(0.5 + 0.5 * dd / eps, 0.0, 1.0);
     p.weight[0] = {1.0 - w_plus, w_plus};
 
     // Axial walls.
     const double u = (p.C_J - p.C_B).dot(p.b);
-    const double h = 0.5 * G.L_J * cos_t + G.R_J * sin_t;
-    const Vector3 m_hat = m / std::max(sin_t, std::sin(aligned_angle));
+    const double s0 = aligned_sine;
+    const double phi = sin_t < s0 ? sin_t * sin_t / (2.0 * s0) : sin_t - 0.5 * s0;
+    const double h = 0.5 * G.L_J * cos_t + G.R_J * phi;
+    const Vector3 m_hat = m / std::max(sin_t, s0);
     for (int side = 0; side < 2; ++side)
     {
       const double sgn = side == 0 ? 1.0 : -1.0;

@@ -3,18 +3,24 @@
 // journal (radius R_J, length L_J) in another.
 //
 // Contacts, each with its own gap function g = δ for the integrator's root finding:
-//  0 radial: the journal's end rims E− and E+ have radial offsets e_k from the bearing axis;
-//    the penetration of rim k is δ_k = |e_k| + R_J·√(1 − (n_k·j)²) − R_B (the rim's farthest
-//    point along n_k = e_k/|e_k|; = |e| − c_r when aligned). δ = max(δ−, δ+) — the deepest
-//    journal point, the same quantity as the FE push beyond first touch — and F_n = F(δ).
-//    The force acts at the rim points P_k along n_k with weights w_k (w− + w+ = 1): all on the
-//    deeper rim when tilted (rim contact), half on each when aligned (line contact: resultant
-//    at mid-length), blended linearly while |δ+ − δ−| < blend_width. Applying −F·(w−∇δ− + w+∇δ+)
-//    is the gradient of the law's energy E(δ) wherever one rim is deeper by more than the
-//    blend width, and whenever the axes stay aligned, so the energy balance closes.
-//  1, 2 axial (+b, −b walls): u = (C_J − C_B)·b, h = (L_J/2)·cos θ + R_J·sin θ, and
+//  0 radial: for each end rim of the journal, X_k is its point farthest from the bearing axis
+//    (Newton on the rim angle); rim k penetrates by δ_k = |P(X_k − C_B)| − R_B, P = I − b bᵀ,
+//    along n_k = P(X_k − C_B)/|…| (= |e| − c_r when aligned). The law's δ is the deepest journal
+//    point — the same quantity as the FE push beyond first touch — and F_n = F(δ).
+//    The force acts at the material points X_k along n_k with weights w_k (w− + w+ = 1): all
+//    on the deeper rim when tilted (rim contact), half on each when aligned (line contact:
+//    resultant at mid-length), blended linearly while |δ+ − δ−| < ε = blend_width. As X_k is
+//    the true maximiser, dδ_k/dt is the normal relative velocity of the material points there.
+//    To make the force the exact gradient of the law's energy E(δ) everywhere, δ is the smooth
+//    maximum δ = δ− + g(δ+ − δ−), g(d) = 0 (d ≤ −ε), (d + ε)²/(4ε) (|d| < ε), d (d ≥ ε), whose
+//    partial derivatives are the weights; it differs from max(δ−, δ+) by at most ε/4
+//    (0.125 nm for c_r = 0.5 mm).
+//  1, 2 axial (+b, −b walls): u = (C_J − C_B)·b, h = (L_J/2)·cos θ + R_J·φ(sin θ), and
 //    δ± = ±u + h − L_B/2 (a journal end face, or its rim when tilted, reaches a wall after the
-//    axial clearance c_a = (L_B − L_J)/2 is used up).
+//    axial clearance c_a = (L_B − L_J)/2 is used up). The force acts at the rim point farthest
+//    along ±b; below sin θ = s0 (aligned_sine) the point moves to the face centre at fraction
+//    sin θ/s0, and φ(s) = s²/(2 s0) there (s − s0/2 above) so that the force stays the
+//    gradient of the energy (bias R_J·s0/2 ≈ 5 nm).
 // Forces: normal F_n from the contact model, friction from CoulombFriction on the tangential
 // relative velocity, applied equal and opposite at the same point P on both bodies (so the
 // pair exerts no net moment about P, and each body gets its moment (P − r) × f).
@@ -74,9 +80,10 @@ namespace clearjoint::mbd
   {
   public:
     static constexpr int n_contacts = 3;
-    static constexpr double aligned_angle = 1e-3;  ///< [rad] below this a face contact acts at
-                                                   ///< the face centre (see apply())
-    static constexpr double blend_fraction = 1e-3; ///< [1] blend_width = this × c_r
+    /// [1] sin θ below which an axial contact point moves from the rim toward the face centre
+    /// (and R_J·sin θ in h is smoothed to match, see place()).
+    static constexpr double aligned_sine = 1e-6;
+    static constexpr double blend_fraction = 1e-6; ///< [1] blend_width = this × c_r
 
     /// Centres [m] and axes [1] in the ground frame at the initial configuration k0.
     ClearanceJoint(std::string name, int bearing_body, int journal_body,

@@ -154,6 +154,7 @@ namespace clearjoint::mbd
                          : (i < 13 * nb ? settings_.atol_velocity : settings_.atol_work);
     }
 
+    double h_restart = 0.0;  // [s] initial step after a restart (0: SUNDIALS' estimate)
     const auto create = [&](const double t_start) {
       if (erk)
       {
@@ -175,7 +176,14 @@ namespace clearjoint::mbd
           }
         }
         else
+        {
           m.check(ERKStepReInit(m.mem, &Impl::rhs, t_start, m.y), "ReInit");
+          // Restart with a tenth of the last accepted step instead of SUNDIALS' estimate from
+          // scratch (~1e-13 s here, then ~10 steps to grow back); the error test still rejects
+          // a first step that is too long.
+          if (h_restart > 0.0)
+            m.check(ERKStepSetInitStep(m.mem, h_restart), "SetInitStep");
+        }
         m.check(ERKStepSetStopTime(m.mem, t_end), "SetStopTime");
       }
       else
@@ -203,7 +211,11 @@ namespace clearjoint::mbd
           }
         }
         else
+        {
           m.check(CVodeReInit(m.mem, t_start, m.y), "ReInit");
+          if (h_restart > 0.0)
+            m.check(CVodeSetInitStep(m.mem, h_restart), "SetInitStep");
+        }
         m.check(CVodeSetStopTime(m.mem, t_end), "SetStopTime");
       }
     };
@@ -267,6 +279,7 @@ namespace clearjoint::mbd
               "GetLastStep");
       if (h_last > 0.0)
       {
+        h_restart = 0.1 * h_last;
         stats_.h_min = std::min(stats_.h_min, h_last);
         stats_.h_max = std::max(stats_.h_max, h_last);
       }

@@ -21,7 +21,9 @@ int main(int argc, char **argv)
   bool no_plots = false, quiet = false, verbose = false;
   app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.mbd/1)")
     ->required();
-  app.add_option("--output,-o", output_dir, "output directory (created; replaced if it exists)")
+  app.add_option("--output,-o", output_dir,
+                 "output directory (created; an existing one is replaced only if it is empty or "
+                 "a previous mbd_stage output)")
     ->required();
   app.add_flag("--no-plots", no_plots, "do not call scripts/plot.py on the outputs");
   app.add_flag("-q,--quiet", quiet, "warnings and errors only");

@@ -190,7 +190,6 @@ namespace clearjoint::mbd
     }
     if (eval)
       eval->clearance.resize(clearance_.size());
-    double P_friction_total = 0.0, P_damping_total = 0.0;
     std::vector<double> P_fric(clearance_.size()), P_damp(clearance_.size());
     for (std::size_t c = 0; c < clearance_.size(); ++c)
     {
@@ -201,8 +200,6 @@ namespace clearjoint::mbd
         P_fric[c] += r.P_friction;
         P_damp[c] += r.P_damping;
       }
-      P_friction_total += P_fric[c];
-      P_damping_total += P_damp[c];
       if (eval)
         eval->clearance[c] = out;
     }
@@ -273,8 +270,6 @@ namespace clearjoint::mbd
       if (!std::isfinite(ydot[i]))
         throw NumericalError("non-finite state derivative (component " + std::to_string(i) +
                              ") at t = " + format_value(t) + " s");
-    (void)P_friction_total;
-    (void)P_damping_total;
 
     if (eval)
     {

@@ -202,9 +202,16 @@ namespace clearjoint::mbd
 
     // Joints
     std::vector<std::string> joint_names;
+    std::set<std::string> element_names;  // joints, drivers and clearance joints: unique
+    const auto unique_name = [&](StrictObject &o) {
+      const std::string name = o.string("name");
+      if (!element_names.insert(name).second)
+        o.fail("name", name, "a name not used by another joint, driver or clearance joint");
+      return name;
+    };
     for (StrictObject j : top.object_array("joints"))
     {
-      const std::string name = j.string("name");
+      const std::string name = unique_name(j);
       const JointType type = parse_joint_type(
         j.string("type", {"revolute", "translational", "spherical", "fixed"}));
       const int bi = body_ref(j, "body_i", *sys), bj = body_ref(j, "body_j", *sys);
@@ -221,7 +228,7 @@ namespace clearjoint::mbd
     if (top.has("drivers"))
       for (StrictObject d : top.object_array("drivers"))
       {
-        const std::string name = d.string("name");
+        const std::string name = unique_name(d);
         const std::string jn = d.string("joint");
         int idx = -1;
         for (std::size_t i = 0; i < joint_names.size(); ++i)
@@ -243,7 +250,7 @@ namespace clearjoint::mbd
     {
       for (StrictObject c : top.object_array("clearance_joints"))
       {
-        const std::string name = c.string("name");
+        const std::string name = unique_name(c);
         StrictObject bo = c.object("bearing"), jo = c.object("journal");
         const int bb = body_ref(bo, "body", *sys), jb = body_ref(jo, "body", *sys);
         if (bb == jb)

@@ -83,3 +83,33 @@ TEST(ContactForceModel, JohnsonBeyondPeakIsCountedAndErrorPolicyThrows)
   const ContactForceModel err = ContactForceModel::johnson("j", j, laws::RangePolicy::error);
   EXPECT_THROW(err.elastic_force(2 * j.peak_delta()), laws::LawRangeError);
 }
+
+TEST(ContactForceModel, LawFamilyIsEvaluatedAtTheCurrentTilt)
+{
+  // Two members at θ = 0 and θ = 2° (rad); the family interpolates ln F_ref and n linearly.
+  const auto member = [](const double theta, const double K, const double n) {
+    laws::LawFile lf;
+    lf.law = {K, n};
+    lf.delta_min = 0.0;
+    lf.delta_max = 5e-5;
+    lf.delta_ref = 5e-5;
+    return laws::LawFamilyMember{theta, lf};
+  };
+  const double t2 = 2.0 * 3.14159265358979 / 180.0;
+  const laws::LawFamily fam("theta", "rad", 5e-5,
+                            {member(0.0, 3.6595e8, 1.0114), member(t2, 1.0e8, 1.05)},
+                            laws::RangePolicy::clamp);
+  const ContactForceModel m = ContactForceModel::law_family("fam", fam, laws::RangePolicy::extend);
+  const double d_ref = 5e-5;
+  const double F0 = 3.6595e8 * std::pow(d_ref, 1.0114), F2 = 1.0e8 * std::pow(d_ref, 1.05);
+  // At the members: their own laws.
+  EXPECT_NEAR(m.elastic_force(2e-5, 0.0), 3.6595e8 * std::pow(2e-5, 1.0114), 1e-9 * F0);
+  EXPECT_NEAR(m.elastic_force(d_ref, t2), F2, 1e-9 * F2);
+  // Half way: F_ref = √(F0·F2) (log-linear), n the mean.
+  const double n_mid = 0.5 * (1.0114 + 1.05), F_mid = std::sqrt(F0 * F2);
+  EXPECT_NEAR(m.elastic_force(d_ref, 0.5 * t2), F_mid, 1e-9 * F_mid);
+  EXPECT_NEAR(m.elastic_force(1e-5, 0.5 * t2), F_mid * std::pow(1e-5 / d_ref, n_mid), 1e-9 * F_mid);
+  // Beyond δ_max under "extend": evaluated and counted.
+  m.elastic_force(1e-4, 0.5 * t2);
+  EXPECT_EQ(m.n_out_of_range(), 1u);
+}

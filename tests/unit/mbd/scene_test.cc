@@ -2,6 +2,7 @@
 // valid range; the executable exits 1 and writes nothing. Plus one short good run through the
 // executable (outputs, units line, manifest status).
 #include "mbd_stage/scene.h"
+#include "mbd_stage/simulation.h"
 
 #include "common/error.h"
 #include "common/strict_reader.h"
@@ -157,6 +158,87 @@ TEST(Scene, ExecutableWritesOutputsAtomically)
   // No temporary directory left behind.
   for (const auto &p : fs::directory_iterator(fs::path(dir).parent_path()))
     EXPECT_EQ(p.path().string().find(dir + ".tmp"), std::string::npos);
+  fs::remove_all(dir);
+  fs::remove(scene);
+}
+
+TEST(Scene, InconsistentInitialVelocitiesAreCorrected)
+{
+  nlohmann::json doc = base();
+  doc["bodies"][2]["velocity"] = {0.0, 0.3, 0.5};  // m/s: the slider may only move along y
+  doc["duration"] = 1e-4;
+  Scene s = scene_from_json(doc, "v.yaml", scenes);
+  EXPECT_GT(s.system->initial_velocity_correction(), 1e-3);
+  const SimulationResult r = simulate(s);
+  ASSERT_TRUE(r.complete);
+  // After the correction the velocity constraints hold at t = 0 (to rounding).
+  EXPECT_LT(r.column("phi_dot_max").front(), 1e-12);
+}
+
+TEST(Scene, ExecutableHelpDocumentsExitCodes)
+{
+  const std::string out = temp_dir("help") + ".txt";
+  const int rc = std::system((std::string(MBD_STAGE_EXECUTABLE) + " --help > " + out).c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 0);
+  std::ifstream f(out);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  for (const char *s : {"Exit codes", "0  success", "1  input error", "2  numerical failure"})
+    EXPECT_NE(text.find(s), std::string::npos) << s;
+  fs::remove(out);
+}
+
+TEST(Scene, LawRangeErrorPolicyStopsTheRunWithExit2AndMarksOutputsFailed)
+{
+  // A law 1000× softer penetrates beyond the law file's 0.05 mm: with out_of_range = error the
+  // run stops, exit code 2, manifest "failed", table "incomplete".
+  nlohmann::json doc = base();
+  doc["duration"] = 0.01;
+  doc["clearance_joints"][0]["normal"]["law_file"] = scenes + "/../../laws/paper_tB4.json";
+  doc["clearance_joints"][0]["normal"]["stiffness_scale"] = 1e-3;
+  doc["clearance_joints"][0]["normal"]["out_of_range"] = "error";
+  const std::string dir = temp_dir("range");
+  const std::string scene = dir + "_scene.json";
+  std::ofstream(scene) << doc.dump();
+  const int rc = std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                              dir + " --no-plots -q 2>/dev/null").c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 2);
+  const nlohmann::json manifest = read_json_file(dir + "/manifest.json");
+  EXPECT_EQ(manifest["status"], "failed");
+  std::ifstream csv(dir + "/timeseries.csv");
+  const std::string text((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("# status: incomplete"), std::string::npos);
+  fs::remove_all(dir);
+  fs::remove(scene);
+}
+
+TEST(Scene, DuplicateNamesAreRejected)
+{
+  expect_error([](auto &d) { d["joints"][1]["name"] = "ground_crank"; }, {"joints[1].name", "ground_crank"});
+  expect_error([](auto &d) { d["clearance_joints"][0]["name"] = "crank_rod"; },
+               {"clearance_joints[0].name"});
+}
+
+TEST(Scene, ExecutableRefusesToReplaceAForeignDirectory)
+{
+  const std::string dir = temp_dir("foreign");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/precious.txt") << "keep me\n";
+  nlohmann::json doc = base();
+  doc["duration"] = 0.001;
+  doc["clearance_joints"][0]["normal"]["law_file"] = scenes + "/../../laws/paper_tB4.json";
+  const std::string scene = dir + "_scene.json";
+  std::ofstream(scene) << doc.dump();
+  const int rc = std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                              dir + " --no-plots -q 2>/dev/null").c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 1);
+  EXPECT_TRUE(fs::exists(dir + "/precious.txt"));
+  EXPECT_FALSE(fs::exists(dir + "/manifest.json"));
+  // A previous mbd_stage output, however, is replaced.
+  fs::remove_all(dir);
+  ASSERT_EQ(WEXITSTATUS(std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                                     dir + " --no-plots -q 2>/dev/null").c_str())), 0);
+  EXPECT_EQ(WEXITSTATUS(std::system((std::string(MBD_STAGE_EXECUTABLE) + " " + scene + " --output " +
+                                     dir + " --no-plots -q 2>/dev/null").c_str())), 0);
   fs::remove_all(dir);
   fs::remove(scene);
 }
