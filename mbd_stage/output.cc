@@ -5,6 +5,7 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "common/manifest.h"
+#include "common/plot_script.h"
 #include "common/strict_reader.h"
 
 #include <Eigen/Core>
@@ -68,13 +69,6 @@ namespace clearjoint::mbd
     fs::remove_all(tmp_, ec);
   }
 
-  std::string OutputWriter::plot_script()
-  {
-    if (const char *env = std::getenv("CLEARJOINT_PLOT_SCRIPT"))
-      return env;
-    return std::string(CLEARJOINT_SOURCE_DIR) + "/scripts/plot.py";
-  }
-
   int OutputWriter::write(const Scene &scene, const SimulationResult &r, const bool make_plots)
   {
     {
@@ -111,15 +105,7 @@ namespace clearjoint::mbd
 
     if (make_plots)
     {
-      // Debian's python3 has python3-matplotlib; a python3 earlier on PATH (pyenv, venv) may
-      // not. $CLEARJOINT_PYTHON overrides.
-      std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-      if (const char *env = std::getenv("CLEARJOINT_PYTHON"))
-        python = env;
-      const std::string cmd = "'" + python + "' '" + plot_script() + "' mbd '" + dir_ + "'";
-      const int rc = std::system(cmd.c_str());
-      if (rc != 0)
-        log::warning("plotting failed (exit " + std::to_string(rc) + "): " + cmd);
+      run_plot_script("mbd", {dir_});  // warns on failure: the data files are complete
       if (fs::exists(dir_ + "/plots"))
         for (const auto &p : fs::directory_iterator(dir_ + "/plots"))
           manifest.add_output(p.path().string());

@@ -21,9 +21,6 @@ namespace clearjoint::mbd
     /// exit code (0 complete, 2 the simulation failed numerically).
     int write(const Scene &scene, const SimulationResult &result, bool make_plots);
 
-    /// The plotting script: $CLEARJOINT_PLOT_SCRIPT or <source>/scripts/plot.py.
-    static std::string plot_script();
-
   private:
     std::string dir_, tmp_;
     int argc_;
