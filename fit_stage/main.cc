@@ -2,6 +2,7 @@
 // (or a clearjoint.law_family/1 file with --family). See --help.
 #include "common/error.h"
 #include "common/log.h"
+#include "common/stage_main.h"
 #include "fit_stage/fit_command.h"
 
 #include <CLI/CLI.hpp>
@@ -59,8 +60,7 @@ int main(int argc, char **argv)
     return app.exit(e) == 0 ? exit_success : exit_input_error;
   }
 
-  try
-  {
+  return run_stage_main([&]() -> int {
     command.options.weighting =
       weighting == "relative" ? fit::Weighting::relative : fit::Weighting::absolute;
     if (!range.empty())
@@ -88,20 +88,5 @@ int main(int argc, char **argv)
       }
     }
     return fit::run_fit_command(command, argc, argv);
-  }
-  catch (const InputError &e)
-  {
-    log::error(e.what());
-    return exit_input_error;
-  }
-  catch (const NumericalError &e)
-  {
-    log::error(e.what());
-    return exit_numerical_error;
-  }
-  catch (const std::exception &e)
-  {
-    log::error(std::string("unexpected failure: ") + e.what());
-    return exit_numerical_error;
-  }
+  });
 }

@@ -5,6 +5,7 @@
 // renamed to DIR at the end, and manifest.json (written last) records the status.
 #include "common/error.h"
 #include "common/log.h"
+#include "common/stage_main.h"
 #include "mbd_stage/output.h"
 #include "mbd_stage/scene.h"
 #include "mbd_stage/simulation.h"
@@ -48,26 +49,10 @@ int main(int argc, char **argv)
   if (verbose)
     log::set_level(log::Level::debug);
 
-  try
-  {
+  return run_stage_main([&]() -> int {
     mbd::Scene scene = mbd::read_scene(scene_path);  // validates everything first
     mbd::OutputWriter writer(output_dir, argc, argv);
     const mbd::SimulationResult result = mbd::simulate(scene);
     return writer.write(scene, result, !no_plots);
-  }
-  catch (const InputError &e)
-  {
-    log::error(e.what());
-    return exit_input_error;
-  }
-  catch (const NumericalError &e)
-  {
-    log::error(e.what());
-    return exit_numerical_error;
-  }
-  catch (const std::exception &e)
-  {
-    log::error(std::string("unexpected error: ") + e.what());
-    return exit_numerical_error;
-  }
+  });
 }

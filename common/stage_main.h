@@ -1,0 +1,38 @@
+// The error handling every stage's main() shares (STYLE.md: parse → construct → run, inside
+// try/catch): runs the body and turns what escapes it into a logged message and an exit code.
+#pragma once
+
+#include "common/error.h"
+#include "common/log.h"
+
+#include <exception>
+#include <string>
+
+namespace clearjoint
+{
+  /// Returns body()'s exit code; InputError → 1, NumericalError → 2, anything else → 2 with
+  /// "unexpected failure" (a bug or a resource problem, reported as such).
+  template <typename Body>
+  int run_stage_main(Body &&body)
+  {
+    try
+    {
+      return body();
+    }
+    catch (const InputError &e)
+    {
+      log::error(e.what());
+      return exit_input_error;
+    }
+    catch (const NumericalError &e)
+    {
+      log::error(e.what());
+      return exit_numerical_error;
+    }
+    catch (const std::exception &e)
+    {
+      log::error(std::string("unexpected failure: ") + e.what());
+      return exit_numerical_error;
+    }
+  }
+} // namespace clearjoint
