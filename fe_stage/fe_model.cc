@@ -62,8 +62,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <map>
+#include <set>
+#include <cstdlib>
 #include <memory>
 
 namespace clearjoint::fe
@@ -79,6 +82,48 @@ namespace clearjoint::fe
     constexpr types::boundary_id bid_fixed = 2;     // supports (radial: all components; blocks: u_y)
     constexpr types::boundary_id bid_sym_x = 3;     // symmetry plane x = 0: u_x = 0
     constexpr types::boundary_id bid_sym_z = 4;     // symmetry plane z = 0: u_z = 0
+    constexpr types::boundary_id bid_journal_surface = 5;  // journal's cylindrical surface
+    constexpr types::boundary_id bid_journal_end = 6;      // journal end face z = L_J/2
+
+    /// Polar chart about the bearing axis (z): (φ, s, z) ↦ s·ρ(φ)·(sin φ, −cos φ) + z e_z, with φ
+    /// measured from −y. For the bearing ρ ≡ 1 (s is the radius); for the journal, whose axis is
+    /// offset to y = −c_r, ρ(φ) is the distance from the bearing axis to the journal's surface
+    /// along the ray at φ, so s = 1 is the journal surface. Both bodies thus refine and place
+    /// their surface nodes on the same rays: the bearing's and the journal's contact nodes pair
+    /// up exactly (node-to-node along the bearing's normal) at every refinement level.
+    class RayChart : public ChartManifold<dim, dim, dim>
+    {
+    public:
+      RayChart(const double c_r, const double R_J, const bool journal)
+        : ChartManifold<dim, dim, dim>(Tensor<1, dim>({2.0 * numbers::PI, 0.0, 0.0}))
+        , c_r_(c_r), R_J_(R_J), journal_(journal)
+      {}
+      double rho(const double phi) const
+      {
+        if (!journal_)
+          return 1.0;
+        const double s = std::sin(phi), c = std::cos(phi);
+        return c_r_ * c + std::sqrt(R_J_ * R_J_ - c_r_ * c_r_ * s * s);
+      }
+      Point<dim> pull_back(const Point<dim> &X) const override
+      {
+        const double phi = std::atan2(X[0], -X[1]);
+        return Point<dim>(phi, std::hypot(X[0], X[1]) / rho(phi), X[2]);
+      }
+      Point<dim> push_forward(const Point<dim> &c) const override
+      {
+        const double r = c[1] * rho(c[0]);
+        return Point<dim>(r * std::sin(c[0]), -r * std::cos(c[0]), c[2]);
+      }
+      std::unique_ptr<Manifold<dim, dim>> clone() const override
+      {
+        return std::make_unique<RayChart>(c_r_, R_J_, journal_);
+      }
+
+    private:
+      double c_r_, R_J_;
+      bool journal_;
+    };
 
     /// A rigid obstacle moved by δ along −y. gap() returns the signed distance g0 of a reference
     /// point X from the obstacle surface (> 0 outside) and the unit normal n pointing from the
@@ -133,6 +178,8 @@ namespace clearjoint::fe
     struct ContactNode
     {
       std::array<types::global_dof_index, dim> dofs;
+      std::array<types::global_dof_index, dim> partner;  // journal node (two-body contact)
+      bool two_body = false;
       Point<dim> X;
       unsigned int constrained_component = 1;
       bool owned = false;   // owned by this rank (its x-DoF is locally owned)
@@ -221,6 +268,8 @@ namespace clearjoint::fe
       void make_block_grid();
       void setup_system();
       void find_contact_nodes();
+      void make_matrices();
+      void set_fixed_constraints_for(double delta);
       void assemble_static();
       void compute_nodal_weights();
       void set_obstacle_position(double delta);
@@ -249,7 +298,13 @@ namespace clearjoint::fe
       double h_min_ = 0.0;
       double lame_lambda_ = 0.0, lame_mu_ = 0.0;
 
-      AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports
+      AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports,
+                                                      // journal load at δ = 1 (scaled by δ)
+      AffineConstraints<double> fixed_delta_;         // the same at the current δ
+      TrilinosWrappers::MPI::Vector rhs_static_unit_; // static cells' right-hand side at δ = 1
+      std::vector<types::global_dof_index> loaded_y_dofs_;  // owned journal DoFs driven by δ
+      std::vector<types::global_dof_index> loaded_sorted_;  // the same, sorted (lookups)
+      bool two_body_ = false;
       AffineConstraints<double> constraints_;         // + contact lines of the active set
       TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions)
       TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
@@ -305,49 +360,53 @@ namespace clearjoint::fe
     // Geometry
     // ------------------------------------------------------------------------------------------
 
-    /// The bearing ring: 2D (r, φ) grid mapped to the annulus, extruded along z, with a
-    /// cylindrical manifold on every cell so refinement and the mapping follow the curved
-    /// surfaces. φ is measured from −y toward +x: point = (r sin φ, −r cos φ).
+    /// The bearing ring (and, unless the journal is rigid, the journal) as hexahedra on the
+    /// RayChart manifolds; φ is measured from −y toward +x: point = (r sin φ, −r cos φ).
     void ContactModel::make_radial_grid()
     {
       const auto &G = scene_.geometry;
       const auto &M = scene_.mesh;
       const bool full = scene_.full_model;
+      const bool journal = scene_.loading.journal != JournalLoading::rigid;
       const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
       const unsigned int n_r =
         M.n_radial > 0 ? M.n_radial :
                          std::max(1u, static_cast<unsigned int>(std::lround(G.t_B / 2.0e-3)));
       const double R_o = G.R_B + G.t_B;
+      const RayChart bearing_chart(G.c_r, G.R_J(), false), journal_chart(G.c_r, G.R_J(), true);
 
-      // 2D vertices (r_j, φ_i); the full ring closes at φ = ±π.
+      // φ of vertex i; the full ring closes at φ = ±π (vertex index modulo n_phi).
       const unsigned int n_phi_vertices = full ? n_phi : n_phi + 1;
       const double phi0 = full ? -units::pi : 0.0;
       const double dphi = (full ? 2.0 * units::pi : units::pi) / n_phi;
+      auto phi_of = [&](unsigned int i) { return phi0 + (i % n_phi_vertices) * dphi; };
+
+      // --- bearing: 2D (r, φ) grid, local x along r (outward), local y along φ -------------
       std::vector<Point<2>> vertices;
+      std::vector<CellData<2>> cells;
+      auto bid = [&](unsigned int i, unsigned int j) {
+        return (i % n_phi_vertices) * (n_r + 1) + j;
+      };
       for (unsigned int i = 0; i < n_phi_vertices; ++i)
         for (unsigned int j = 0; j <= n_r; ++j)
           {
-            const double phi = phi0 + i * dphi;
             const double r = G.R_B + (R_o - G.R_B) * j / n_r;
-            vertices.emplace_back(r * std::sin(phi), -r * std::cos(phi));
+            vertices.emplace_back(r * std::sin(phi_of(i)), -r * std::cos(phi_of(i)));
           }
-      auto vid = [&](unsigned int i, unsigned int j) {
-        return (i % n_phi_vertices) * (n_r + 1) + j;
-      };
-      std::vector<CellData<2>> cells;
       for (unsigned int i = 0; i < n_phi; ++i)
         for (unsigned int j = 0; j < n_r; ++j)
           {
             CellData<2> c;
-            // local x along r (outward), local y along φ: positive orientation.
-            c.vertices[0] = vid(i, j);
-            c.vertices[1] = vid(i, j + 1);
-            c.vertices[2] = vid(i + 1, j);
-            c.vertices[3] = vid(i + 1, j + 1);
+            c.vertices[0] = bid(i, j);
+            c.vertices[1] = bid(i, j + 1);
+            c.vertices[2] = bid(i + 1, j);
+            c.vertices[3] = bid(i + 1, j + 1);
+            c.material_id = 0;
+            c.manifold_id = 0;
             cells.push_back(c);
           }
-      Triangulation<2> ring;
-      ring.create_triangulation(vertices, cells, SubCellData());
+      Triangulation<2> bearing2d;
+      bearing2d.create_triangulation(vertices, cells, SubCellData());
 
       // Axial slices: the journal's end L_J/2 is a mesh plane.
       const double zJ = 0.5 * G.L_J(), zB = 0.5 * G.L_B;
@@ -357,39 +416,198 @@ namespace clearjoint::fe
         half_slices.push_back(zJ * k / n_in);
       const unsigned int n_out =
         std::max(1u, static_cast<unsigned int>(std::lround((zB - zJ) / (zJ / n_in))));
+      auto mirror = [&](const std::vector<double> &half) {
+        std::vector<double> sl;
+        if (full)
+          for (auto it = half.rbegin(); it != half.rend(); ++it)
+            if (*it > 0.0)
+              sl.push_back(-*it);
+        sl.insert(sl.end(), half.begin(), half.end());
+        return sl;
+      };
+      const std::vector<double> journal_slices = mirror(half_slices);
       for (unsigned int k = 1; k <= n_out; ++k)
         half_slices.push_back(zJ + (zB - zJ) * k / n_out);
-      std::vector<double> slices;
-      if (full)
-        for (auto it = half_slices.rbegin(); it != half_slices.rend(); ++it)
-          if (*it > 0.0)
-            slices.push_back(-*it);
-      slices.insert(slices.end(), half_slices.begin(), half_slices.end());
+      const std::vector<double> bearing_slices = mirror(half_slices);
 
+      Triangulation<dim> bearing3d;
+      GridGenerator::extrude_triangulation(bearing2d, bearing_slices, bearing3d);
+      auto [all_vertices, all_cells, subcells] =
+        GridTools::get_coarse_mesh_description(bearing3d);
+      for (auto &c : all_cells)
+        {
+          c.material_id = 0;
+          c.manifold_id = 0;
+        }
+
+      if (journal)
+        {
+          // --- journal cross-section: one ring layer s ∈ [s0, 1] on the rays of the bearing's
+          // vertices, and a structured core whose boundary lies on s = s0 (Coons patch). -----
+          const double s0 = 0.6;
+          const unsigned int n = M.n_circumferential;  // cells over 180°
+          const unsigned int Nx = full ? n / 2 : n / 4, Ny = n / 2;
+          std::vector<Point<2>> jv;
+          std::vector<CellData<2>> jc;
+          auto ring_point = [&](unsigned int i, double s) {
+            const Point<dim> p = journal_chart.push_forward(Point<dim>(phi_of(i), s, 0.0));
+            return Point<2>(p[0], p[1]);
+          };
+          // ring vertices: (i, l), l = 0 (s0), 1 (surface)
+          auto rid = [&](unsigned int i, unsigned int l) { return (i % n_phi_vertices) * 2 + l; };
+          for (unsigned int i = 0; i < n_phi_vertices; ++i)
+            {
+              jv.push_back(ring_point(i, s0));
+              jv.push_back(ring_point(i, 1.0));
+            }
+          for (unsigned int i = 0; i < n_phi; ++i)
+            {
+              CellData<2> c;
+              c.vertices[0] = rid(i, 0);
+              c.vertices[1] = rid(i, 1);
+              c.vertices[2] = rid(i + 1, 0);
+              c.vertices[3] = rid(i + 1, 1);
+              c.material_id = 1;
+              c.manifold_id = 1;
+              jc.push_back(c);
+            }
+          // core boundary: ring index of boundary node (a, b), or −1 on the symmetry line
+          // (half model) where the points run straight through the journal's centre.
+          auto ring_index = [&](unsigned int a, unsigned int b) -> int {
+            if (full)
+              {
+                // counter-clockwise from the bottom-left corner (φ = −3π/4 ↔ i = n/2)
+                if (b == 0) return int(n / 2 + a);
+                if (a == Nx) return int(n / 2 + Nx + b);
+                if (b == Ny) return int((n / 2 + Nx + Ny + (Nx - a)) % n_phi);
+                if (a == 0) return int((n / 2 + 2 * Nx + Ny + (Ny - b)) % n_phi);
+                return -1;
+              }
+            if (b == 0) return int(a);
+            if (a == Nx) return int(Nx + b);
+            if (b == Ny) return int(Nx + Ny + (Nx - a));
+            return -1;
+          };
+          const Point<2> centre(0.0, -G.c_r);
+          auto boundary_point = [&](unsigned int a, unsigned int b) -> Point<2> {
+            const int i = ring_index(a, b);
+            if (i >= 0)
+              return ring_point(i, s0);
+            // half model, a = 0: bottom → centre → top, linear in each half
+            const Point<2> bot = ring_point(0, s0), top = ring_point(n, s0);
+            const double t = double(b) / Ny;
+            return t <= 0.5 ? bot + (centre - bot) * (2.0 * t) : centre + (top - centre) * (2.0 * t - 1.0);
+          };
+          std::vector<int> core_id((Nx + 1) * (Ny + 1), -1);
+          for (unsigned int b = 0; b <= Ny; ++b)
+            for (unsigned int a = 0; a <= Nx; ++a)
+              {
+                const int i = ring_index(a, b);
+                if (i >= 0)
+                  {
+                    core_id[b * (Nx + 1) + a] = rid(i, 0);
+                    continue;
+                  }
+                Point<2> p;
+                if (a == 0 || a == Nx || b == 0 || b == Ny)
+                  p = boundary_point(a, b);
+                else
+                  {
+                    const double u = double(a) / Nx, v = double(b) / Ny;
+                    const Point<2> B = boundary_point(a, 0), T = boundary_point(a, Ny),
+                                   Lp = boundary_point(0, b), R = boundary_point(Nx, b);
+                    const Point<2> P00 = boundary_point(0, 0), P10 = boundary_point(Nx, 0),
+                                   P01 = boundary_point(0, Ny), P11 = boundary_point(Nx, Ny);
+                    p = Point<2>((1 - v) * B + v * T + (1 - u) * Lp + u * R -
+                                 ((1 - u) * (1 - v) * P00 + u * (1 - v) * P10 +
+                                  (1 - u) * v * P01 + u * v * P11));
+                  }
+                core_id[b * (Nx + 1) + a] = jv.size();
+                jv.push_back(p);
+              }
+          for (unsigned int b = 0; b < Ny; ++b)
+            for (unsigned int a = 0; a < Nx; ++a)
+              {
+                CellData<2> c;
+                c.vertices[0] = core_id[b * (Nx + 1) + a];
+                c.vertices[1] = core_id[b * (Nx + 1) + a + 1];
+                c.vertices[2] = core_id[(b + 1) * (Nx + 1) + a];
+                c.vertices[3] = core_id[(b + 1) * (Nx + 1) + a + 1];
+                c.material_id = 1;
+                c.manifold_id = numbers::flat_manifold_id;
+                jc.push_back(c);
+              }
+          Triangulation<2> journal2d;
+          GridTools::consistently_order_cells(jc);
+          journal2d.create_triangulation(jv, jc, SubCellData());
+          Triangulation<dim> journal3d;
+          GridGenerator::extrude_triangulation(journal2d, journal_slices, journal3d, true);
+          auto [jv3, jc3, js3] = GridTools::get_coarse_mesh_description(journal3d);
+          const unsigned int offset = all_vertices.size();
+          all_vertices.insert(all_vertices.end(), jv3.begin(), jv3.end());
+          for (auto c : jc3)
+            {
+              for (auto &v : c.vertices)
+                v += offset;
+              c.material_id = 1;
+              all_cells.push_back(c);
+            }
+        }
+
+      // One coarse mesh without vertex merging: the bodies touch at φ = 0 but stay separate.
       Triangulation<dim> serial;
-      GridGenerator::extrude_triangulation(ring, slices, serial);
+      serial.create_triangulation(all_vertices, all_cells, SubCellData());
 
-      // Boundary ids from face centres; the manifold on every cell and face.
       const double tol = 1e-8 * G.R_B;
+      for (const auto &cell : serial.active_cell_iterators())
+        {
+          const bool is_journal = cell->material_id() == 1;
+          if (is_journal)
+            {
+              // ring cells: all vertices at s ≥ s0 − tol on the journal chart
+              bool ring = true;
+              for (const auto v : cell->vertex_indices())
+                ring = ring && journal_chart.pull_back(cell->vertex(v))[1] > 0.6 - 1e-6;
+              cell->set_all_manifold_ids(ring ? 1 : numbers::flat_manifold_id);
+            }
+          else
+            cell->set_all_manifold_ids(0);
+        }
+      // ring faces toward the core carry the chart too (set after the core so they stay curved)
+      for (const auto &cell : serial.active_cell_iterators())
+        if (cell->material_id() == 1 && cell->manifold_id() == 1)
+          cell->set_all_manifold_ids(1);
+
       for (const auto &cell : serial.active_cell_iterators())
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary())
             {
-              const Point<dim> c = cell->face(f)->center();
-              const double r = std::hypot(c[0], c[1]);
-              types::boundary_id id = bid_free;
-              // face centres of curved faces lie slightly inside the cylinder (flat vertices)
-              bool on_inner = true, on_outer = true, on_x0 = true;
-              for (const auto v : cell->face(f)->vertex_indices())
+              const auto face = cell->face(f);
+              const Point<dim> c = face->center();
+              bool on_inner = true, on_outer = true, on_x0 = true, on_journal = true;
+              for (const auto v : face->vertex_indices())
                 {
-                  const Point<dim> &p = cell->face(f)->vertex(v);
+                  const Point<dim> &p = face->vertex(v);
                   const double rv = std::hypot(p[0], p[1]);
                   on_inner = on_inner && std::abs(rv - G.R_B) < tol;
                   on_outer = on_outer && std::abs(rv - R_o) < tol;
                   on_x0 = on_x0 && std::abs(p[0]) < tol;
+                  on_journal =
+                    on_journal && std::abs(std::hypot(p[0], p[1] + G.c_r) - G.R_J()) < tol;
                 }
-              (void)r;
-              if (on_inner)
+              types::boundary_id id = bid_free;
+              if (cell->material_id() == 1)
+                {
+                  if (on_journal)
+                    id = bid_journal_surface;
+                  else if (std::abs(std::abs(c[2]) - zJ) < tol)
+                    id = bid_journal_end;
+                  else if (!full && on_x0)
+                    id = bid_sym_x;
+                  else if (!full && std::abs(c[2]) < tol)
+                    id = bid_sym_z;
+                }
+              else if (on_inner)
                 id = bid_contact;
               else if (on_outer)
                 id = (c[1] > 0.0) ? bid_fixed : bid_free;
@@ -397,24 +615,28 @@ namespace clearjoint::fe
                 id = bid_sym_x;
               else if (!full && std::abs(c[2]) < tol)
                 id = bid_sym_z;
-              cell->face(f)->set_boundary_id(id);
+              face->set_boundary_id(id);
             }
-      serial.set_all_manifold_ids(0);
 
       tria_.copy_triangulation(serial);
-      tria_.set_manifold(0, CylindricalManifold<dim>(2));
+      tria_.set_manifold(0, bearing_chart);
+      tria_.set_manifold(1, journal_chart);
 
       for (unsigned int k = 0; k < M.global_refinements; ++k)
         tria_.refine_global(1);
+      // Refine inside the contact window; the decision uses the mean vertex angle, which is the
+      // same for a bearing cell and the journal cell on the same rays.
       const double window = M.contact_window_deg * units::deg;
       for (unsigned int k = 0; k < M.contact_refinements; ++k)
         {
           for (const auto &cell : tria_.active_cell_iterators())
             if (cell->is_locally_owned())
               {
-                const Point<dim> c = cell->center();
-                const double phi = std::atan2(c[0], -c[1]);  // from −y
-                if (std::abs(phi) < window)
+                double phi = 0.0;
+                for (const auto v : cell->vertex_indices())
+                  phi += std::abs(std::atan2(cell->vertex(v)[0], -cell->vertex(v)[1]));
+                phi /= cell->n_vertices();
+                if (phi < window)
                   cell->set_refine_flag();
               }
           tria_.execute_coarsening_and_refinement();
@@ -528,12 +750,77 @@ namespace clearjoint::fe
                                                fixed_constraints_, fe_->component_mask(ux));
       VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_z, zero,
                                                fixed_constraints_, fe_->component_mask(uz));
+      two_body_ = scene_.study == Study::radial && scene_.loading.journal != JournalLoading::rigid;
+      if (two_body_ && n_ranks_ > 1)
+        throw InputError(scene_.source_file, "loading.journal", to_string(scene_.loading.journal),
+                         "rigid (with more than one MPI rank)",
+                         "the deformable journal runs on one MPI rank in this version");
       if (scene_.study == Study::radial)
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
                                                  fixed_constraints_);
       else
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
                                                  fixed_constraints_, fe_->component_mask(uy));
+      // Journal load at δ = 1 (u_y = −1 m); every inhomogeneity is then scaled by δ.
+      if (two_body_)
+        {
+          std::map<types::global_dof_index, Point<dim>> support;
+          DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+          Vector<double> down(dim);
+          down[1] = -1.0;
+          const Functions::ConstantFunction<dim> unit_push(down);
+          if (scene_.loading.journal == JournalLoading::end_faces)
+            {
+              AffineConstraints<double> load(relevant_);
+              VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_journal_end,
+                                                       unit_push, load, fe_->component_mask(uy));
+              for (const auto &line : load.get_lines())
+                {
+                  // the reaction sums over every DoF of the set, hanging ones included (their
+                  // share would otherwise be lost); only the free ones get the load line
+                  if (owned_.is_element(line.index))
+                    loaded_y_dofs_.push_back(line.index);
+                  if (!fixed_constraints_.is_constrained(line.index))
+                    {
+                      fixed_constraints_.add_line(line.index);
+                      fixed_constraints_.set_inhomogeneity(line.index, -1.0);
+                    }
+                }
+            }
+          else  // axis_line: the journal's y-DoFs on its axis x = 0, y = −c_r
+            {
+              const double tol = 1e-8 * scene_.geometry.R_B;
+              std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell()), axis_dofs;
+              for (const auto &cell : dof_handler_.active_cell_iterators())
+                if ((cell->is_locally_owned() || cell->is_ghost()) && cell->material_id() == 1)
+                  {
+                    cell->get_dof_indices(dofs);
+                    for (unsigned int i = 0; i < dofs.size(); ++i)
+                      if (fe_->system_to_component_index(i).first == 1)
+                        {
+                          const Point<dim> &p = support.at(dofs[i]);
+                          if (std::abs(p[0]) < tol && std::abs(p[1] + scene_.geometry.c_r) < tol &&
+                              std::find(axis_dofs.begin(), axis_dofs.end(), dofs[i]) ==
+                                axis_dofs.end())
+                            {
+                              axis_dofs.push_back(dofs[i]);
+                              if (owned_.is_element(dofs[i]))
+                                loaded_y_dofs_.push_back(dofs[i]);
+                              if (!fixed_constraints_.is_constrained(dofs[i]))
+                                {
+                                  fixed_constraints_.add_line(dofs[i]);
+                                  fixed_constraints_.set_inhomogeneity(dofs[i], -1.0);
+                                }
+                            }
+                        }
+                  }
+            }
+          loaded_sorted_ = loaded_y_dofs_;
+          std::sort(loaded_sorted_.begin(), loaded_sorted_.end());
+          if (Utilities::MPI::sum(loaded_y_dofs_.size(), comm_) == 0)
+            throw NumericalError("fe_stage: no journal DoFs found for the loading " +
+                                 to_string(scene_.loading.journal));
+        }
       fixed_constraints_.close();
 
       {
@@ -544,8 +831,78 @@ namespace clearjoint::fe
             support_y_dofs_.push_back(i);
       }
 
+    }
+
+    /// Matrices and vectors. The sparsity pattern is built with every candidate's contact line
+    /// present, so any active set condenses into it (the two-body lines couple journal DoFs).
+    void ContactModel::make_matrices()
+    {
+      AffineConstraints<double> worst(relevant_);
+      for (const auto &cn : nodes_)
+        if (cn.candidate)
+          {
+            const auto d = cn.dofs[cn.constrained_component];
+            worst.add_line(d);
+            for (unsigned int k = 0; k < dim; ++k)
+              {
+                if (k != cn.constrained_component)
+                  worst.add_entry(d, cn.dofs[k], 1.0);
+                if (cn.two_body)
+                  worst.add_entry(d, cn.partner[k], 1.0);
+              }
+          }
+      worst.merge(fixed_constraints_, AffineConstraints<double>::left_object_wins, true);
+      worst.close();
+      // The union of the patterns with and without the contact lines: a master of a hanging node
+      // may be a contact DoF, whose line is active in some iterations and not in others.
       DynamicSparsityPattern dsp(relevant_);
       DoFTools::make_sparsity_pattern(dof_handler_, dsp, fixed_constraints_, true);
+      DoFTools::make_sparsity_pattern(dof_handler_, dsp, worst, true);
+      if (two_body_)
+        {
+          // Condensing a bearing contact line moves entries K(i, d) to K(i, partner) and K(d, j)
+          // to K(partner, j) for every i, j of the cells holding d: add them explicitly (the
+          // partner's own hanging/Dirichlet chains are covered by make_sparsity_pattern above).
+          std::map<types::global_dof_index, std::vector<types::global_dof_index>> partners;
+          for (const auto &cn : nodes_)
+            if (cn.candidate && cn.two_body)
+              for (unsigned int k = 0; k < dim; ++k)
+                {
+                  auto &v = partners[cn.dofs[cn.constrained_component]];
+                  for (unsigned int l = 0; l < dim; ++l)
+                    {
+                      v.push_back(cn.partner[l]);
+                      for (const auto e : worst.get_constraint_entries(cn.partner[l]) ?
+                                            *worst.get_constraint_entries(cn.partner[l]) :
+                                            std::vector<std::pair<types::global_dof_index, double>>())
+                        v.push_back(e.first);
+                    }
+                  (void)k;
+                }
+          std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
+          for (const auto &cell : dof_handler_.active_cell_iterators())
+            if (cell->is_locally_owned() || cell->is_ghost())
+              {
+                cell->get_dof_indices(cell_dofs);
+                std::vector<types::global_dof_index> ps;
+                for (const auto d : cell_dofs)
+                  {
+                    const auto it = partners.find(d);
+                    if (it != partners.end())
+                      ps.insert(ps.end(), it->second.begin(), it->second.end());
+                  }
+                if (ps.empty())
+                  continue;
+                std::sort(ps.begin(), ps.end());
+                ps.erase(std::unique(ps.begin(), ps.end()), ps.end());
+                std::vector<types::global_dof_index> all = cell_dofs;
+                all.insert(all.end(), ps.begin(), ps.end());
+                for (const auto i : all)
+                  if (relevant_.is_element(i))
+                    for (const auto j : all)
+                      dsp.add(i, j);
+              }
+        }
       SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
       K_.reinit(owned_, owned_, dsp, comm_);
       A_static_.reinit(owned_, owned_, dsp, comm_);
@@ -553,6 +910,7 @@ namespace clearjoint::fe
 
       solution_owned_.reinit(owned_, comm_);
       rhs_.reinit(owned_, comm_);
+      rhs_static_unit_.reinit(owned_, comm_);
       residual_owned_.reinit(owned_, comm_);
       solution_.reinit(owned_, relevant_, comm_);
       residual_.reinit(owned_, relevant_, comm_);
@@ -579,6 +937,31 @@ namespace clearjoint::fe
       const double window_gap = 2.0 * scene_.loading.delta_max;
       std::map<types::global_dof_index, ContactNode> by_x_dof;
       std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
+
+      // Two bodies: the journal's surface nodes, keyed by (φ, z) — they lie on the same rays as
+      // the bearing's (RayChart), so pairing is an exact lookup.
+      auto key_of = [](const Point<dim> &p) {
+        return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9),
+                              std::lround(p[2] / 1e-11));
+      };
+      std::map<std::pair<long, long>, std::array<types::global_dof_index, dim>> journal_nodes;
+      if (two_body_)
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          if (cell->is_locally_owned() || cell->is_ghost())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == bid_journal_surface)
+                {
+                  cell->face(f)->get_dof_indices(face_dofs);
+                  std::map<unsigned int, std::array<types::global_dof_index, dim>> per_node;
+                  for (unsigned int k = 0; k < face_dofs.size(); ++k)
+                    {
+                      const auto ci = fe_->face_system_to_component_index(k);
+                      per_node[ci.second][ci.first] = face_dofs[k];
+                    }
+                  for (const auto &[node, dofs] : per_node)
+                    journal_nodes[key_of(support.at(dofs[0]))] = dofs;
+                }
       for (const auto &cell : dof_handler_.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           for (const auto f : cell->face_indices())
@@ -625,6 +1008,21 @@ namespace clearjoint::fe
                     // Hanging or supported nodes are skipped: they follow their masters.
                     if (!found)
                       continue;
+                    if (two_body_)
+                      {
+                        const auto it = journal_nodes.find(key_of(cn.X));
+                        if (it == journal_nodes.end())
+                          throw NumericalError(
+                            "fe_stage: no journal node faces the bearing node at (" +
+                            format_value(cn.X[0]) + ", " + format_value(cn.X[1]) + ", " +
+                            format_value(cn.X[2]) + ") m: the contact meshes do not match");
+                        cn.two_body = true;
+                        cn.partner = it->second;
+                        const Point<dim> XJ = support.at(it->second[0]);
+                        const double rB = std::hypot(cn.X[0], cn.X[1]);
+                        cn.n = Tensor<1, dim>({cn.X[0] / rB, cn.X[1] / rB, 0.0});
+                        cn.g0 = rB - std::hypot(XJ[0], XJ[1]);  // along the common ray
+                      }
                     by_x_dof.emplace(dofs[0], cn);
                   }
               }
@@ -705,12 +1103,12 @@ namespace clearjoint::fe
               {
                 cell_rhs = 0.0;
                 fixed_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs,
-                                                              A_static_, rhs_);
+                                                              A_static_, rhs_static_unit_);
               }
           }
       K_.compress(VectorOperation::add);
       A_static_.compress(VectorOperation::add);
-      rhs_ = 0.0;  // supports are homogeneous: the static part contributes no right-hand side
+      rhs_static_unit_.compress(VectorOperation::add);  // from the journal load at δ = 1
     }
 
     /// Nodal areas w_i = ∫ φ_i dA over the contact surface: the contact pressure of node i is
@@ -745,7 +1143,19 @@ namespace clearjoint::fe
     void ContactModel::set_obstacle_position(const double delta)
     {
       for (auto &cn : nodes_)
-        obstacle_.gap(cn.X, delta, cn.g0, cn.n);
+        if (!cn.two_body)
+          obstacle_.gap(cn.X, delta, cn.g0, cn.n);
+    }
+
+    /// The fixed constraints are linear in δ (supports and symmetry are homogeneous, the journal
+    /// load is u_y = −δ, hanging nodes are linear): scale every inhomogeneity of the δ = 1 set.
+    void ContactModel::set_fixed_constraints_for(const double delta)
+    {
+      fixed_delta_.clear();
+      fixed_delta_.copy_from(fixed_constraints_);
+      for (const auto &line : fixed_constraints_.get_lines())
+        if (line.inhomogeneity != 0.0)
+          fixed_delta_.set_inhomogeneity(line.index, delta * line.inhomogeneity);
     }
 
     // ------------------------------------------------------------------------------------------
@@ -888,6 +1298,8 @@ namespace clearjoint::fe
             {
               lambda += residual_[cn.dofs[c]] * cn.n[c];
               un += solution_[cn.dofs[c]] * cn.n[c];
+              if (cn.two_body)
+                un -= solution_[cn.partner[c]] * cn.n[c];
             }
           cn.lambda = lambda;
           cn.gap = cn.g0 + un;
@@ -908,6 +1320,7 @@ namespace clearjoint::fe
       IncrementRecord rec;
       rec.delta = delta;
       set_obstacle_position(delta);
+      set_fixed_constraints_for(delta);
       const double c = scene_.contact.active_set_scale * scene_.material.E * h_min_;  // [N/m]
       // ε_g: a penetration below this is round-off, not contact (makes the active set
       // deterministic across rank counts). 1e-9 of the push is far below any physical effect.
@@ -925,17 +1338,21 @@ namespace clearjoint::fe
                 const auto d = cn.dofs[cc];
                 constraints_.add_line(d);
                 for (unsigned int k = 0; k < dim; ++k)
-                  if (k != cc)
-                    constraints_.add_entry(d, cn.dofs[k], -cn.n[k] / cn.n[cc]);
+                  {
+                    if (k != cc)
+                      constraints_.add_entry(d, cn.dofs[k], -cn.n[k] / cn.n[cc]);
+                    if (cn.two_body)
+                      constraints_.add_entry(d, cn.partner[k], cn.n[k] / cn.n[cc]);
+                  }
                 constraints_.set_inhomogeneity(d, -cn.g0 / cn.n[cc]);
               }
-          constraints_.merge(fixed_constraints_,
-                             AffineConstraints<double>::left_object_wins, true);
+          constraints_.merge(fixed_delta_, AffineConstraints<double>::left_object_wins, true);
           constraints_.close();
 
           std::unique_ptr<ScopedTimer> assemble_timer = std::make_unique<ScopedTimer>(t_assemble_);
           A_.copy_from(A_static_);
-          rhs_ = 0.0;
+          rhs_ = 0.0;  // the static part δ·rhs_static_unit_ is added after compress(): adding
+                       // into a vector whose last operation was an assignment is collective
           Vector<double> cell_rhs(fe_->n_dofs_per_cell());
           for (unsigned int k = 0; k < contact_cell_matrices_.size(); ++k)
             {
@@ -945,6 +1362,7 @@ namespace clearjoint::fe
             }
           A_.compress(VectorOperation::add);
           rhs_.compress(VectorOperation::add);
+          rhs_.add(delta, rhs_static_unit_);
           assemble_timer.reset();
 
           constraints_.set_zero(solution_owned_);  // start from the previous solution
@@ -998,9 +1416,19 @@ namespace clearjoint::fe
                   }
               }
           }
-      double f_support = 0.0;
+      double f_support = 0.0, f_load = 0.0;
       for (const auto d : support_y_dofs_)
         f_support += residual_owned_[d];
+      for (const auto d : loaded_y_dofs_)
+        f_load -= residual_owned_[d];
+      // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
+      // the contact force reaches that DoF through the constraint, not through K u: add it.
+      for (const auto &cn : nodes_)
+        if (cn.two_body && cn.active && cn.owned &&
+            std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), cn.partner[1]))
+          f_load -= cn.lambda * cn.n[1];
+      rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
+                                   symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
       rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
       rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
       rec.n_active = Utilities::MPI::sum(n_act, comm_);
@@ -1072,6 +1500,7 @@ namespace clearjoint::fe
       make_grid();
       setup_system();
       find_contact_nodes();
+      make_matrices();
       assemble_static();
       compute_nodal_weights();
       result.n_dofs = dof_handler_.n_dofs();
@@ -1109,7 +1538,9 @@ namespace clearjoint::fe
       std::unique_ptr<log::Progress> progress;
       if (rank_ == 0)
         progress = std::make_unique<log::Progress>("fe_stage increments", L.delta_max * 1e6, "um");
-      double delta_done = 0.0;
+      double delta_done = 0.0, delta_previous = 0.0;
+      bool have_previous = false;
+      TrilinosWrappers::MPI::Vector solution_previous(owned_, comm_);
       for (unsigned int inc = 1; inc <= L.n_increments; ++inc)
         {
           const double target = (inc == L.n_increments) ? L.delta_max : inc * step0;
@@ -1127,7 +1558,25 @@ namespace clearjoint::fe
                 saved_active.push_back(cn.active);
               try
                 {
+                  // Predictor: extrapolate the displacement linearly in δ from the last two
+                  // converged states and start with every node the prediction penetrates
+                  // activated (the active set then mostly settles in one or two iterations).
+                  if (have_previous && delta_done > delta_previous)
+                    {
+                      const double ratio = (try_delta - delta_done) / (delta_done - delta_previous);
+                      solution_owned_.sadd(1.0 + ratio, -ratio, solution_previous);
+                      solution_ = solution_owned_;
+                      set_obstacle_position(try_delta);
+                      evaluate_contact(try_delta);
+                      const double eps_g = 1e-9 * L.delta_max;
+                      for (auto &cn : nodes_)
+                        if (cn.candidate && cn.gap < -eps_g)
+                          cn.active = true;
+                    }
                   rec = solve_increment(try_delta);
+                  solution_previous = saved;
+                  delta_previous = delta_done;
+                  have_previous = true;
                   total_contact_its += rec.contact_iterations;
                   total_linear_its += rec.linear_iterations;
                   delta_done = try_delta;

@@ -20,6 +20,8 @@ namespace clearjoint::fe
     double delta = 0.0;           // [m] push beyond first touch
     double force = 0.0;           // [N] contact force of the FULL body (symmetry factor applied)
     double force_support = 0.0;   // [N] reaction at the supports (fixed set), full body
+    double force_load = 0.0;      // [N] reaction on the journal's loaded set (the paper's measure;
+                                  //     rigid journal: the obstacle's force), full body
     unsigned int contact_iterations = 0;  // active-set iterations
     unsigned int linear_iterations = 0;   // summed over the active-set iterations
     unsigned int n_active = 0;            // active contact nodes (of the modelled part)

@@ -66,27 +66,27 @@ namespace
           "force = total contact force of the FULL body: the modelled part's nodal contact "
           "forces times the symmetry factor (4 for the quarter model, 1 for --full-model)",
           "force_support = the same force measured as the reaction of the supports (equilibrium "
-          "check)",
+          "check); force_load = the reaction on the journal's loaded set (the paper's measure)",
           "delta = push of the rigid obstacle beyond first touch"};
         if (scene.contact.mu > 0.0)
           comments.push_back("WARNING: friction mu = " + format_value(scene.contact.mu) +
                              " requested but NOT modelled in this version: frictionless solve");
         csv = std::make_unique<CsvWriter>(
           csv_path,
-          std::vector<std::string>{"delta", "force", "force_support", "contact_iterations",
+          std::vector<std::string>{"delta", "force", "force_support", "force_load", "contact_iterations",
                                    "linear_iterations", "active_contact_points",
                                    "max_penetration", "pressure_min", "pressure_max",
                                    "wall_time"},
-          std::vector<std::string>{"m", "N", "N", "1", "1", "1", "m", "Pa", "Pa", "s"},
+          std::vector<std::string>{"m", "N", "N", "N", "1", "1", "1", "m", "Pa", "Pa", "s"},
           comments);
-        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
       }
     fe::RunOptions options;
     options.output_dir = dir;
     options.write_fields = scene.output.fields;
     options.on_increment = [&](const fe::IncrementRecord &r) {
       if (csv)
-        csv->write_row({r.delta, r.force, r.force_support, double(r.contact_iterations),
+        csv->write_row({r.delta, r.force, r.force_support, r.force_load, double(r.contact_iterations),
                         double(r.linear_iterations), double(r.n_active), r.max_penetration,
                         r.pressure_min, r.pressure_max, r.wall_time});
     };

@@ -94,12 +94,10 @@ namespace clearjoint::fe
         auto l = top.object("loading");
         auto &L = s.loading;
         const std::string journal =
-          l.string_or("journal", "rigid", {"end_faces", "axis_line", "rigid"});
-        if (journal != "rigid")
-          l.fail("journal", journal, "rigid",
-                 "the deformable journal (end_faces, axis_line) is not implemented in this "
-                 "version of fe_stage (issue 3, step 3)");
-        L.journal = JournalLoading::rigid;
+          l.string_or("journal", to_string(L.journal), {"end_faces", "axis_line", "rigid"});
+        L.journal = journal == "end_faces" ? JournalLoading::end_faces :
+                    journal == "axis_line" ? JournalLoading::axis_line :
+                                             JournalLoading::rigid;
         L.delta_max = l.number_or("delta_max", L.delta_max, Range::positive("m"));
         L.n_increments = uint_or(l, "n_increments", L.n_increments, 1, 100000);
         L.max_cuts = uint_or(l, "max_cuts", L.max_cuts, 0, 20);
@@ -226,7 +224,8 @@ namespace clearjoint::fe
       << "  max_iterations: " << d.contact.max_iterations
       << "   # active-set iterations per increment before the increment is cut\n"
       << "loading:\n"
-      << "  journal: rigid      # rigid (end_faces, axis_line: not implemented in this version)\n"
+      << "  journal: end_faces  # end_faces | axis_line (the paper's) | rigid (rigid journal)\n"
+      << "                      #   end_faces/axis_line run on one MPI rank in this version\n"
       << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
       << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
       << "  max_cuts: " << d.loading.max_cuts << "        # halvings of a failed increment\n"

@@ -18,8 +18,9 @@ namespace clearjoint::fe
   /// block).
   enum class Study { radial, hertz, patch };
 
-  /// How the journal is loaded (SPEC §2). Only `rigid` is implemented in this version; the
-  /// reader rejects the others with an explained InputError rather than silently substituting.
+  /// How the journal is loaded (SPEC §2): `end_faces` (default) drives u_y = −δ on the journal's
+  /// end face(s); `axis_line` drives only the journal's axis (the paper's choice; drifts with
+  /// mesh size); `rigid` replaces the journal by a rigid cylinder (only the bearing is meshed).
   enum class JournalLoading { end_faces, axis_line, rigid };
 
   enum class LinearSolver { automatic, cg_amg, direct };
@@ -55,7 +56,7 @@ namespace clearjoint::fe
 
   struct Loading
   {
-    JournalLoading journal = JournalLoading::rigid;
+    JournalLoading journal = JournalLoading::end_faces;
     double delta_max = 0.05e-3;  // [m] final push beyond first touch
     unsigned int n_increments = 10;
     unsigned int max_cuts = 3;  // an increment that fails is halved at most this many times

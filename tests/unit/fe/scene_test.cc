@@ -51,6 +51,7 @@ TEST(FeScene, DefaultsAreTheSpecValues)
   EXPECT_DOUBLE_EQ(s.loading.delta_max, 0.05e-3);
   EXPECT_GE(s.loading.n_increments, 10u);
   EXPECT_FALSE(s.full_model);
+  EXPECT_EQ(s.loading.journal, JournalLoading::end_faces);
 }
 
 TEST(FeScene, PrintedDefaultsParseBackToTheDefaults)
@@ -89,12 +90,14 @@ TEST(FeScene, BadInputNamesFieldAndRange)
                {"mesh.n_circumferential", "multiple of 4"});
 }
 
-TEST(FeScene, UnimplementedDeformableJournalIsRejectedNotSubstituted)
+TEST(FeScene, JournalLoadingOptions)
 {
-  expect_error("schema: clearjoint.fe/1\nloading: {journal: end_faces}\n",
-               {"loading.journal", "not implemented"});
-  expect_error("schema: clearjoint.fe/1\nloading: {journal: axis_line}\n", {"loading.journal"});
-  expect_error("schema: clearjoint.fe/1\nloading: {journal: spring}\n", {"loading.journal"});
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nloading: {journal: axis_line}\n").loading.journal,
+            JournalLoading::axis_line);
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nloading: {journal: rigid}\n").loading.journal,
+            JournalLoading::rigid);
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: spring}\n",
+               {"loading.journal", "end_faces"});
 }
 
 TEST(FeStageCli, BadInputExitsOneAndWritesNothing)

@@ -16,12 +16,19 @@ namespace
   const std::string coarse_radial =
     "contact: {mu: 0}\n"
     "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 0}\n"
-    "loading: {n_increments: 3}\n";
+    "loading: {journal: rigid, n_increments: 3}\n";
+  // The same mesh with the deformable journal (two bodies, node-to-node on common rays).
+  std::string coarse_two_body(const std::string &journal)
+  {
+    return "contact: {mu: 0}\n"
+           "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 0}\n"
+           "loading: {journal: " + journal + ", n_increments: 3}\n";
+  }
 } // namespace
 
 // Rigid sphere on an elastic block (quarter model): Hertz, F = (4/3) E* √R δ^{3/2} with
-// 1/E* = (1 − ν²)/E (only the block deforms). Issue 3: fitted n within 0.03 of 1.5, K within
-// 3 %. The block (20 mm) is 30x the largest contact radius (0.32 mm), so the finite-body
+// 1/E* = (1 − ν²)/E (only the block deforms; the SPEC's same-material two-body version is not
+// done). Issue 3: fitted n within 0.03 of 1.5, K (at n = 1.5) within 3 %. The block (20 mm) is 30x the largest contact radius (0.32 mm), so the finite-body
 // correction is of order a/H ≈ 1.6 % at most; the contact zone has ≥ 8 cells across its radius.
 TEST(FeHertz, RigidSphereOnBlockMatchesHertz)
 {
@@ -32,7 +39,13 @@ TEST(FeHertz, RigidSphereOnBlockMatchesHertz)
   const RunResult r = run(s);
   ASSERT_TRUE(r.complete) << r.message;
   ASSERT_EQ(r.increments.size(), 4u);
-  const auto [K, n] = fit_power_law(r);
+  const auto [K_free, n] = fit_power_law(r);
+  (void)K_free;  // in N/m^n: with n free, K moves ~7 % per 0.006 of n at δ ≈ 10 µm, so K is
+                 // compared at the Hertz exponent: K = exp(mean(log F − 1.5 log δ))
+  double mean_log_K = 0.0;
+  for (const auto &i : r.increments)
+    mean_log_K += (std::log(i.force) - 1.5 * std::log(i.delta)) / r.increments.size();
+  const double K = std::exp(mean_log_K);
   const double E_star = s.material.E / (1.0 - s.material.nu * s.material.nu);
   const double K_hertz = 4.0 / 3.0 * E_star * std::sqrt(s.verification.sphere_radius);
   RecordProperty("n", std::to_string(n));
@@ -111,6 +124,58 @@ TEST(FeRadial, EquilibriumMonotonicityAndQuarterEqualsFull)
       EXPECT_NEAR(a.force_support / a.force, 1.0, 1e-7);
       // 1e-6: same mesh mirrored; differences come from the linear solver only
       EXPECT_NEAR(f.increments[i].force / a.force, 1.0, 1e-6);
+    }
+}
+
+// Two deformable bodies: the contact force on the bearing, the reaction of its supports and
+// the reaction on the journal's loaded set (the paper's measure) are one force; the journal
+// does not penetrate the bearing at any contact node.
+TEST(FeTwoBody, ContactForceEqualsSupportAndLoadReactions)
+{
+  for (const std::string journal : {"end_faces", "axis_line"})
+    {
+      const FeScene s = scene(coarse_two_body(journal));
+      const RunResult r = run(s);
+      ASSERT_TRUE(r.complete) << r.message;
+      for (const auto &i : r.increments)
+        {
+          // 1e-7: sums of K·u over different node sets, u from a 1e-10 solve
+          EXPECT_NEAR(i.force_support / i.force, 1.0, 1e-7) << journal;
+          EXPECT_NEAR(i.force_load / i.force, 1.0, 1e-7) << journal;
+          EXPECT_LT(i.max_penetration, 1e-9 * s.loading.delta_max) << journal;
+        }
+    }
+}
+
+// Compliance adds up: the rigid journal gives the stiffest contact, a journal driven on its end
+// faces is softer, one driven only on its axis line softer still (SPEC §2).
+TEST(FeTwoBody, RigidStifferThanEndFacesStifferThanAxisLine)
+{
+  const RunResult rigid = run(scene(coarse_radial));
+  const RunResult ends = run(scene(coarse_two_body("end_faces")));
+  const RunResult axis = run(scene(coarse_two_body("axis_line")));
+  ASSERT_TRUE(rigid.complete && ends.complete && axis.complete);
+  const double Fr = rigid.increments.back().force, Fe = ends.increments.back().force,
+               Fa = axis.increments.back().force;
+  std::printf("F(delta_max): rigid %.1f N, end_faces %.1f N, axis_line %.1f N\n", Fr, Fe, Fa);
+  EXPECT_GT(Fr, Fe);
+  EXPECT_GT(Fe, Fa);
+}
+
+// The two-body quarter model equals the full two-body model (symmetry factor).
+TEST(FeTwoBody, QuarterEqualsFull)
+{
+  const FeScene quarter = scene(coarse_two_body("end_faces"));
+  FeScene full = quarter;
+  full.full_model = true;
+  const RunResult q = run(quarter), f = run(full);
+  ASSERT_TRUE(q.complete && f.complete) << q.message << f.message;
+  for (std::size_t i = 0; i < q.increments.size(); ++i)
+    {
+      // 1e-3, not solver accuracy: the journal's core is meshed differently in the two models
+      // (the full core is one Coons patch, the quarter's runs straight along x = 0), which
+      // moved F by 1.2e-4 here; the bearing and both contact surfaces are identical.
+      EXPECT_NEAR(f.increments[i].force / q.increments[i].force, 1.0, 1e-3);
     }
 }
 

@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""FE stage speed against accuracy (issue 3 item 9; SPEC §5). Not a test.
+
+Runs fe_stage on the t_B = 4 mm radial study for nested mesh levels (level L = L global
+refinements of the base mesh n_circumferential 8, n_axial 2, n_radial 1, one extra refinement in
+the contact window, Q2), for each journal loading and rank count asked for, and prints a
+markdown table: DoFs, wall time, peak memory (max RSS of one rank, from /usr/bin/time -v),
+F(delta_max), and the error of F(delta_max) estimated by Richardson extrapolation from the three
+finest levels (observed order p = log2((F0 - F1)/(F1 - F2))).
+
+    bench/fe_bench.py --fe-stage build/fe_stage/fe_stage [--levels 0 1 2] [--ranks 1 2]
+                      [--journals end_faces rigid] [--increments 10] [--work DIR]
+
+The deformable journal (end_faces, axis_line) runs on one rank in this version; two ranks are
+run for the rigid journal only.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+
+def run_case(args, journal, level, ranks):
+    name = f"{journal}_L{level}_np{ranks}"
+    out = os.path.join(args.work, name)
+    scene = os.path.join(args.work, name + ".yaml")
+    with open(scene, "w") as f:
+        f.write("schema: clearjoint.fe/1\ncontact: {mu: 0}\noutput: {fields: false}\n"
+                "solver: {linear: cg_amg}\n"
+                f"mesh: {{n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 1, "
+                f"global_refinements: {level}}}\n"
+                f"loading: {{journal: {journal}, n_increments: {args.increments}}}\n")
+    cmd = ["/usr/bin/time", "-v"]
+    if ranks > 1:
+        cmd += ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)]
+    cmd += [args.fe_stage, scene, "--output", out, "-q"]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        print(f"{name}: fe_stage failed ({p.returncode}):\n{p.stderr[-2000:]}", file=sys.stderr)
+        return None
+    rss = max(int(m) for m in re.findall(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr))
+    wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (\S+)", p.stderr).group(1)
+    parts = [float(x) for x in wall.split(":")]
+    wall_s = parts[-1] + 60 * parts[-2] + (3600 * parts[-3] if len(parts) > 2 else 0)
+    with open(os.path.join(out, "manifest.json")) as f:
+        manifest = json.load(f)
+    rows = [r for r in csv.reader(l for l in open(os.path.join(out, "force_penetration.csv"))
+                                  if not l.startswith("#"))]
+    force = float(rows[-1][rows[0].index("force")])
+    return {"journal": journal, "level": level, "ranks": ranks, "dofs": manifest["extra"]["n_dofs"],
+            "wall": wall_s, "rss_mb": rss / 1024.0, "force": force}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--fe-stage", required=True)
+    ap.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2])
+    ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--journals", nargs="+", default=["end_faces", "rigid"])
+    ap.add_argument("--increments", type=int, default=10)
+    ap.add_argument("--work", default="bench_fe_work")
+    args = ap.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    results = []
+    for journal in args.journals:
+        for ranks in args.ranks:
+            if ranks > 1 and journal != "rigid":
+                continue
+            for level in args.levels:
+                r = run_case(args, journal, level, ranks)
+                if r:
+                    results.append(r)
+                    print(f"# {journal} L{level} np{ranks}: {r['dofs']} DoFs, {r['wall']:.1f} s, "
+                          f"F = {r['force']:.1f} N", file=sys.stderr, flush=True)
+    print("| journal | ranks | level | DoFs | wall time [s] | peak RSS/rank [MB] | F(δ_max) [N] | est. error |")
+    print("|---|---|---|---|---|---|---|---|")
+    for journal in args.journals:
+        for ranks in args.ranks:
+            rs = sorted((r for r in results if r["journal"] == journal and r["ranks"] == ranks),
+                        key=lambda r: r["level"])
+            F_inf, p = None, None
+            if len(rs) >= 3:
+                F0, F1, F2 = (r["force"] for r in rs[-3:])
+                if (F0 - F1) * (F1 - F2) > 0:
+                    p = math.log2((F0 - F1) / (F1 - F2))
+                    F_inf = F2 + (F2 - F1) / (2 ** p - 1)
+            for r in rs:
+                err = f"{abs(r['force'] - F_inf) / abs(F_inf) * 100:.2f} %" if F_inf else "n/a"
+                print(f"| {journal} | {ranks} | {r['level']} | {r['dofs']} | {r['wall']:.1f} | "
+                      f"{r['rss_mb']:.0f} | {r['force']:.1f} | {err} |")
+            if F_inf:
+                print(f"| {journal} | {ranks} | Richardson | | | | {F_inf:.1f} | p = {p:.2f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,46 @@
+"""FE stage plots: force–penetration curves (linear and log–log, δ in mm, F in N).
+
+    scripts/plot.py fe OUT.png DIR_OR_CSV[=LABEL] [...] [--paper]
+
+Each argument is an fe_stage output folder (its force_penetration.csv) or a CSV file, optionally
+with a legend label after '='. --paper adds the paper's t_B = 4 mm law F = 338240·δ^1.0114 (mm, N).
+"""
+import os
+
+import matplotlib.pyplot as plt
+
+from plotting._common import read_table
+
+
+def main(argv):
+    if len(argv) < 2:
+        print(__doc__)
+        return 1
+    out = argv[0]
+    paper = "--paper" in argv
+    sources = [a for a in argv[1:] if a != "--paper"]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    for src in sources:
+        path, _, label = src.partition("=")
+        csv_path = os.path.join(path, "force_penetration.csv") if os.path.isdir(path) else path
+        _, _, d = read_table(csv_path)
+        delta_mm = [x * 1e3 for x in d["delta"]]
+        label = label or os.path.basename(os.path.normpath(path))
+        ax1.plot(delta_mm, d["force"], "o-", ms=3, label=label)
+        pts = [(x, f) for x, f in zip(delta_mm, d["force"]) if x > 0 and f > 0]
+        ax2.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=label)
+    if paper:
+        xs = [0.005 * i for i in range(1, 11)]
+        ys = [338240.0 * x ** 1.0114 for x in xs]
+        for ax in (ax1, ax2):
+            ax.plot(xs, ys, "k--", label="paper t_B = 4 mm: 338240·δ^1.0114")
+    for ax in (ax1, ax2):
+        ax.set_xlabel("δ [mm]")
+        ax.set_ylabel("F [N]")
+        ax.grid(True, which="both", alpha=0.3)
+    ax1.legend(fontsize=8)
+    ax1.set_title("force–penetration")
+    ax2.set_title("log–log")
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    return 0
