@@ -280,7 +280,6 @@ namespace clearjoint::fe
       void build_amg();
       void evaluate_contact(double delta);
       void write_fields(unsigned int counter, double delta);
-      unsigned int n_active_global() const;
 
       const FeScene &scene_;
       RunOptions options_;
@@ -872,7 +871,7 @@ namespace clearjoint::fe
                   for (unsigned int l = 0; l < dim; ++l)
                     {
                       v.push_back(cn.partner[l]);
-                      for (const auto e : worst.get_constraint_entries(cn.partner[l]) ?
+                      for (const auto &e : worst.get_constraint_entries(cn.partner[l]) ?
                                             *worst.get_constraint_entries(cn.partner[l]) :
                                             std::vector<std::pair<types::global_dof_index, double>>())
                         v.push_back(e.first);
@@ -1304,15 +1303,6 @@ namespace clearjoint::fe
           cn.lambda = lambda;
           cn.gap = cn.g0 + un;
         }
-    }
-
-    unsigned int ContactModel::n_active_global() const
-    {
-      unsigned int n = 0;
-      for (const auto &cn : nodes_)
-        if (cn.owned && cn.active)
-          ++n;
-      return Utilities::MPI::sum(n, comm_);
     }
 
     IncrementRecord ContactModel::solve_increment(const double delta)

@@ -89,3 +89,35 @@ TEST(FeGolden, FailedRunIsMarkedIncomplete)
   EXPECT_EQ(manifest.at("status"), "incomplete");
   fs::remove_all(dir);
 }
+
+// The thickness sweep in one command: one folder per case (CSV, manifest), DIR/sweep.csv and a
+// top-level manifest; the force at δ_max grows with t_B (SPEC §2).
+TEST(FeGolden, ThicknessSweepOneFolderPerCase)
+{
+  int code = -1;
+  const fs::path dir = run_fe_stage(
+    "sweep",
+    "contact: {mu: 0}\n"
+    "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 0}\n"
+    "loading: {n_increments: 2}\n"
+    "output: {fields: false}\n"
+    "sweep: {t_B: [2.0e-3, 4.0e-3, 6.0e-3]}\n",
+    code);
+  ASSERT_EQ(code, 0);
+  const fs::path out = dir / "out";
+  double previous = 0.0;
+  for (const char *name : {"t_B_2mm", "t_B_4mm", "t_B_6mm"})
+    {
+      const CsvTable t = read_csv((out / name / "force_penetration.csv").string());
+      EXPECT_EQ(t.status, "complete") << name;
+      const double F = t.column("force").back();
+      EXPECT_GT(F, previous) << name;
+      previous = F;
+      EXPECT_EQ(read_json_file((out / name / "manifest.json").string()).at("status"), "complete");
+    }
+  const CsvTable sweep = read_csv((out / "sweep.csv").string());
+  EXPECT_EQ(sweep.status, "complete");
+  EXPECT_EQ(sweep.rows.size(), 3u);
+  EXPECT_EQ(read_json_file((out / "manifest.json").string()).at("status"), "complete");
+  fs::remove_all(dir);
+}
