@@ -21,7 +21,9 @@ def main(argv):
     sources = [a for a in argv[1:] if a != "--paper"]
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
     for src in sources:
-        path, _, label = src.partition("=")
+        # An existing path is taken whole (run_pipeline's folders are named "t_B=0.004");
+        # otherwise the text after the last '=' is the legend label.
+        path, label = (src, "") if os.path.exists(src) else src.rpartition("=")[::2]
         csv_path = os.path.join(path, "force_penetration.csv") if os.path.isdir(path) else path
         _, _, d = read_table(csv_path)
         delta_mm = [x * 1e3 for x in d["delta"]]
