@@ -13,11 +13,6 @@ using namespace clearjoint::mbd::testing;
 
 namespace
 {
-  struct Quiet
-  {
-    Quiet() { log::set_level(log::Level::error); }
-  } quiet;
-
   void expect_sane(const SimulationResult &r, const double energy_balance_tol = 1e-4,
                    const double energy_gain_tol = 1e-6)
   {

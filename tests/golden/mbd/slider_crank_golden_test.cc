@@ -18,11 +18,6 @@ using namespace clearjoint::mbd::testing;
 
 namespace
 {
-  struct Quiet
-  {
-    Quiet() { log::set_level(log::Level::error); }
-  } quiet;
-
   struct Golden
   {
     const char *scene;

@@ -19,11 +19,6 @@ using namespace clearjoint::mbd::testing;
 
 namespace
 {
-  struct Quiet
-  {
-    Quiet() { log::set_level(log::Level::error); }
-  } quiet;
-
   nlohmann::json free_journal(const double mu, const double c_e)
   {
     return nlohmann::json::parse(R"({

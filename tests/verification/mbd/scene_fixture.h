@@ -1,6 +1,7 @@
 // Helpers for MBD verification/extreme tests: load a shipped scene, change it, run it.
 #pragma once
 
+#include "common/log.h"
 #include "common/strict_reader.h"
 #include "mbd_stage/scene.h"
 #include "mbd_stage/simulation.h"
@@ -11,6 +12,13 @@
 
 namespace clearjoint::mbd::testing
 {
+  /// Simulations log progress and warnings; the scene tests keep only errors on the console.
+  struct QuietLogs
+  {
+    QuietLogs() { log::set_level(log::Level::error); }
+  };
+  inline const QuietLogs quiet_logs;
+
   inline std::string scenes_dir()
   {
     return std::string(CLEARJOINT_SOURCE_DIR) + "/mbd_stage/scenes";

@@ -14,10 +14,6 @@ using namespace clearjoint::mbd::testing;
 
 namespace
 {
-  struct Quiet
-  {
-    Quiet() { log::set_level(log::Level::error); }
-  } quiet;
 }
 
 TEST(SliderCrankVerification, DrivenIdealSliderFollowsTheClosedFormWithin1e8m)
