@@ -88,23 +88,12 @@ namespace clearjoint::pipeline
     if (options_.only && *options_.only != group)
     {
       // Outside the --only stage a task must already be complete and current.
-      const std::string identity = compute_identity(task);
-      std::string stamp;
-      double seconds = 0.0;
-      try
-      {
-        const auto j = read_json_file(task.output_dir + "/.task.json");
-        stamp = j.at("identity");
-        seconds = j.at("wall_time").at("value");
-      }
-      catch (...)
-      {
-      }
-      if (stamp != identity)
+      const auto done = find_completed(task);
+      if (!done)
         throw InputError(config_.source, "--only " + *options_.only, task.name,
                          "upstream tasks already run and up to date",
                          "task '" + task.name + "' is missing or out of date: run without --only");
-      r = {TaskOutcome::reused, identity, seconds};
+      r = *done;
     }
     else
       r = run_task(task, options_.force);

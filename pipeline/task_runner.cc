@@ -135,6 +135,14 @@ namespace clearjoint::pipeline
     return sha256_hex(j.dump());
   }
 
+  std::optional<TaskResult> find_completed(const Task &t)
+  {
+    const std::string identity = compute_identity(t);
+    if (const auto seconds = stamp_matches(t.output_dir, identity))
+      return TaskResult{TaskOutcome::reused, identity, *seconds};
+    return std::nullopt;
+  }
+
   TaskResult run_task(const Task &t, const bool force)
   {
     const std::string identity = compute_identity(t);

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,10 @@ namespace clearjoint::pipeline
   void install_signal_handlers();
 
   std::string compute_identity(const Task &task);
+
+  /// The task's earlier result if its folder holds a stamp with the task's current identity
+  /// (outcome reused, wall time of the run that made it); nullopt otherwise.
+  std::optional<TaskResult> find_completed(const Task &task);
 
   /// Runs or reuses the task (force: always run). Throws NumericalError if the stage fails
   /// (its exit code and log path in the message) or was interrupted.
