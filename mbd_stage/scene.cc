@@ -55,6 +55,16 @@ namespace clearjoint::mbd
       return path.is_absolute() ? p : (std::filesystem::path(base_dir) / path).lexically_normal().string();
     }
 
+    /// The damping keys every contact model shares: damping, restitution (c_e in (0, 1]) and
+    /// min_impact_velocity (the floor of δ̇⁻, m/s).
+    void read_damping(StrictObject &o, ContactForceModel &model)
+    {
+      const laws::DampingModel damping = damping_of(o);
+      const double c_e = o.number("restitution", Range{.lo = 0.0, .hi = 1.0, .lo_open = true, .unit = "1"});
+      const double v_min = o.number_or("min_impact_velocity", 1e-3, Range::positive("m/s"));
+      model.set_damping(damping, c_e, v_min);
+    }
+
     ContactForceModel read_normal_model(StrictObject o, const ClearanceGeometry &G,
                                         const double E_star, const std::string &base_dir,
                                         std::vector<std::string> &inputs)
@@ -127,10 +137,7 @@ namespace clearjoint::mbd
           o.fail("stiffness_scale", format_value(scale), "1 for johnson");
         model = ContactForceModel::johnson("johnson", JohnsonLaw(G.c_r(), G.L_J, E_star), policy);
       }
-      const laws::DampingModel damping = damping_of(o);
-      const double c_e = o.number("restitution", Range{.lo = 0.0, .hi = 1.0, .lo_open = true, .unit = "1"});
-      const double v_min = o.number_or("min_impact_velocity", 1e-3, Range::positive("m/s"));
-      model.set_damping(damping, c_e, v_min);
+      read_damping(o, model);
       o.finish();
       return model;
     }
@@ -140,10 +147,7 @@ namespace clearjoint::mbd
       const double K = o.number("K", Range::positive("N/m^n"));
       const double n = o.number("n", Range::closed(1.0, 2.0, "1"));
       ContactForceModel model = ContactForceModel::power_law("axial", {K, n});
-      const laws::DampingModel damping = damping_of(o);
-      const double c_e = o.number("restitution", Range{.lo = 0.0, .hi = 1.0, .lo_open = true, .unit = "1"});
-      const double v_min = o.number_or("min_impact_velocity", 1e-3, Range::positive("m/s"));
-      model.set_damping(damping, c_e, v_min);
+      read_damping(o, model);
       o.finish();
       return model;
     }
