@@ -130,10 +130,14 @@ namespace clearjoint::fe
     /// obstacle toward X, so that the linearised gap of the displaced point is ĝ = g0 + n·u.
     struct Obstacle
     {
-      enum class Kind { cylinder, sphere, plane } kind = Kind::cylinder;
+      /// cylinder: the aligned journal (axis z; bearing nodes beyond its ends never touch);
+      /// tilted_cylinder: the journal of the misalignment study, a finite cylinder whose axis
+      /// a = (0, sin θ, cos θ) lies in the y–z plane, with rims (its end circles) as edges.
+      enum class Kind { cylinder, tilted_cylinder, sphere, plane } kind = Kind::cylinder;
       double radius = 0.0;      // [m] cylinder / sphere radius
-      double offset = 0.0;      // [m] cylinder: centre at y = −offset − δ; sphere: y = radius − δ
-      double half_length = std::numeric_limits<double>::infinity();  // [m] cylinder |z| extent
+      double offset = 0.0;      // [m] cylinders: centre at y = −offset − δ; sphere: y = radius − δ
+      double half_length = std::numeric_limits<double>::infinity();  // [m] cylinder half length
+      double tilt = 0.0;        // [rad] tilted_cylinder: θ
 
       /// Returns false if X can never touch the obstacle (beyond the cylinder's end).
       bool gap(const Point<dim> &X, const double delta, double &g0, Tensor<1, dim> &n) const
@@ -150,6 +154,38 @@ namespace clearjoint::fe
                 const double r = d.norm();
                 n = d / r;
                 g0 = r - radius;
+                return true;
+              }
+            case Kind::tilted_cylinder:
+              {
+                // Distance to the solid finite cylinder: along the side within its length,
+                // beyond an end to the nearest rim point (outside the rim circle) or to the end
+                // face (inside it). A point inside is measured to the side: the bearing's bore
+                // is pushed radially by the journal, never through the journal's end face.
+                const Tensor<1, dim> a({0.0, std::sin(tilt), std::cos(tilt)});
+                const Point<dim> C(0.0, -offset - delta, 0.0);
+                const Tensor<1, dim> d = X - C;
+                const double s = d * a;
+                const Tensor<1, dim> r = d - s * a;
+                const double rho = r.norm();
+                const double beyond = std::abs(s) - half_length;
+                if (beyond <= 0.0)
+                  {
+                    n = r / rho;
+                    g0 = rho - radius;
+                  }
+                else if (rho <= radius)
+                  {
+                    n = (s > 0.0 ? 1.0 : -1.0) * a;
+                    g0 = beyond;
+                  }
+                else
+                  {
+                    const Point<dim> rim = C + std::copysign(half_length, s) * a + (radius / rho) * r;
+                    const Tensor<1, dim> v = X - rim;
+                    g0 = v.norm();
+                    n = v / g0;
+                  }
                 return true;
               }
             case Kind::sphere:
@@ -265,6 +301,10 @@ namespace clearjoint::fe
     private:
       void make_grid();
       void make_radial_grid();
+      void set_joint_obstacle();
+      void refine_joint_mesh();
+      template <typename CellIterator>
+      bool bore_gap_below(const CellIterator &cell, double limit) const;
       void make_block_grid();
       void setup_system();
       void find_contact_nodes();
@@ -279,6 +319,7 @@ namespace clearjoint::fe
                                 const TrilinosWrappers::MPI::Vector &b);
       void build_amg();
       void evaluate_contact(double delta);
+      void condense_hanging(TrilinosWrappers::MPI::Vector &r);
       void write_fields(unsigned int counter, double delta);
 
       const FeScene &scene_;
@@ -297,6 +338,7 @@ namespace clearjoint::fe
       double h_min_ = 0.0;
       double lame_lambda_ = 0.0, lame_mu_ = 0.0;
 
+      AffineConstraints<double> hanging_constraints_; // hanging nodes only (residual condensing)
       AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports,
                                                       // journal load at δ = 1 (scaled by δ)
       AffineConstraints<double> fixed_delta_;         // the same at the current δ
@@ -365,7 +407,11 @@ namespace clearjoint::fe
     {
       const auto &G = scene_.geometry;
       const auto &M = scene_.mesh;
+      // full: no x = 0 symmetry plane (φ over 360°); full_z: no z = 0 plane (the whole length:
+      // the tilted journal of the misalignment study breaks the axial symmetry).
+      const bool misaligned = scene_.study == Study::misalignment;
       const bool full = scene_.full_model;
+      const bool full_z = full || misaligned;
       const bool journal = scene_.loading.journal != JournalLoading::rigid;
       const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
       const unsigned int n_r =
@@ -407,8 +453,13 @@ namespace clearjoint::fe
       Triangulation<2> bearing2d;
       bearing2d.create_triangulation(vertices, cells, SubCellData());
 
-      // Axial slices: the journal's end L_J/2 is a mesh plane.
-      const double zJ = 0.5 * G.L_J(), zB = 0.5 * G.L_B;
+      // Axial slices: the journal's end L_J/2 is a mesh plane. The misalignment study's
+      // journal is rigid; there the plane goes through its first touch point P1 at
+      // z = −((L_J/2) cos θ − R_J sin θ) (and the mirrored plane through the diagonally
+      // opposite rim point, which touches at θ_max), so a node sits where contact starts.
+      const double theta = misaligned ? scene_.misalignment.theta_deg * units::deg : 0.0;
+      const double zJ = 0.5 * G.L_J() * std::cos(theta) - G.R_J() * std::sin(theta);
+      const double zB = 0.5 * G.L_B;
       const unsigned int n_in = std::max(1u, M.n_axial > 1 ? M.n_axial - 1 : 1u);
       std::vector<double> half_slices;
       for (unsigned int k = 0; k <= n_in; ++k)
@@ -417,7 +468,7 @@ namespace clearjoint::fe
         std::max(1u, static_cast<unsigned int>(std::lround((zB - zJ) / (zJ / n_in))));
       auto mirror = [&](const std::vector<double> &half) {
         std::vector<double> sl;
-        if (full)
+        if (full_z)
           for (auto it = half.rbegin(); it != half.rend(); ++it)
             if (*it > 0.0)
               sl.push_back(-*it);
@@ -603,7 +654,7 @@ namespace clearjoint::fe
                     id = bid_journal_end;
                   else if (!full && on_x0)
                     id = bid_sym_x;
-                  else if (!full && std::abs(c[2]) < tol)
+                  else if (!full_z && std::abs(c[2]) < tol)
                     id = bid_sym_z;
                 }
               else if (on_inner)
@@ -612,7 +663,7 @@ namespace clearjoint::fe
                 id = (c[1] > 0.0) ? bid_fixed : bid_free;
               else if (!full && on_x0)
                 id = bid_sym_x;
-              else if (!full && std::abs(c[2]) < tol)
+              else if (!full_z && std::abs(c[2]) < tol)
                 id = bid_sym_z;
               face->set_boundary_id(id);
             }
@@ -621,16 +672,92 @@ namespace clearjoint::fe
       tria_.set_manifold(0, bearing_chart);
       tria_.set_manifold(1, journal_chart);
 
+      set_joint_obstacle();
+      refine_joint_mesh();
+      symmetry_factor_ = (full ? 1.0 : 2.0) * (full_z ? 1.0 : 2.0);
+    }
+
+    /// The rigid journal (or, for two bodies, the journal's place for the candidate search):
+    /// aligned, first touch at the bottom (0, −R_B); or tilted by θ in the y–z plane about its
+    /// centre, lowered until its lowest rim point — the bottom of the rim at z < 0, at
+    /// (0, y_c − (L_J/2) sin θ − R_J cos θ) — touches the bore (paper §3.3).
+    void ContactModel::set_joint_obstacle()
+    {
+      const auto &G = scene_.geometry;
+      obstacle_.radius = G.R_J();
+      obstacle_.half_length = 0.5 * G.L_J();
+      if (scene_.study == Study::misalignment)
+        {
+          const double theta = scene_.misalignment.theta_deg * units::deg;
+          obstacle_.kind = Obstacle::Kind::tilted_cylinder;
+          obstacle_.tilt = theta;
+          obstacle_.offset = G.R_B - 0.5 * G.L_J() * std::sin(theta) - G.R_J() * std::cos(theta);
+        }
+      else
+        {
+          obstacle_.kind = Obstacle::Kind::cylinder;
+          obstacle_.offset = G.c_r;
+        }
+    }
+
+    /// True if the bore (r = R_B) within the cell's angular and axial extent comes closer than
+    /// `limit` to the journal pushed to δ_max. Sampled on a 16 × 16 grid of the extent, not at
+    /// the vertices only: a rim contact patch can be much smaller than a coarse cell.
+    template <typename CellIterator>
+    bool ContactModel::bore_gap_below(const CellIterator &cell, const double limit) const
+    {
+      double phi_lo = std::numeric_limits<double>::max(), phi_hi = -phi_lo;
+      double z_lo = phi_lo, z_hi = -phi_lo;
+      for (const auto v : cell->vertex_indices())
+        {
+          const Point<dim> &p = cell->vertex(v);
+          const double phi = std::atan2(p[0], -p[1]);
+          phi_lo = std::min(phi_lo, phi);
+          phi_hi = std::max(phi_hi, phi);
+          z_lo = std::min(z_lo, p[2]);
+          z_hi = std::max(z_hi, p[2]);
+        }
+      if (phi_hi - phi_lo > units::pi)  // a cell of the full model across φ = ±π (the top)
+        return false;
+      constexpr unsigned int n = 16;
+      const double R = scene_.geometry.R_B;
+      for (unsigned int i = 0; i <= n; ++i)
+        for (unsigned int j = 0; j <= n; ++j)
+          {
+            const double phi = phi_lo + (phi_hi - phi_lo) * i / n;
+            const Point<dim> X(R * std::sin(phi), -R * std::cos(phi), z_lo + (z_hi - z_lo) * j / n);
+            double g0;
+            Tensor<1, dim> normal;
+            if (obstacle_.gap(X, scene_.loading.delta_max, g0, normal) && g0 < limit)
+              return true;
+          }
+      return false;
+    }
+
+    /// Global refinements, then `contact_refinements` rounds near the contact: the radial study
+    /// refines the cells within contact_window_deg of the bottom (the mean vertex angle is the
+    /// same for a bearing cell and the journal cell on the same rays); the misalignment study,
+    /// whose contact is a small patch under one rim, the cells that hold contact candidates
+    /// (a vertex within 2 δ_max of the journal pushed to δ_max; hanging nodes in the contact
+    /// zone pass their force to their masters, see condense_hanging).
+    void ContactModel::refine_joint_mesh()
+    {
+      const auto &M = scene_.mesh;
       for (unsigned int k = 0; k < M.global_refinements; ++k)
         tria_.refine_global(1);
-      // Refine inside the contact window; the decision uses the mean vertex angle, which is the
-      // same for a bearing cell and the journal cell on the same rays.
       const double window = M.contact_window_deg * units::deg;
+      const bool by_gap = scene_.study == Study::misalignment;
       for (unsigned int k = 0; k < M.contact_refinements; ++k)
         {
           for (const auto &cell : tria_.active_cell_iterators())
             if (cell->is_locally_owned())
               {
+                if (by_gap)
+                  {
+                    if (bore_gap_below(cell, 2.0 * scene_.loading.delta_max))
+                      cell->set_refine_flag();
+                    continue;
+                  }
                 double phi = 0.0;
                 for (const auto v : cell->vertex_indices())
                   phi += std::abs(std::atan2(cell->vertex(v)[0], -cell->vertex(v)[1]));
@@ -640,12 +767,6 @@ namespace clearjoint::fe
               }
           tria_.execute_coarsening_and_refinement();
         }
-
-      obstacle_.kind = Obstacle::Kind::cylinder;
-      obstacle_.radius = G.R_J();
-      obstacle_.offset = G.c_r;
-      obstacle_.half_length = 0.5 * G.L_J();
-      symmetry_factor_ = full ? 1.0 : 4.0;
     }
 
     /// The verification block [0,W]×[−H,0]×[0,W] (quarter model: symmetry planes x = 0, z = 0),
@@ -712,7 +833,7 @@ namespace clearjoint::fe
 
     void ContactModel::make_grid()
     {
-      if (scene_.study == Study::radial)
+      if (scene_.study == Study::radial || scene_.study == Study::misalignment)
         make_radial_grid();
       else
         make_block_grid();
@@ -733,7 +854,8 @@ namespace clearjoint::fe
 
     void ContactModel::setup_system()
     {
-      const unsigned int p = scene_.study == Study::radial ? scene_.mesh.degree : 2;
+      const bool joint = scene_.study == Study::radial || scene_.study == Study::misalignment;
+      const unsigned int p = joint ? scene_.mesh.degree : 2;
       fe_ = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
       mapping_ = std::make_unique<MappingQ<dim>>(std::max(2u, p));
       dof_handler_.distribute_dofs(*fe_);
@@ -744,17 +866,21 @@ namespace clearjoint::fe
       fixed_constraints_.clear();
       fixed_constraints_.reinit(relevant_);
       DoFTools::make_hanging_node_constraints(dof_handler_, fixed_constraints_);
+      hanging_constraints_.clear();
+      hanging_constraints_.reinit(relevant_);
+      DoFTools::make_hanging_node_constraints(dof_handler_, hanging_constraints_);
+      hanging_constraints_.close();
       const Functions::ZeroFunction<dim> zero(dim);
       VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_x, zero,
                                                fixed_constraints_, fe_->component_mask(ux));
       VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_z, zero,
                                                fixed_constraints_, fe_->component_mask(uz));
-      two_body_ = scene_.study == Study::radial && scene_.loading.journal != JournalLoading::rigid;
+      two_body_ = joint && scene_.loading.journal != JournalLoading::rigid;
       if (two_body_ && n_ranks_ > 1)
         throw InputError(scene_.source_file, "loading.journal", to_string(scene_.loading.journal),
                          "rigid (with more than one MPI rank)",
                          "the deformable journal runs on one MPI rank in this version");
-      if (scene_.study == Study::radial)
+      if (joint)
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
                                                  fixed_constraints_);
       else
@@ -1289,6 +1415,7 @@ namespace clearjoint::fe
     {
       (void)delta;
       K_.vmult(residual_owned_, solution_owned_);
+      condense_hanging(residual_owned_);
       residual_ = residual_owned_;
       for (auto &cn : nodes_)
         {
@@ -1303,6 +1430,27 @@ namespace clearjoint::fe
           cn.lambda = lambda;
           cn.gap = cn.g0 + un;
         }
+    }
+
+    /// Moves the nodal forces K u of hanging DoFs to their masters (r_m += c_hm r_h, r_h = 0),
+    /// as the condensed equations see them: a hanging node inside the contact zone passes its
+    /// share of the contact force to the contact nodes it hangs from, and supports count the
+    /// share of hanging support nodes. Without it the contact force misses those shares.
+    void ContactModel::condense_hanging(TrilinosWrappers::MPI::Vector &r)
+    {
+      residual_ = r;  // ghosted copy: the hanging DoF's value on whichever rank owns its line
+      TrilinosWrappers::MPI::Vector moved;
+      moved.reinit(owned_, relevant_, comm_, true);  // writable: entries of masters elsewhere
+      for (const auto &line : hanging_constraints_.get_lines())
+        if (owned_.is_element(line.index))
+          {
+            const double rh = residual_[line.index];
+            for (const auto &[m, c] : line.entries)
+              moved[m] += c * rh;
+            moved[line.index] -= rh;
+          }
+      moved.compress(VectorOperation::add);
+      r += moved;
     }
 
     IncrementRecord ContactModel::solve_increment(const double delta)
@@ -1427,6 +1575,12 @@ namespace clearjoint::fe
       rec.pressure_max = Utilities::MPI::max(p_max, comm_);
       if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
         throw Failure{"non-finite contact force"};
+      // A pushed joint must touch somewhere: no active node means the journal slipped between
+      // the contact nodes (a rim patch smaller than the cells), and F = 0 would be a wrong answer.
+      if (rec.n_active == 0 && scene_.study != Study::patch && scene_.study != Study::hertz)
+        throw Failure{"no contact node touches the journal at delta = " + format_value(delta) +
+                      " m: the mesh is too coarse where the journal touches (raise "
+                      "mesh.contact_refinements or mesh.global_refinements)"};
       // Watched (non-candidate) nodes must not penetrate: if one does, the candidate window was
       // too small and the result would be wrong, so the run stops instead.
       if (rec.max_penetration > 1e-6 * scene_.loading.delta_max)

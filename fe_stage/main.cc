@@ -34,10 +34,10 @@ namespace
     return r;
   }
 
-  std::string mm_label(const double t)
+  std::string label(const double v)
   {
     std::ostringstream o;
-    o << units::to_mm(t);
+    o << v;
     return o.str();
   }
 
@@ -59,12 +59,15 @@ namespace
           manifest->add_input(scene.source_file);
         for (const auto &[k, v] : fe::fe_library_versions())
           manifest->set_library_version(k, v);
+        if (!scene.geometry.mesh.empty())
+          manifest->add_input(scene.geometry.mesh);
         manifest->extra()["scene"] = fe::scene_to_json(scene);
         std::vector<std::string> comments = {
           "clearjoint fe_stage: force-penetration curve, study " + fe::to_string(scene.study) +
             ", journal loading " + fe::to_string(scene.loading.journal),
           "force = total contact force of the FULL body: the modelled part's nodal contact "
-          "forces times the symmetry factor (4 for the quarter model, 1 for --full-model)",
+          "forces times the symmetry factor (4 for the quarter model, 2 for the half model of "
+          "the misalignment study, 1 for --full-model)",
           "force_support = the same force measured as the reaction of the supports (equilibrium "
           "check); force_load = the reaction on the journal's loaded set (the paper's measure)",
           "delta = push of the rigid obstacle beyond first touch"};
@@ -180,7 +183,28 @@ int main(int argc, char **argv)
                      "(SPEC §2: mu = 0.1 changes F by about 0.5 %)");
 
       bool complete = true;
-      if (scene.sweep_t_B.empty())
+      // One case per swept value (t_B [m] or θ [deg]), each in its own folder.
+      struct Case
+      {
+        fe::FeScene scene;
+        std::string folder;
+        double value;
+      };
+      std::vector<Case> cases;
+      for (const double t : scene.sweep_t_B)
+        {
+          Case c{scene, output_dir + "/t_B_" + label(units::to_mm(t)) + "mm", t};
+          c.scene.geometry.t_B = t;
+          cases.push_back(c);
+        }
+      for (const double th : scene.sweep_theta_deg)
+        {
+          Case c{scene, output_dir + "/theta_" + label(th) + "deg", th};
+          c.scene.misalignment.theta_deg = th;
+          cases.push_back(c);
+        }
+      const bool by_theta = !scene.sweep_theta_deg.empty();
+      if (cases.empty())
         {
           double f;
           complete = run_case(scene, output_dir, argc, argv, f);
@@ -195,23 +219,24 @@ int main(int argc, char **argv)
               top = std::make_unique<Manifest>("fe_stage", output_dir + "/manifest.json", argc, argv);
               top->add_input(scene_path);
               table = std::make_unique<CsvWriter>(
-                output_dir + "/sweep.csv", std::vector<std::string>{"t_B", "force_at_delta_max"},
-                std::vector<std::string>{"m", "N"},
-                std::vector<std::string>{"fe_stage thickness sweep; one folder per case"});
+                output_dir + "/sweep.csv",
+                std::vector<std::string>{by_theta ? "theta" : "t_B", "force_at_delta_max"},
+                std::vector<std::string>{by_theta ? "deg" : "m", "N"},
+                std::vector<std::string>{std::string("fe_stage ") +
+                                         (by_theta ? "misalignment" : "thickness") +
+                                         " sweep; one folder per case"});
             }
-          for (const double t : scene.sweep_t_B)
+          for (auto &c : cases)
             {
-              fe::FeScene s = scene;
-              s.sweep_t_B.clear();
-              s.geometry.t_B = t;
-              const std::string dir = output_dir + "/t_B_" + mm_label(t) + "mm";
+              c.scene.sweep_t_B.clear();
+              c.scene.sweep_theta_deg.clear();
               double f = 0.0;
-              const bool ok = run_case(s, dir, argc, argv, f);
+              const bool ok = run_case(c.scene, c.folder, argc, argv, f);
               complete = complete && ok;
               if (root)
                 {
-                  table->write_row({t, f});
-                  top->add_output(dir + "/manifest.json");
+                  table->write_row({c.value, f});
+                  top->add_output(c.folder + "/manifest.json");
                 }
               if (!ok)
                 break;

@@ -3,8 +3,10 @@
 #include "common/error.h"
 #include "common/strict_reader.h"
 #include "common/units.h"
+#include "geometry/joint_geometry.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace clearjoint::fe
@@ -14,6 +16,7 @@ namespace clearjoint::fe
     switch (s)
       {
         case Study::radial: return "radial";
+        case Study::misalignment: return "misalignment";
         case Study::hertz: return "hertz";
         case Study::patch: return "patch";
       }
@@ -47,8 +50,16 @@ namespace clearjoint::fe
     StrictObject top(j, source);
     top.expect_schema("clearjoint.fe/1");
 
-    const std::string study = top.string_or("study", "radial", {"radial", "hertz", "patch"});
-    s.study = study == "radial" ? Study::radial : study == "hertz" ? Study::hertz : Study::patch;
+    const std::string study =
+      top.string_or("study", "radial", {"radial", "misalignment", "hertz", "patch"});
+    s.study = study == "radial"       ? Study::radial :
+              study == "misalignment" ? Study::misalignment :
+              study == "hertz"        ? Study::hertz :
+                                        Study::patch;
+    // The misalignment study's journal is rigid unless the scene says otherwise (SPEC §2: the
+    // end-face loading drives the contact rim); validate_scene rejects any other choice.
+    if (s.study == Study::misalignment)
+      s.loading.journal = JournalLoading::rigid;
     s.full_model = top.boolean_or("full_model", false);
 
     if (top.has("geometry"))
@@ -60,6 +71,17 @@ namespace clearjoint::fe
         G.L_B = g.number_or("L_B", G.L_B, Range::positive("m"));
         G.c_r = g.number_or("c_r", G.c_r, Range::positive("m"));
         G.c_a = g.number_or("c_a", G.c_a, Range::positive("m"));
+        if (g.has("mesh"))
+          {
+            G.mesh = g.string("mesh");
+            // relative to the scene file's folder, like every other path in a scene
+            const std::filesystem::path p(G.mesh);
+            if (p.is_relative() && !source.empty())
+              G.mesh = (std::filesystem::path(source).parent_path() / p).lexically_normal().string();
+            if (!std::filesystem::is_regular_file(G.mesh))
+              g.fail("mesh", G.mesh, "an existing Gmsh MSH 2.2 file (.msh)",
+                     "file not found (paths are relative to the scene file)");
+          }
         // "Journal larger than bearing": R_J = R_B - c_r must stay positive, L_J = L_B - 2 c_a too.
         if (!(G.c_r < G.R_B))
           g.fail("c_r", format_value(G.c_r), "(0, R_B) m = (0, " + format_value(G.R_B) + ") m",
@@ -146,6 +168,22 @@ namespace clearjoint::fe
         V.refine_radius = v.number_or("refine_radius", V.refine_radius, Range::positive("m"));
         v.finish();
       }
+    if (top.has("misalignment"))
+      {
+        auto m = top.object("misalignment");
+        // a number [deg], or the word theta_max: the largest tilt of paper Eq. 3 for this geometry
+        if (m.has("theta_deg") && m.raw("theta_deg").is_string())
+          {
+            const std::string word = m.string("theta_deg");
+            if (word != "theta_max")
+              m.fail("theta_deg", word, "a number of degrees in [0, theta_max] or 'theta_max'");
+            s.misalignment.theta_deg = theta_max_deg(s.geometry, source, m.path_of("theta_deg"));
+          }
+        else
+          s.misalignment.theta_deg =
+            m.number_or("theta_deg", s.misalignment.theta_deg, Range::closed(0.0, 90.0, "deg"));
+        m.finish();
+      }
     if (top.has("output"))
       {
         auto o = top.object("output");
@@ -155,7 +193,31 @@ namespace clearjoint::fe
     if (top.has("sweep"))
       {
         auto w = top.object("sweep");
-        s.sweep_t_B = w.number_array("t_B", Range::positive("m"), 1);
+        if (w.has("t_B"))
+          s.sweep_t_B = w.number_array("t_B", Range::positive("m"), 1);
+        if (w.has("theta_deg"))
+          {
+            // numbers [deg] and the word theta_max
+            const auto &raw = w.raw("theta_deg");
+            if (!raw.is_array() || raw.empty())
+              w.fail("theta_deg", raw.dump(), "a non-empty list of angles in degrees");
+            for (std::size_t i = 0; i < raw.size(); ++i)
+              {
+                const std::string key = "theta_deg." + std::to_string(i);
+                if (raw[i].is_string() && raw[i].get<std::string>() == "theta_max")
+                  s.sweep_theta_deg.push_back(theta_max_deg(s.geometry, source, w.path_of(key)));
+                else if (raw[i].is_number())
+                  s.sweep_theta_deg.push_back(raw[i].get<double>());
+                else
+                  w.fail(key, raw[i].dump(), "a number of degrees or 'theta_max'");
+              }
+          }
+        if (s.sweep_t_B.empty() && s.sweep_theta_deg.empty())
+          w.fail("t_B", "(none)", "sweep needs t_B [m] or theta_deg [deg]");
+        if (!s.sweep_t_B.empty() && !s.sweep_theta_deg.empty())
+          w.fail("theta_deg", "(given with t_B)", "one swept parameter per scene");
+        if (!s.sweep_theta_deg.empty() && s.study != Study::misalignment)
+          w.fail("theta_deg", "(list)", "study misalignment only");
         w.finish();
       }
     top.finish();
@@ -179,15 +241,56 @@ namespace clearjoint::fe
                        "L_J = L_B - 2 c_a must lie in (0, L_B)");
     if (!(s.loading.delta_max > 0.0))
       throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max), "(0, inf) m");
-    if (s.study == Study::radial && s.full_model && s.mesh.n_circumferential < 8)
+    if ((s.study == Study::radial || s.study == Study::misalignment) && s.full_model &&
+        s.mesh.n_circumferential < 8)
       throw InputError(f, "mesh.n_circumferential", std::to_string(s.mesh.n_circumferential),
                        ">= 8 for the full model");
     for (const double t : s.sweep_t_B)
       if (!(t > 0.0))
         throw InputError(f, "sweep.t_B", format_value(t), "(0, inf) m");
-    if (s.study == Study::radial && s.loading.delta_max >= G.R_J())
+    const bool joint = s.study == Study::radial || s.study == Study::misalignment;
+    if (s.study == Study::misalignment)
+      {
+        if (s.loading.journal != JournalLoading::rigid)
+          throw InputError(f, "loading.journal", to_string(s.loading.journal),
+                           "rigid for study misalignment",
+                           "SPEC §2: with end_faces or axis_line loading the rim that carries the "
+                           "contact is itself driven (a line load whose force does not converge "
+                           "with the mesh); the tilted journal is rigid");
+        const auto jg = joint_geometry(G);
+        geometry::check_tilt(jg, geometry::radians(s.misalignment.theta_deg), f,
+                             "misalignment.theta_deg");
+        for (std::size_t i = 0; i < s.sweep_theta_deg.size(); ++i)
+          geometry::check_tilt(jg, geometry::radians(s.sweep_theta_deg[i]), f,
+                               "sweep.theta_deg." + std::to_string(i));
+      }
+    if (!G.mesh.empty() && !joint)
+      throw InputError(f, "geometry.mesh", G.mesh, "study radial or misalignment",
+                       "the verification problems generate their own block");
+    if (joint && s.loading.delta_max >= G.R_J())
       throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max),
                        "(0, R_J) m", "the push must be smaller than the journal radius");
+  }
+
+  geometry::JointGeometry joint_geometry(const Geometry &g)
+  {
+    geometry::JointGeometry j;
+    j.R_B = g.R_B;
+    j.t_B = g.t_B;
+    j.L_B = g.L_B;
+    j.c_r = g.c_r;
+    j.c_a = g.c_a;
+    return j;
+  }
+
+  double theta_max_deg(const Geometry &g, const std::string &file, const std::string &key)
+  {
+    const auto t = geometry::theta_max(joint_geometry(g));
+    if (!t)
+      throw InputError(file, key, "theta_max", "a number of degrees",
+                       "paper Eq. 3 has no root for this geometry: the journal can turn over "
+                       "inside the bearing, so there is no largest tilt");
+    return geometry::degrees(*t);
   }
 
   FeScene read_scene(const std::string &path)
@@ -203,14 +306,21 @@ namespace clearjoint::fe
     o << "# fe_stage scene, schema clearjoint.fe/1. SI units everywhere (m, Pa, kg/m^3).\n"
       << "# Every key is optional except schema; shown here with its default.\n"
       << "schema: clearjoint.fe/1\n"
-      << "study: radial            # radial | hertz | patch (verification problems)\n"
-      << "full_model: false        # false: quarter model (symmetry planes x = 0 and z = 0)\n"
+      << "study: radial            # radial | misalignment | hertz | patch (verification problems)\n"
+      << "full_model: false        # false: symmetry planes (radial: x = 0 and z = 0, quarter\n"
+      << "                         #   model; misalignment: x = 0 only, half model)\n"
       << "geometry:\n"
       << "  R_B: " << d.geometry.R_B << "   # [m] bearing inner radius, (0, inf)\n"
       << "  t_B: " << d.geometry.t_B << "   # [m] bearing thickness, (0, inf)\n"
       << "  L_B: " << d.geometry.L_B << "   # [m] bearing length, (0, inf)\n"
       << "  c_r: " << d.geometry.c_r << "  # [m] radial clearance, (0, R_B); R_J = R_B - c_r\n"
       << "  c_a: " << d.geometry.c_a << "   # [m] axial clearance, (0, L_B/2); L_J = L_B - 2 c_a\n"
+      << "  # mesh: bearing.msh  # optional Gmsh MSH 2.2 mesh with the physical groups of\n"
+      << "                     #   docs/geometry.md (relative to the scene); the numbers above\n"
+      << "                     #   must describe the same joint\n"
+      << "misalignment:          # study misalignment (paper 3.3): journal tilted in the y-z plane\n"
+      << "  theta_deg: " << d.misalignment.theta_deg
+      << "        # [deg] in [0, theta_max] (Eq. 3: 3.2842 deg for the defaults), or theta_max\n"
       << "material:\n"
       << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
       << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
@@ -225,6 +335,7 @@ namespace clearjoint::fe
       << "   # active-set iterations per increment before the increment is cut\n"
       << "loading:\n"
       << "  journal: end_faces  # end_faces | axis_line (the paper's) | rigid (rigid journal)\n"
+      << "                      #   study misalignment: rigid (its default and only choice)\n"
       << "                      #   end_faces/axis_line run on one MPI rank in this version\n"
       << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
       << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
@@ -257,7 +368,8 @@ namespace clearjoint::fe
       << "output:\n"
       << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
       << "# sweep:              # optional: one run (and output folder) per value\n"
-      << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n";
+      << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n"
+      << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n";
     return o.str();
   }
 
@@ -269,6 +381,10 @@ namespace clearjoint::fe
     j["full_model"] = s.full_model;
     j["geometry"] = {{"R_B", s.geometry.R_B}, {"t_B", s.geometry.t_B}, {"L_B", s.geometry.L_B},
                      {"c_r", s.geometry.c_r}, {"c_a", s.geometry.c_a}};
+    if (!s.geometry.mesh.empty())
+      j["geometry"]["mesh"] = s.geometry.mesh;
+    if (s.study == Study::misalignment)
+      j["misalignment"] = {{"theta_deg", s.misalignment.theta_deg}};
     j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho}};
     j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
                     {"max_iterations", s.contact.max_iterations}};

@@ -6,6 +6,8 @@
 // All lengths are in metres, moduli in pascals, densities in kg/m³ (SI in every file, SPEC §1).
 #pragma once
 
+#include "geometry/joint_geometry.h"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -13,10 +15,10 @@
 
 namespace clearjoint::fe
 {
-  /// What is simulated. `radial` is the paper's §2.2/§3.1 study; `hertz` and `patch` are the
-  /// verification problems of SPEC §2 (a rigid sphere / a rigid flat pressed onto an elastic
-  /// block).
-  enum class Study { radial, hertz, patch };
+  /// What is simulated. `radial` is the paper's §2.2/§3.1 study, `misalignment` its §3.3 study
+  /// (journal tilted by θ in the y–z plane); `hertz` and `patch` are the verification problems
+  /// of SPEC §2 (a rigid sphere / a rigid flat pressed onto an elastic block).
+  enum class Study { radial, misalignment, hertz, patch };
 
   /// How the journal is loaded (SPEC §2): `end_faces` (default) drives u_y = −δ on the journal's
   /// end face(s); `axis_line` drives only the journal's axis (the paper's choice; drifts with
@@ -33,8 +35,19 @@ namespace clearjoint::fe
     double c_r = 0.5e-3;   // [m] radial clearance, R_J = R_B - c_r (paper Eq. 1)
     double c_a = 1.0e-3;   // [m] axial clearance, L_J = L_B - 2 c_a (paper Eq. 2)
 
+    /// Optional Gmsh MSH 2.2 mesh of the joint (physical groups bearing, journal,
+    /// bearing_fixed, journal_loaded, bearing_contact, journal_contact; docs/geometry.md). Empty:
+    /// the mesh is generated from the numbers above (which still describe the joint).
+    std::string mesh;
+
     double R_J() const { return R_B - c_r; }  // [m] journal radius
     double L_J() const { return L_B - 2.0 * c_a; }  // [m] journal length
+  };
+
+  /// Misalignment study (paper §3.3): tilt of the journal's axis in the y–z plane.
+  struct Misalignment
+  {
+    double theta_deg = 1.0;  // [deg] in [0, θ_max] (θ_max from paper Eq. 3)
   };
 
   struct Material
@@ -107,9 +120,11 @@ namespace clearjoint::fe
     Mesh mesh;
     Solver solver;
     Verification verification;
+    Misalignment misalignment;
     Output output;
     bool full_model = false;  // false: the symmetry planes the scene allows (quarter model)
     std::vector<double> sweep_t_B;  // [m] if non-empty, one run per value, one folder each
+    std::vector<double> sweep_theta_deg;  // [deg] the same for the misalignment angle
     std::string source_file;        // for messages and the manifest
   };
 
@@ -119,6 +134,11 @@ namespace clearjoint::fe
   FeScene scene_from_json(const nlohmann::json &j, const std::string &source);
   /// Checks the combined constraints (geometry possible, etc.). Throws InputError.
   void validate_scene(const FeScene &scene);
+
+  /// The joint's dimensions for the geometry library (θ_max, tilt checks).
+  geometry::JointGeometry joint_geometry(const Geometry &g);
+  /// θ_max of paper Eq. 3 in degrees; InputError at `key` if the geometry has none.
+  double theta_max_deg(const Geometry &g, const std::string &file, const std::string &key);
 
   /// The annotated default scene (YAML text with units), what --print-defaults prints.
   std::string default_scene_yaml();

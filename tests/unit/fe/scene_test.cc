@@ -129,3 +129,46 @@ TEST(FeStageCli, BadInputExitsOneAndWritesNothing)
   EXPECT_NE(defaults.find("schema: clearjoint.fe/1"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
+
+// Misalignment study (issue 4 item 1): the journal is rigid by default, θ ≤ θ_max of paper Eq. 3
+// (3.284226° for the defaults, docs/geometry.md), the word theta_max resolves to it, and a
+// larger θ is rejected with the computed limit in the message.
+TEST(FeScene, MisalignmentStudy)
+{
+  const FeScene s =
+    parse("schema: clearjoint.fe/1\nstudy: misalignment\nmisalignment: {theta_deg: 2.5}\n");
+  EXPECT_EQ(s.study, Study::misalignment);
+  EXPECT_EQ(s.loading.journal, JournalLoading::rigid);
+  EXPECT_DOUBLE_EQ(s.misalignment.theta_deg, 2.5);
+
+  const FeScene m = parse(
+    "schema: clearjoint.fe/1\nstudy: misalignment\nmisalignment: {theta_deg: theta_max}\n");
+  EXPECT_NEAR(m.misalignment.theta_deg, 3.284226, 5e-7);  // docs/geometry.md, 7 digits
+
+  const FeScene w = parse("schema: clearjoint.fe/1\nstudy: misalignment\n"
+                          "sweep: {theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]}\n");
+  ASSERT_EQ(w.sweep_theta_deg.size(), 5u);
+  EXPECT_DOUBLE_EQ(w.sweep_theta_deg[1], 1.5);
+  EXPECT_DOUBLE_EQ(w.sweep_theta_deg[4], m.misalignment.theta_deg);
+
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\nmisalignment: {theta_deg: 3.3}\n",
+               {"misalignment.theta_deg", "3.28423"});
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\nsweep: {theta_deg: [1.0, 4.0]}\n",
+               {"sweep.theta_deg.1", "3.28423"});
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\nloading: {journal: end_faces}\n",
+               {"loading.journal", "rigid"});
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\nmisalignment: {theta_deg: big}\n",
+               {"misalignment.theta_deg", "theta_max"});
+  // a different joint has its own θ_max (docs/geometry.md: 0.397515° for this one)
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\n"
+               "geometry: {R_B: 0.025, c_r: 0.0001, L_B: 0.030, c_a: 0.0005}\n"
+               "misalignment: {theta_deg: 0.5}\n",
+               {"misalignment.theta_deg", "0.397515"});
+  // a journal that can turn over has no θ_max
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\n"
+               "geometry: {R_B: 0.010, c_r: 0.002, L_B: 0.006, c_a: 0.001}\n"
+               "misalignment: {theta_deg: theta_max}\n",
+               {"misalignment.theta_deg", "no root"});
+  // θ sweep only for the misalignment study; one swept parameter per scene
+  expect_error("schema: clearjoint.fe/1\nsweep: {theta_deg: [1.0]}\n", {"sweep.theta_deg"});
+}
