@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 namespace clearjoint::mbd
@@ -79,6 +80,7 @@ namespace clearjoint::mbd
       {
         const std::string path = resolve(base_dir, o.string("law_file"));
         inputs.push_back(path);
+        std::optional<laws::LawFamily> family;
         try
         {
           if (kind == "fe_law")
@@ -91,7 +93,8 @@ namespace clearjoint::mbd
           {
             if (scale != 1.0)
               o.fail("stiffness_scale", format_value(scale), "1 for law families");
-            model = ContactForceModel::law_family("law_family", laws::read_law_family(path), policy);
+            family = laws::read_law_family(path);
+            model = ContactForceModel::law_family("law_family", *family, policy);
           }
         }
         catch (const InputError &e)
@@ -101,6 +104,13 @@ namespace clearjoint::mbd
                                      " file",
                  e.what());
         }
+        // The family is evaluated at the current tilt θ in rad (clearance_joint.cc): a family
+        // over another parameter, or over θ in degrees, would be read at a wrong value silently.
+        if (family && (family->parameter() != "theta" || family->unit() != "rad"))
+          o.fail("law_file", path, "a law family over the tilt theta in rad",
+                 "this family is over " + family->parameter() + " in " + family->unit() +
+                   "; mbd_stage evaluates a law family at the current "
+                   "misalignment theta [rad]");
       }
       else if (kind == "hertz")
       {

@@ -5,6 +5,8 @@
 #include "common/manifest.h"
 #include "common/plot_script.h"
 #include "pipeline/pipeline_runner.h"
+#include "pipeline/presets.h"
+#include "pipeline/study_values.h"
 
 #include <CLI/CLI.hpp>
 
@@ -65,6 +67,8 @@ int main(int argc, char **argv)
       config.preset = preset;
     if (!output_root.empty())
       config.output_root = output_root;
+    // theta_max & co. depend on the scene geometry after the preset: resolve them now.
+    pipeline::resolve_value_keywords(config);
     pipeline::PipelineRunner runner(config, options);
     fs::create_directories(runner.run_dir());
     manifest = std::make_unique<Manifest>("run_pipeline", runner.run_dir() + "/manifest.json",
@@ -72,6 +76,7 @@ int main(int argc, char **argv)
     manifest->add_input(pipeline_file);
     log::info("run_pipeline: " + pipeline_file + " → " + runner.run_dir() + " (preset " +
               config.preset + ")");
+    log::info(pipeline::describe_preset_errors(config, config.preset));
     const auto summary = runner.run();
     manifest->add_output(runner.run_dir() + "/pipeline_summary.json");
     int n_ran = 0, n_reused = 0;
@@ -91,7 +96,8 @@ int main(int argc, char **argv)
     manifest->write("complete");
     log::info("run_pipeline: " + std::to_string(n_ran) + " tasks ran, " +
               std::to_string(n_reused) + " reused, in " +
-              log::format_duration(manifest->elapsed_seconds()));
+              log::format_duration(manifest->elapsed_seconds()) + "; " +
+              pipeline::describe_preset_errors(config, config.preset));
     return exit_success;
   }
   catch (const InputError &e)

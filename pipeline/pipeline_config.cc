@@ -5,13 +5,25 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
 
 namespace clearjoint::pipeline
 {
+  namespace fs = std::filesystem;
+
   std::string value_label(const double value)
   {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.6g", value);
+    // Shortest "%.{p}g" that reads back as the same double: 0.004 stays "0.004", a computed
+    // θ_max keeps all its digits (so two different values never share a folder).
+    char buf[40];
+    for (int precision = 6; precision <= 17; ++precision)
+    {
+      std::snprintf(buf, sizeof(buf), "%.*g", precision, value);
+      if (std::strtod(buf, nullptr) == value)
+        break;
+    }
     return buf;
   }
 
@@ -57,6 +69,236 @@ namespace clearjoint::pipeline
     }
   }
 
+  const nlohmann::json *find_key_path(const nlohmann::json &root, const std::string &key_path)
+  {
+    const nlohmann::json *node = &root;
+    std::size_t start = 0;
+    while (true)
+    {
+      const std::size_t dot = key_path.find('.', start);
+      const std::string key = key_path.substr(start, dot == std::string::npos ? dot : dot - start);
+      if (node->is_object() && node->contains(key))
+        node = &(*node)[key];
+      else if (node->is_array() && !key.empty() &&
+               key.find_first_not_of("0123456789") == std::string::npos &&
+               std::stoul(key) < node->size())
+        node = &(*node)[std::stoul(key)];
+      else
+        return nullptr;
+      if (dot == std::string::npos)
+        return node;
+      start = dot + 1;
+    }
+  }
+
+  namespace
+  {
+    /// `key: {a.b: value, ...}` → overrides; a string naming an existing file relative to the
+    /// directory run_pipeline runs in becomes absolute (the generated scenes live elsewhere).
+    Overrides read_overrides(StrictObject &o, const std::string &key)
+    {
+      Overrides out;
+      if (!o.has(key))
+      {
+        o.allow(key);
+        return out;
+      }
+      const auto &map = o.raw(key);
+      if (!map.is_object())
+        o.fail(key, map.dump(), "a mapping of scene key paths to values");
+      for (auto it = map.begin(); it != map.end(); ++it)
+      {
+        nlohmann::json value = it.value();
+        if (value.is_string())
+        {
+          std::error_code ec;
+          const std::string s = value.get<std::string>();
+          if (!s.empty() && s[0] != '/' && fs::is_regular_file(s, ec))
+            value = fs::canonical(s).string();
+        }
+        out.emplace_back(it.key(), value);
+      }
+      return out;
+    }
+
+    std::optional<double> optional_number(StrictObject &o, const std::string &key,
+                                          const Range &range)
+    {
+      if (!o.has(key))
+      {
+        o.allow(key);
+        return std::nullopt;
+      }
+      return o.number(key, range);
+    }
+
+    PresetMeasured read_measured(StrictObject m)
+    {
+      PresetMeasured r;
+      r.note = m.string("note");
+      r.fe_dofs = optional_number(m, "fe_dofs", Range::positive("1"));
+      r.fe_case_time = optional_number(m, "fe_case_time", Range::positive("s"));
+      r.pipeline_time = optional_number(m, "pipeline_time", Range::positive("s"));
+      const auto &map = m.raw("error_F_max");
+      if (!map.is_object())
+        m.fail("error_F_max", map.dump(), "a mapping of FE study names to {percent, where}");
+      auto errors = m.object("error_F_max");
+      for (auto it = map.begin(); it != map.end(); ++it)
+      {
+        auto e = errors.object(it.key());
+        PresetError pe;
+        if (!e.has("percent"))
+          e.raw("percent");  // required: a number, or null for "not yet measured"
+        else
+          pe.percent = e.number("percent", Range{.lo = 0.0, .hi = 100.0, .lo_open = true, .unit = "%"});
+        pe.where = e.string("where");
+        e.finish();
+        r.error_F_max[it.key()] = pe;
+      }
+      errors.finish();
+      m.finish();
+      return r;
+    }
+
+    /// One element of a study's `values` or a law's `value`: a number or a keyword.
+    void read_value(const nlohmann::json &v, StrictObject &o, const std::string &key,
+                    const std::string &unit, double &number, std::string &keyword)
+    {
+      if (v.is_number())
+      {
+        number = v.get<double>();
+        if (!std::isfinite(number))
+          o.fail(key, v.dump(), "a finite number in " + unit);
+        keyword.clear();
+      }
+      else if (v.is_string() && v.get<std::string>() == theta_max_keyword)
+      {
+        number = std::numeric_limits<double>::quiet_NaN();
+        keyword = theta_max_keyword;
+      }
+      else
+        o.fail(key, v.dump(), std::string("a number in ") + unit + " or the keyword " +
+                                theta_max_keyword + " (paper Eq. 3 for the study's geometry)");
+    }
+
+    FeStudy read_study(StrictObject &s, const std::vector<FeStudy> &others)
+    {
+      FeStudy f;
+      f.name = s.string("name");
+      if (f.name.empty() || f.name.find('/') != std::string::npos || f.name[0] == '.')
+        s.fail("name", f.name, "a folder name without '/' that does not start with '.'");
+      f.scene = s.string("scene");
+      auto p = s.object("parameter");
+      f.parameter = p.string("name");
+      f.unit = p.string("unit");
+      f.key = p.string("key");
+      p.finish();
+      const auto &values = s.raw("values");
+      if (!values.is_array() || values.empty())
+        s.fail("values", values.dump(), "a list of at least 1 value: numbers in " + f.unit +
+                                          " or the keyword theta_max");
+      for (std::size_t i = 0; i < values.size(); ++i)
+      {
+        double v;
+        std::string keyword;
+        read_value(values[i], s, "values[" + std::to_string(i) + "]", f.unit, v, keyword);
+        for (std::size_t j = 0; j < f.keywords.size(); ++j)
+          if (!keyword.empty() && f.keywords[j] == keyword)
+            s.fail("values[" + std::to_string(i) + "]", keyword, "each keyword at most once");
+        f.values.push_back(v);
+        f.keywords.push_back(keyword);
+      }
+      // The numbers must increase; keywords are checked once resolved (study_values.h).
+      double previous = -std::numeric_limits<double>::infinity();
+      for (const double v : f.values)
+        if (!std::isnan(v))
+        {
+          if (!(v > previous))
+            s.fail("values", value_label(v), "strictly increasing values");
+          previous = v;
+        }
+      for (const auto &other : others)
+        if (other.name == f.name)
+          s.fail("name", f.name, "a name not used by another study");
+      f.overrides = read_overrides(s, "overrides");
+      for (const auto &[key, value] : f.overrides)
+        if (key == f.key)
+          s.fail("overrides", key, "keys other than the swept parameter's key '" + f.key + "'");
+      if (s.has("mesh_parameters"))
+      {
+        const auto &mp = s.raw("mesh_parameters");
+        if (!mp.is_object())
+          s.fail("mesh_parameters", mp.dump(), "a mapping of Gmsh DefineConstant names to numbers");
+        for (auto it = mp.begin(); it != mp.end(); ++it)
+        {
+          if (!it.value().is_number() || it.key().empty() ||
+              it.key().find_first_of(" \t\"'") != std::string::npos)
+            s.fail("mesh_parameters." + it.key(), it.value().dump(),
+                   "a number (SI) for a Gmsh DefineConstant name without spaces or quotes");
+          f.mesh_parameters[it.key()] = it.value().get<double>();
+        }
+      }
+      else
+        s.allow("mesh_parameters");
+      s.finish();
+      return f;
+    }
+
+    LawChoice read_law_choice(StrictObject &l, const std::vector<FeStudy> &studies)
+    {
+      LawChoice choice;
+      choice.key = l.string("key");
+      if (l.has("file"))
+        choice.file = l.string("file");
+      if (l.has("study"))
+      {
+        choice.study = l.string("study");
+        const FeStudy *study = nullptr;
+        std::string names;
+        for (const auto &f : studies)
+        {
+          names += (names.empty() ? "" : "|") + f.name;
+          if (f.name == *choice.study)
+            study = &f;
+        }
+        if (!study)
+          l.fail("study", *choice.study, "one of the fe_studies: " + names);
+        if (l.has("value"))
+        {
+          double v;
+          read_value(l.raw("value"), l, "value", study->unit, v, choice.value_keyword);
+          bool found = false;
+          std::string values;
+          for (std::size_t i = 0; i < study->values.size(); ++i)
+          {
+            const double s = study->values[i];
+            if (choice.value_keyword.empty())
+              found = found || std::abs(s - v) <= 1e-12 * std::abs(s);
+            else
+              found = found || study->keywords[i] == choice.value_keyword;
+            values += (values.empty() ? "" : ", ") +
+                      (study->keywords[i].empty() ? value_label(s) : study->keywords[i]);
+          }
+          if (!found)
+            l.fail("value", choice.value_keyword.empty() ? value_label(v) : choice.value_keyword,
+                   "one of the values of study '" + study->name + "': " + values);
+          if (choice.value_keyword.empty())
+            choice.value = v;
+        }
+        else if (study->values.size() < 2)
+          l.fail("study", study->name, "a study with >= 2 values for a law family",
+                 "or give 'value' to use one law");
+      }
+      else if (l.has("value"))
+        l.fail("value", l.raw("value").dump(), "only together with 'study'");
+      if (choice.file.has_value() == choice.study.has_value())
+        l.fail("file", choice.file.value_or("(none)"),
+               "exactly one of 'file' (a law file) or 'study' (a fitted law)");
+      l.finish();
+      return choice;
+    }
+  } // namespace
+
   PipelineConfig read_pipeline_config(const std::string &path)
   {
     const auto j = read_yaml_file(path);
@@ -68,12 +310,12 @@ namespace clearjoint::pipeline
     if (c.run.empty() || c.run.find('/') != std::string::npos || c.run[0] == '.')
       top.fail("run", c.run, "a folder name without '/' that does not start with '.'");
     c.output_root = top.string_or("output_root", "out");
-    c.preset = top.string("preset", {"fast", "standard", "accurate"});
+    c.preset = top.string("preset", preset_names());
     c.mpi_ranks = static_cast<int>(top.integer_or("mpi_ranks", 1, 1, 64));
     c.report = top.boolean_or("report", true);
 
     auto presets = top.object("presets");
-    for (const std::string p : {"fast", "standard", "accurate"})
+    for (const std::string &p : preset_names())
     {
       auto stages = presets.object(p);
       for (const std::string s : {"fe", "mbd"})
@@ -85,90 +327,55 @@ namespace clearjoint::pipeline
           for (auto it = overrides.begin(); it != overrides.end(); ++it)
             c.presets[p][s + ":" + it.key()] = it.value();
       }
+      if (stages.has("measured"))
+        c.preset_measured[p] = read_measured(stages.object("measured"));
+      else
+        stages.allow("measured");
       stages.finish();
     }
     presets.finish();
 
     for (auto &s : top.object_array("fe_studies"))
-    {
-      FeStudy f;
-      f.name = s.string("name");
-      f.scene = s.string("scene");
-      auto p = s.object("parameter");
-      f.parameter = p.string("name");
-      f.unit = p.string("unit");
-      f.key = p.string("key");
-      p.finish();
-      f.values = s.number_array("values", Range::any(f.unit), 1);
-      for (std::size_t i = 1; i < f.values.size(); ++i)
-        if (!(f.values[i] > f.values[i - 1]))
-          s.fail("values", value_label(f.values[i]), "strictly increasing values");
-      for (const auto &other : c.fe_studies)
-        if (other.name == f.name)
-          s.fail("name", f.name, "a name not used by another study");
-      s.finish();
-      c.fe_studies.push_back(f);
-    }
+      c.fe_studies.push_back(read_study(s, c.fe_studies));
+
+    // A preset's errors are per FE study: each name must be one of them.
+    for (const auto &[preset, measured] : c.preset_measured)
+      for (const auto &[study, error] : measured.error_F_max)
+      {
+        std::string names;
+        bool found = false;
+        for (const auto &f : c.fe_studies)
+        {
+          names += (names.empty() ? "" : "|") + f.name;
+          found = found || f.name == study;
+        }
+        if (!found)
+          throw InputError(path, "presets." + preset + ".measured.error_F_max." + study, study,
+                           "one of the fe_studies: " + names);
+      }
 
     auto fit = top.object("fit");
     c.fit_weighting = fit.string_or("weighting", "absolute", {"absolute", "relative"});
+    c.family_out_of_range =
+      fit.string_or("family_out_of_range", "error", {"error", "clamp", "extend"});
     fit.finish();
 
     for (auto &m : top.object_array("mbd_runs"))
     {
       MbdRun r;
       r.name = m.string("name");
+      if (r.name.empty() || r.name.find('/') != std::string::npos || r.name[0] == '.')
+        m.fail("name", r.name, "a folder name without '/' that does not start with '.'");
       r.scene = m.string("scene");
       if (m.has("laws"))
         for (auto &l : m.object_array("laws"))
-        {
-          LawChoice choice;
-          choice.key = l.string("key");
-          if (l.has("file"))
-            choice.file = l.string("file");
-          if (l.has("study"))
-          {
-            choice.study = l.string("study");
-            const FeStudy *study = nullptr;
-            std::string names;
-            for (const auto &f : c.fe_studies)
-            {
-              names += (names.empty() ? "" : "|") + f.name;
-              if (f.name == *choice.study)
-                study = &f;
-            }
-            if (!study)
-              l.fail("study", *choice.study, "one of the fe_studies: " + names);
-            if (l.has("value"))
-            {
-              choice.value = l.number("value", Range::any(study->unit));
-              bool found = false;
-              std::string values;
-              for (double v : study->values)
-              {
-                found = found || std::abs(v - *choice.value) <= 1e-12 * std::abs(v);
-                values += (values.empty() ? "" : ", ") + value_label(v);
-              }
-              if (!found)
-                l.fail("value", value_label(*choice.value),
-                       "one of the values of study '" + study->name + "': " + values);
-            }
-            else if (study->values.size() < 2)
-              l.fail("study", study->name, "a study with >= 2 values for a law family",
-                     "or give 'value' to use one law");
-          }
-          else if (l.has("value"))
-            l.fail("value", l.raw("value").dump(), "only together with 'study'");
-          if (choice.file.has_value() == choice.study.has_value())
-            l.fail("file", choice.file.value_or("(none)"),
-                   "exactly one of 'file' (a law file) or 'study' (a fitted law)");
-          l.finish();
-          r.laws.push_back(choice);
-        }
+          r.laws.push_back(read_law_choice(l, c.fe_studies));
       else
         m.allow("laws");
+      r.overrides = read_overrides(m, "overrides");
       r.band = m.boolean_or("band", false);
-      if (r.band && !(r.laws.size() == 1 && r.laws[0].value))
+      if (r.band && !(r.laws.size() == 1 && r.laws[0].study &&
+                      (r.laws[0].value || !r.laws[0].value_keyword.empty())))
         m.fail("band", "true", "false, or exactly one law given by 'study' and 'value'",
                "a confidence band varies one fitted law");
       m.finish();

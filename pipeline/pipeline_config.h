@@ -1,5 +1,5 @@
 // pipeline.yaml, schema clearjoint.pipeline/1: which FE studies to sweep, which MBD scenes to
-// run with which fitted laws, and the presets. See the committed pipeline.yaml for every key.
+// run with which fitted laws, and the presets. See docs/pipeline.md for every key.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -7,18 +7,34 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clearjoint::pipeline
 {
+  /// Scene key path → value, applied in order.
+  using Overrides = std::vector<std::pair<std::string, nlohmann::json>>;
+
+  /// The keyword a study's `values` (and a law's `value`) may hold instead of a number:
+  /// θ_max of the study's scene geometry (paper Eq. 3), see study_values.h.
+  inline constexpr const char *theta_max_keyword = "theta_max";
+
   struct FeStudy
   {
     std::string name;             ///< e.g. "thickness"; output folder name
     std::string scene;            ///< base FE scene file (clearjoint.fe/1)
     std::string parameter;        ///< law-family parameter name, e.g. "t_B"
-    std::string unit;             ///< its SI unit, e.g. "m"
+    std::string unit;             ///< the unit of `values` and of the scene key, e.g. "m", "deg"
     std::string key;              ///< key path in the scene that the sweep sets
-    std::vector<double> values;   ///< SI
+    /// In `unit`. Where the file gives a keyword (keywords[i] non-empty) the value is NaN until
+    /// resolve_value_keywords() (study_values.h) replaces it with the number.
+    std::vector<double> values;
+    std::vector<std::string> keywords;  ///< parallel to values: "" or e.g. "theta_max"
+    /// Set in every case's scene after the preset's overrides (e.g. geometry.mesh).
+    Overrides overrides;
+    /// Extra `gmsh -setnumber NAME VALUE` when the scene's geometry.mesh names a .geo file
+    /// (the scene's geometry keys R_B, t_B, L_B, c_r, c_a are always passed) [SI].
+    std::map<std::string, double> mesh_parameters;
   };
 
   /// Which law an MBD scene gets, and where in the scene it goes.
@@ -28,6 +44,7 @@ namespace clearjoint::pipeline
     std::optional<std::string> file;    ///< a law file given directly (no FE)
     std::optional<std::string> study;   ///< a fitted law: study name ...
     std::optional<double> value;        ///< ... and parameter value; without a value, the family
+    std::string value_keyword;          ///< "" or the study's keyword (value set on resolution)
   };
 
   struct MbdRun
@@ -35,9 +52,27 @@ namespace clearjoint::pipeline
     std::string name;
     std::string scene;                  ///< MBD scene file (clearjoint.mbd/1)
     std::vector<LawChoice> laws;        ///< zero or more law substitutions
+    Overrides overrides;                ///< set after the preset, before the laws
     /// Also run the scene with the law's 95 % confidence-band variants (laws/confidence_band.h);
     /// needs exactly one law, a fitted one (study + value).
     bool band = false;
+  };
+
+  /// A preset's measured estimated error of F(δ_max) for one FE study.
+  struct PresetError
+  {
+    std::optional<double> percent;      ///< [%]; nullopt: not yet measured
+    std::string where;                  ///< how and where it was measured
+  };
+
+  /// What a preset costs and how accurate it is, as measured (docs/benchmarks.md).
+  struct PresetMeasured
+  {
+    std::string note;                        ///< where the numbers come from
+    std::optional<double> fe_dofs;           ///< [1] DoFs of the reference FE case
+    std::optional<double> fe_case_time;      ///< [s] one reference FE curve
+    std::optional<double> pipeline_time;     ///< [s] the whole default pipeline
+    std::map<std::string, PresetError> error_F_max;  ///< FE study name → error
   };
 
   struct PipelineConfig
@@ -49,15 +84,26 @@ namespace clearjoint::pipeline
     int mpi_ranks = 1;
     /// preset → stage ("fe" | "mbd") → key path → value, applied to every generated scene.
     std::map<std::string, std::map<std::string, nlohmann::json>> presets;
+    std::map<std::string, PresetMeasured> preset_measured;  ///< preset → measurements
     std::vector<FeStudy> fe_studies;
     std::string fit_weighting = "absolute";
+    /// fit_stage --family-out-of-range: what a law family does for a parameter outside its values.
+    std::string family_out_of_range = "error";
     std::vector<MbdRun> mbd_runs;
     bool report = true;
   };
 
+  inline const std::vector<std::string> &preset_names()
+  {
+    static const std::vector<std::string> names = {"fast", "standard", "accurate"};
+    return names;
+  }
+
   /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a study that
   /// does not exist or a value not in that study → InputError naming the key and valid range.
-  /// Relative paths are taken relative to base_dir (the directory run_pipeline runs in).
+  /// Relative paths are taken relative to the directory run_pipeline runs in; override values
+  /// that name an existing file from there are made absolute. Keywords in `values` are kept
+  /// (NaN); resolve_value_keywords() (study_values.h) fills them in once the preset is known.
   PipelineConfig read_pipeline_config(const std::string &path);
 
   /// Sets "a.b.c" in a JSON object, creating intermediate objects; throws InputError if a
@@ -65,6 +111,10 @@ namespace clearjoint::pipeline
   void set_key_path(nlohmann::json &root, const std::string &key_path, const nlohmann::json &value,
                     const std::string &source);
 
-  /// "0.004" for 0.004, "%.6g" (names of output folders).
+  /// The value at "a.b.c" (numeric components index lists), or nullptr if absent.
+  const nlohmann::json *find_key_path(const nlohmann::json &root, const std::string &key_path);
+
+  /// The shortest text that reads back as exactly `value` ("0.004", "1.5",
+  /// "3.2842262350456..." for θ_max): names of output folders and law labels.
   std::string value_label(double value);
 } // namespace clearjoint::pipeline

@@ -1,5 +1,5 @@
-// Turns a PipelineConfig into tasks (FE cases → fits → law families → MBD scenes → report)
-// and runs them, reusing every task whose inputs are unchanged.
+// Turns a PipelineConfig into tasks (meshes → FE cases → fits → law families → MBD scenes →
+// report) and runs them, reusing every task whose inputs are unchanged.
 #pragma once
 
 #include "pipeline/pipeline_config.h"
@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 
@@ -23,21 +24,31 @@ namespace clearjoint::pipeline
   class PipelineRunner
   {
   public:
+    /// The config's value keywords must be resolved (resolve_value_keywords, study_values.h).
     PipelineRunner(PipelineConfig config, RunOptions options);
     /// Runs everything; returns the summary written to <run dir>/pipeline_summary.json.
     nlohmann::json run();
     std::string run_dir() const;
 
   private:
-    /// Base scene + preset overrides (+ extra overrides) written to <run>/scenes/<name>.yaml.
-    std::string make_scene(const std::string &base, const std::string &stage,
-                           const std::vector<std::pair<std::string, nlohmann::json>> &overrides,
-                           const std::string &name);
+    struct Done
+    {
+      std::string path, identity;  ///< the result file and the identity of the task behind it
+    };
+
+    /// The scene of one FE case (base + preset + study overrides + the swept value), with a
+    /// .geo in geometry.mesh replaced by the mesh its task writes (dry_run: checked only).
+    nlohmann::json fe_case_scene(const FeStudy &study, double value, bool dry_run,
+                                 std::vector<std::string> &depends_on);
+    /// Writes a composed scene to <run>/scenes/<name>.yaml.
+    std::string write_scene(const nlohmann::json &scene, const std::string &base,
+                            const std::string &name);
     TaskResult execute(const Task &task, const std::string &stage_group);
     std::string stage_executable(const std::string &stage) const;
 
     PipelineConfig config_;
     RunOptions options_;
     nlohmann::json summary_;
+    std::map<std::string, Done> meshes_;  ///< mesh task output folder → its .msh
   };
 } // namespace clearjoint::pipeline

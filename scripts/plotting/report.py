@@ -41,9 +41,19 @@ def load(path):
 def shown(value, unit):
     if unit == "rad":
         return value * 180 / math.pi, "°"
+    if unit == "deg":
+        return value, "°"
     if unit == "m":
         return value * 1e3, "mm"
     return value, unit
+
+
+def case_label(study, case):
+    """'t_B = 4 mm', or 'theta = θ_max = 3.2842 °' for a value given by a keyword."""
+    v, u = shown(case["value"], study["unit"])
+    keyword = case.get("keyword")
+    middle = f"{keyword} = " if keyword else ""
+    return f"{study['parameter']} = {middle}{v:.5g} {u}"
 
 
 def rel(path, base):
@@ -62,13 +72,12 @@ def study_section(study, base):
     unit = study["unit"]
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for case, law in laws:
-        v, u = shown(case["value"], unit)
         K, n = law["law"]["K"], law["law"]["n"]
         d = law["diagnostics"]
         top = law["valid_range"]["delta_max"]
         xs = [top * i / 100 for i in range(101)]
         line, = ax.plot([x * 1e3 for x in xs], [K * x ** n for x in xs], "-",
-                        label=f"{study['parameter']} = {v:.4g} {u}")
+                        label=case_label(study, case))
         if d:
             ax.plot([x * 1e3 for x in d["delta"]], d["force"], "o", ms=3, color=line.get_color())
     ax.set_xlabel("penetration δ [mm]")
@@ -105,7 +114,6 @@ def study_section(study, base):
     out.append("<table><tr><th>case</th><th>K [N/mm^n] (δ in mm)</th><th>K [N/m^n] (SI)</th>"
                "<th>n</th><th>n 95 % CI</th><th>F_ref [N] at δ_ref</th><th>R²</th><th>files</th></tr>")
     for case, law in laws:
-        v, u = shown(case["value"], unit)
         d = law["diagnostics"] or {}
         n_ci = d.get("n_ci95", [float("nan")] * 2)
         ref = law["reference"]
@@ -114,13 +122,71 @@ def study_section(study, base):
         pvd = sorted(glob.glob(os.path.join(case["fe_dir"], "**", "*.pvd"), recursive=True))
         if pvd:
             links.append(f'<a href="{html.escape(rel(pvd[0], base))}">fields (ParaView)</a>')
-        out.append(f"<tr><td>{study['parameter']} = {v:.4g} {u}</td>"
+        if case.get("mesh"):
+            links.append(f'<a href="{html.escape(rel(case["mesh"], base))}">mesh</a>')
+        out.append(f"<tr><td>{html.escape(case_label(study, case))}</td>"
                    f"<td>{law['mm_N']['K']:.6g}</td><td>{law['law']['K']:.6g}</td>"
                    f"<td>{law['law']['n']:.5f}</td><td>{n_ci[0]:.5f} … {n_ci[1]:.5f}</td>"
                    f"<td>{ref['F_ref']:.6g} at {ref['delta_ref'] * 1e3:.4g} mm</td>"
                    f"<td>{d.get('r_squared', float('nan')):.6f}</td><td>{' · '.join(links)}</td></tr>")
     out.append("</table>")
+    if study.get("family"):
+        out.append(f"<p>Law family over {html.escape(study['parameter'])} (parameter stored in "
+                   f"{html.escape(study.get('family_unit', unit))}, SI): "
+                   f'<a href="{html.escape(rel(study["family"], base))}">'
+                   f"{html.escape(os.path.basename(study['family']))}</a>.</p>")
     return "".join(out)
+
+
+def preset_section(summary):
+    """Every preset's measured cost and error of F(δ_max) per FE study; the chosen one marked."""
+    presets = summary.get("presets") or []
+    if not presets:
+        return ""
+    studies = [s["name"] for s in summary["studies"]]
+    for p in presets:
+        for name in ((p.get("measured") or {}).get("error_F_max") or {}):
+            if name not in studies:
+                studies.append(name)
+
+    def quantity(q, fmt):
+        return "not measured" if not q else fmt.format(q["value"])
+
+    rows = ["<h2>Presets: measured cost and error</h2>",
+            "<p>Estimated relative error of the force at δ_max per FE study (against a Richardson "
+            "extrapolation over the mesh levels) and cost, as measured "
+            "(docs/benchmarks.md). “not yet measured” means no number exists yet.</p>",
+            "<table><tr><th>preset</th><th>FE scene settings</th><th>FE DoFs</th>"
+            "<th>one FE curve [s]</th><th>whole pipeline [s]</th>" +
+            "".join(f"<th>error F(δ_max), {html.escape(s)}</th>" for s in studies) +
+            "<th>source</th></tr>"]
+    for p in presets:
+        m = p.get("measured") or {}
+        errors = m.get("error_F_max") or {}
+        cells = []
+        for s in studies:
+            e = errors.get(s)
+            if e is None:
+                cells.append("<td>not stated</td>")
+            elif e["percent"] is None:
+                cells.append(f"<td title='{html.escape(e['where'])}'><em>not yet measured</em></td>")
+            else:
+                cells.append(f"<td title='{html.escape(e['where'])}'>{e['percent']:.3g} %</td>")
+        settings = ", ".join(f"{k} = {v}" for k, v in sorted((p.get("fe") or {}).items())) or "defaults"
+        name = html.escape(p["name"]) + (" <strong>(this run)</strong>" if p.get("chosen") else "")
+        style = " style='background:#ffe9b3'" if p.get("chosen") else ""
+        rows.append(f"<tr{style}><td>{name}</td><td>{html.escape(settings)}</td>"
+                    f"<td>{quantity(m.get('fe_dofs'), '{:.0f}')}</td>"
+                    f"<td>{quantity(m.get('fe_case_time'), '{:.3g}')}</td>"
+                    f"<td>{quantity(m.get('pipeline_time'), '{:.0f}')}</td>" + "".join(cells) +
+                    f"<td>{html.escape(m.get('note', 'no measurements stated'))}</td></tr>")
+    rows.append("</table>")
+    wheres = sorted({(s, e["where"]) for p in presets
+                     for s, e in ((p.get("measured") or {}).get("error_F_max") or {}).items()})
+    if wheres:
+        rows.append("<p>Where each error was measured: " +
+                    "; ".join(f"{html.escape(s)}: {html.escape(w)}" for s, w in wheres) + ".</p>")
+    return "".join(rows)
 
 
 def mbd_section(runs, base):
@@ -232,6 +298,7 @@ def main(argv):
              f"{html.escape(summary['preset'])}</h1>",
              f"<p>Pipeline file: {html.escape(summary['pipeline_file'])}. Laws are shown in SI "
              f"(δ in m, F in N) and in the paper's units (δ in mm, F in N).</p>"]
+    parts.append(preset_section(summary))
     for study in summary["studies"]:
         parts.append(study_section(study, base))
     if summary["mbd_runs"]:

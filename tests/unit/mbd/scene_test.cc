@@ -6,6 +6,7 @@
 
 #include "common/error.h"
 #include "common/strict_reader.h"
+#include "laws/law_family.h"
 
 #include <gtest/gtest.h>
 
@@ -241,4 +242,33 @@ TEST(Scene, ExecutableRefusesToReplaceAForeignDirectory)
                                      dir + " --no-plots -q 2>/dev/null").c_str())), 0);
   fs::remove_all(dir);
   fs::remove(scene);
+}
+
+TEST(Scene, LawFamilyMustBeOverTheTiltInRadians)
+{
+  // mbd_stage evaluates a law family at the current tilt θ [rad]; a family over θ in degrees
+  // (1° would be read as 1 rad) or over t_B would give wrong forces without any error.
+  const std::string dir = temp_dir("family_unit");
+  fs::create_directories(dir);
+  laws::LawFile member = laws::read_law_file(scenes + "/../../laws/paper_tB4.json");
+  const auto write = [&](const std::string &name, const std::string &parameter,
+                         const std::string &unit, double v0, double v1) {
+    const laws::LawFamily family(parameter, unit, member.delta_ref, {{v0, member}, {v1, member}},
+                                 laws::RangePolicy::clamp);
+    laws::write_law_family(dir + "/" + name, family);
+    return dir + "/" + name;
+  };
+  const std::string deg = write("deg.json", "theta", "deg", 1.0, 2.0);
+  const std::string t_B = write("tB.json", "t_B", "m", 0.002, 0.004);
+  const std::string rad = write("rad.json", "theta", "rad", 0.0175, 0.035);
+  for (const auto &[path, needle] : {std::pair{deg, "over theta in deg"}, {t_B, "over t_B in m"}})
+    expect_error([&](auto &d) {
+      d["clearance_joints"][0]["normal"]["model"] = "law_family";
+      d["clearance_joints"][0]["normal"]["law_file"] = path;
+    }, {"normal.law_file", "a law family over the tilt theta in rad", needle});
+  nlohmann::json doc = base();
+  doc["clearance_joints"][0]["normal"]["model"] = "law_family";
+  doc["clearance_joints"][0]["normal"]["law_file"] = rad;
+  EXPECT_NO_THROW(scene_from_json(doc, "good.yaml", scenes));
+  fs::remove_all(dir);
 }

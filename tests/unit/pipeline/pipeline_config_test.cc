@@ -1,8 +1,12 @@
 #include "common/error.h"
+#include "geometry/joint_geometry.h"
 #include "pipeline/pipeline_config.h"
+#include "pipeline/study_values.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 using namespace clearjoint;
 using namespace clearjoint::pipeline;
@@ -91,4 +95,97 @@ TEST(PipelineConfig, SetKeyPath)
   EXPECT_EQ(j["list"][1]["law"], "c");
   EXPECT_THROW(set_key_path(j, "list.2.law", "c", "x"), InputError);
   EXPECT_THROW(set_key_path(j, "list.first.law", "c", "x"), InputError);
+}
+
+TEST(PipelineConfig, BadNewKeysNameTheKeyAndTheValidRange)
+{
+  std::string m = error_for("values: [0.002, 0.004]", "values: [0.002, theta_maxx]");
+  EXPECT_NE(m.find("fe_studies[0].values[1]"), std::string::npos) << m;
+  EXPECT_NE(m.find("or the keyword theta_max"), std::string::npos) << m;
+  m = error_for("values: [0.002, 0.004]", "values: [theta_max, theta_max]");
+  EXPECT_NE(m.find("each keyword at most once"), std::string::npos) << m;
+  m = error_for("study: thickness, value: 0.004", "study: thickness, value: theta_max");
+  EXPECT_NE(m.find("mbd_runs[0].laws[0].value"), std::string::npos) << m;
+  EXPECT_NE(m.find("0.002, 0.004"), std::string::npos) << m;
+  m = error_for("    values: [0.002, 0.004]", "    values: [0.002, 0.004]\n    overrides: [a, b]");
+  EXPECT_NE(m.find("fe_studies[0].overrides"), std::string::npos) << m;
+  EXPECT_NE(m.find("a mapping of scene key paths"), std::string::npos) << m;
+  m = error_for("    values: [0.002, 0.004]",
+                "    values: [0.002, 0.004]\n    overrides: {geometry.t_B: 0.003}");
+  EXPECT_NE(m.find("keys other than the swept parameter's key 'geometry.t_B'"), std::string::npos) << m;
+  m = error_for("    values: [0.002, 0.004]", "    values: [0.002, 0.004]\n    mesh_parameters: {h: fine}");
+  EXPECT_NE(m.find("fe_studies[0].mesh_parameters.h"), std::string::npos) << m;
+  m = error_for("fit: {weighting: absolute}", "fit: {weighting: absolute, family_out_of_range: wrap}");
+  EXPECT_NE(m.find("fit.family_out_of_range"), std::string::npos) << m;
+  EXPECT_NE(m.find("error|clamp|extend"), std::string::npos) << m;
+  m = error_for("  - name: b\n", "  - name: b\n    overrides: 3\n");
+  EXPECT_NE(m.find("mbd_runs[1].overrides"), std::string::npos) << m;
+  m = error_for("  - name: thickness", "  - name: thick/ness");
+  EXPECT_NE(m.find("fe_studies[0].name"), std::string::npos) << m;
+}
+
+TEST(PipelineConfig, OverridesAndKeywordsAreKept)
+{
+  test_support::ScratchDir dir("pipeline_config_overrides");
+  std::string text = good;
+  text.replace(text.find("    values: [0.002, 0.004]"), 26,
+               "    values: [0.002, 0.004]\n    overrides: {geometry.mesh: m.msh, loading.n: 3}\n"
+               "    mesh_parameters: {h: 0.001}");
+  text.replace(text.find("  - name: b\n"), 12, "  - name: b\n    overrides: {a.model: law_family}\n");
+  test_support::write_text(dir.file("p.yaml"), text);
+  const auto c = read_pipeline_config(dir.file("p.yaml"));
+  ASSERT_EQ(c.fe_studies[0].overrides.size(), 2u);
+  EXPECT_EQ(c.fe_studies[0].overrides[0].first, "geometry.mesh");
+  EXPECT_EQ(c.fe_studies[0].overrides[0].second, "m.msh") << "no such file here: kept as given";
+  EXPECT_EQ(c.fe_studies[0].mesh_parameters.at("h"), 0.001);
+  EXPECT_EQ(c.mbd_runs[1].overrides.at(0).second, "law_family");
+  EXPECT_EQ(c.family_out_of_range, "error") << "fit_stage's default";
+}
+
+TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
+{
+  // Their paths are relative to the source tree, where scripts/run runs them.
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(CLEARJOINT_SOURCE_DIR);
+  auto c = read_pipeline_config("pipeline.yaml");
+  resolve_value_keywords(c);
+  auto flanged = read_pipeline_config("pipeline_flanged.yaml");
+  resolve_value_keywords(flanged);
+  std::filesystem::current_path(cwd);
+
+  const FeStudy *mis = nullptr;
+  for (const auto &s : c.fe_studies)
+    if (s.name == "misalignment")
+      mis = &s;
+  ASSERT_TRUE(mis);
+  EXPECT_EQ(mis->unit, "deg");
+  EXPECT_EQ(mis->key, "misalignment.theta_deg");
+  ASSERT_EQ(mis->values.size(), 5u);
+  EXPECT_EQ(mis->values.back(), geometry::degrees(*geometry::theta_max(geometry::JointGeometry{})));
+  EXPECT_EQ(c.family_out_of_range, "clamp");
+  bool tilted = false;
+  for (const auto &r : c.mbd_runs)
+    if (r.name == "tilted_1deg")
+    {
+      tilted = true;
+      ASSERT_EQ(r.laws.size(), 1u);
+      EXPECT_EQ(r.laws[0].study.value_or(""), "misalignment");
+      EXPECT_FALSE(r.laws[0].value) << "the family";
+      ASSERT_EQ(r.overrides.size(), 1u);
+      EXPECT_EQ(r.overrides[0].second, "law_family");
+    }
+  EXPECT_TRUE(tilted);
+  // Every preset states an error per FE study (null = not yet measured, never invented).
+  for (const auto &p : preset_names())
+    for (const auto &s : c.fe_studies)
+      EXPECT_TRUE(c.preset_measured.at(p).error_F_max.count(s.name)) << p << " " << s.name;
+  EXPECT_EQ(*c.preset_measured.at("fast").error_F_max.at("thickness").percent, 4.8);
+  EXPECT_EQ(*c.preset_measured.at("standard").error_F_max.at("thickness").percent, 2.0);
+  EXPECT_EQ(*c.preset_measured.at("accurate").error_F_max.at("thickness").percent, 0.83);
+
+  // The flanged pipeline names the .geo, made absolute, and it exists.
+  const auto &mesh = flanged.fe_studies.at(0).overrides.at(0);
+  EXPECT_EQ(mesh.first, "geometry.mesh");
+  EXPECT_EQ(mesh.second.get<std::string>(),
+            std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/flanged_bearing.geo");
 }

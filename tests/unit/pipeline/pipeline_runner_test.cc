@@ -1,7 +1,12 @@
 // run_pipeline end to end with stand-in FE and MBD stages (tests/data/fake_stages) and the real
 // fit_stage: reuse, re-running only what changed, interrupts, failing stages, bad input.
 #include "common/strict_reader.h"
+#include "common/units.h"
+#include "geometry/joint_geometry.h"
+#include "laws/law_family.h"
 #include "laws/law_file.h"
+#include "pipeline/mesh_task.h"
+#include "pipeline/pipeline_config.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -22,17 +27,20 @@ namespace
   /// A build directory whose fe_stage and mbd_stage are the stand-ins.
   struct FakeBuild
   {
-    explicit FakeBuild(const test_support::ScratchDir &dir)
+    /// real_mbd: the real mbd_stage instead of the stand-in (it needs no FE either).
+    explicit FakeBuild(const test_support::ScratchDir &dir, const bool real_mbd = false)
       : root(dir.file("build"))
     {
       const fs::path fakes = fs::path(CLEARJOINT_TEST_DATA_DIR) / "fake_stages";
-      for (const auto &[stage, target] :
-           {std::pair<std::string, fs::path>{"fe_stage", fakes / "fake_fe_stage.py"},
-            {"mbd_stage", fakes / "fake_mbd_stage.py"},
-            {"fit_stage", FIT_STAGE_EXE}})
+      const std::vector<std::pair<fs::path, fs::path>> links = {
+        {"fe_stage/fe_stage", fakes / "fake_fe_stage.py"},
+        {"mbd_stage/mbd_stage", real_mbd ? fs::path(MBD_STAGE_EXE) : fakes / "fake_mbd_stage.py"},
+        {"fit_stage/fit_stage", FIT_STAGE_EXE},
+        {"geometry/msh_check", MSH_CHECK_EXE}};
+      for (const auto &[link, target] : links)
       {
-        fs::create_directories(fs::path(root) / stage);
-        fs::create_symlink(target, fs::path(root) / stage / stage);
+        fs::create_directories((fs::path(root) / link).parent_path());
+        fs::create_symlink(target, fs::path(root) / link);
       }
     }
     std::string root;
@@ -213,4 +221,240 @@ TEST(RunPipeline, BadPipelineFile)
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.log.find("'colour'"), std::string::npos) << o.log;
   EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
+namespace
+{
+  /// A pipeline with a misalignment study (θ in deg, theta_max among the values) and an MBD run
+  /// that takes its law family; `mbd_scene` and `mbd_overrides` describe that run.
+  std::string misalignment_yaml(const std::string &dir, const std::string &mbd_scene,
+                                const std::string &mbd_key, const std::string &mbd_overrides)
+  {
+    test_support::write_text(dir + "/mis.yaml",
+                             "schema: clearjoint.fe/1\nstudy: misalignment\n"
+                             "misalignment: {theta_deg: 1.0}\nloading: {journal: rigid}\n");
+    return "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir + "/out\npreset: fast\n"
+           "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
+           "accurate: {fe: null, mbd: null}}\n"
+           "fe_studies:\n  - name: misalignment\n    scene: " + dir + "/mis.yaml\n"
+           "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
+           "    values: [1.0, 2.0, theta_max]\n"
+           "fit: {weighting: absolute, family_out_of_range: clamp}\n"
+           "mbd_runs:\n"
+           "  - name: tilted\n    scene: " + mbd_scene + "\n"
+           "    overrides: " + mbd_overrides + "\n"
+           "    laws: [{key: " + mbd_key + ", study: misalignment}]\n"
+           "  - {name: at_max, scene: " + mbd_scene + ", laws: [{key: " + mbd_key +
+           ", study: misalignment, value: theta_max}]}\n"
+           "report: false\n";
+  }
+
+  const double theta_max_deg = geometry::degrees(*geometry::theta_max(geometry::JointGeometry{}));
+} // namespace
+
+TEST(RunPipeline, MisalignmentStudyRunsThetaMaxAtFullPrecisionAndItsFamilyInRadians)
+{
+  test_support::ScratchDir dir("pipeline_misalignment");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("mbd.yaml"), "{\"joint\": {\"model\": \"fe_law\", \"law_file\": \"none\"}}\n");
+  test_support::write_text(dir.file("p.yaml"),
+                           misalignment_yaml(dir.path(), dir.file("mbd.yaml"), "joint.law_file",
+                                             "{joint.model: law_family}"));
+  const Outcome first = run(dir, build);
+  ASSERT_EQ(first.exit_code, 0) << first.log;
+  const std::string max_label = "theta=" + pipeline::value_label(theta_max_deg);
+  const std::set<std::string> expected = {
+    "fe/misalignment/theta=1", "fe/misalignment/theta=2", "fe/misalignment/" + max_label,
+    "fit/misalignment/theta=1", "fit/misalignment/theta=2", "fit/misalignment/" + max_label,
+    "fit/misalignment/family", "mbd/tilted", "mbd/at_max"};
+  EXPECT_EQ(with(first, "ran"), expected) << first.log;
+
+  // The scene got θ_max at full precision (the stand-in, like fe_stage, rejects θ > θ_max, so
+  // a value rounded up would have failed the run), and the law file says where it came from.
+  const auto scene = read_yaml_file(dir.file("out/r/scenes/fe_misalignment_" + max_label + ".yaml"));
+  EXPECT_EQ(scene["misalignment"]["theta_deg"].get<double>(), theta_max_deg);
+  const auto law = laws::read_law_file(dir.file("out/r/fit/misalignment/" + max_label + "/law.json"));
+  EXPECT_EQ(law.scene["misalignment"]["theta_deg"].get<double>(), theta_max_deg);
+
+  // The family is over θ in rad (mbd_stage evaluates it at the tilt in rad).
+  const auto family = laws::read_law_family(dir.file("out/r/fit/misalignment/family/family.json"));
+  EXPECT_EQ(family.parameter(), "theta");
+  EXPECT_EQ(family.unit(), "rad");
+  ASSERT_EQ(family.members().size(), 3u);
+  EXPECT_DOUBLE_EQ(family.members()[0].value, units::pi / 180.0);
+  EXPECT_DOUBLE_EQ(family.members()[2].value, *geometry::theta_max(geometry::JointGeometry{}));
+  EXPECT_EQ(family.parameter_policy(), laws::RangePolicy::clamp);
+  // Larger tilt, lower force (what the stand-in does: it checks the order of the members).
+  EXPECT_LT(family.members()[2].law.F_ref(), family.members()[0].law.F_ref());
+
+  // The MBD scene got the override and the family; `value: theta_max` picked that law.
+  const auto used = read_json_file(dir.file("out/r/mbd/tilted/scene_used.json"));
+  EXPECT_EQ(used["joint"]["model"], "law_family");
+  EXPECT_EQ(used["joint"]["law_file"], dir.file("out/r/fit/misalignment/family/family.json"));
+  const auto at_max = read_json_file(dir.file("out/r/mbd/at_max/scene_used.json"));
+  EXPECT_EQ(at_max["joint"]["law_file"], dir.file("out/r/fit/misalignment/" + max_label + "/law.json"));
+  EXPECT_EQ(at_max["joint"]["model"], "fe_law") << "overrides belong to their run only";
+
+  const Outcome second = run(dir, build);
+  ASSERT_EQ(second.exit_code, 0) << second.log;
+  EXPECT_TRUE(with(second, "ran").empty()) << second.log;
+  // The summary tells the report the family's unit and each case's keyword.
+  const auto summary = read_json_file(dir.file("out/r/pipeline_summary.json"));
+  EXPECT_EQ(summary["studies"][0]["family_unit"], "rad");
+  EXPECT_EQ(summary["studies"][0]["cases"][2]["keyword"], "theta_max");
+  EXPECT_EQ(summary["presets"].size(), 3u);
+}
+
+TEST(RunPipeline, TheRealMbdStageRunsTheTiltedSceneOnTheMisalignmentFamily)
+{
+  // The unit question end to end: the family the pipeline fits is evaluated by the real
+  // mbd_stage at the tilt θ ≈ 1° = 0.01745 rad, inside the family's range [1°, θ_max].
+  test_support::ScratchDir dir("pipeline_tilted_real_mbd");
+  FakeBuild build(dir, true);
+  const std::string tilted =
+    std::string(CLEARJOINT_SOURCE_DIR) + "/mbd_stage/scenes/slider_crank_tilted_1deg.yaml";
+  test_support::write_text(dir.file("p.yaml"),
+                           misalignment_yaml(dir.path(), tilted, "clearance_joints.0.normal.law_file",
+                                             "{clearance_joints.0.normal.model: law_family, "
+                                             "duration: 0.02}"));
+  const Outcome o = run(dir, build);
+  ASSERT_EQ(o.exit_code, 0) << o.log;
+  const auto summary = read_json_file(dir.file("out/r/mbd/tilted/summary.json"));
+  const auto &normal = summary["clearance_joints"][0]["normal_model"];
+  EXPECT_EQ(normal["name"], "law_family");
+  EXPECT_EQ(normal["out_of_range"]["n_parameter_out_of_range"], 0)
+    << "θ stays at 1° to round-off, at the family's lowest member";
+  EXPECT_GT(summary["clearance_joints"][0]["n_impacts"]["radial"].get<int>(), 0)
+    << "the family carried contacts";
+}
+
+TEST(RunPipeline, ChangingTheMeshFileRerunsFeAndEverythingDownstream)
+{
+  test_support::ScratchDir dir("pipeline_mesh_identity");
+  FakeBuild build(dir);
+  // The base scene names its mesh relative to its own folder.
+  test_support::write_text(dir.file("a.msh"), "mesh A\n");
+  test_support::write_text(dir.file("p.yaml"), pipeline_yaml(dir.path(), "[0.002, 0.004]"));
+  test_support::write_text(dir.file("fe.yaml"), "{\"geometry\": {\"t_B\": 0.004, \"mesh\": \"a.msh\"}}\n");
+  const Outcome first = run(dir, build);
+  ASSERT_EQ(first.exit_code, 0) << first.log;
+  const auto scene = read_yaml_file(dir.file("out/r/scenes/fe_thickness_t_B=0.002.yaml"));
+  EXPECT_EQ(scene["geometry"]["mesh"], fs::canonical(dir.file("a.msh")).string())
+    << "a relative mesh path is made absolute like other paths";
+  const double K_before = laws::read_law_file(dir.file("out/r/fit/thickness/t_B=0.002/law.json")).law.K;
+
+  EXPECT_TRUE(with(run(dir, build), "ran").empty()) << "same mesh: all reused";
+  test_support::write_text(dir.file("a.msh"), "mesh A, refined\n");  // same name, new content
+  const Outcome o = run(dir, build);
+  ASSERT_EQ(o.exit_code, 0) << o.log;
+  const std::set<std::string> expected = {
+    "fe/thickness/t_B=0.002", "fe/thickness/t_B=0.004", "fit/thickness/t_B=0.002",
+    "fit/thickness/t_B=0.004", "fit/thickness/family", "mbd/fitted", "mbd/family",
+    "mbd/fitted/band/n_low", "mbd/fitted/band/n_high", "mbd/fitted/band/K_low",
+    "mbd/fitted/band/K_high"};
+  EXPECT_EQ(with(o, "ran"), expected) << o.log;
+  EXPECT_EQ(with(o, "reused"), std::set<std::string>{"mbd/paper"}) << "no FE behind it";
+  EXPECT_NE(laws::read_law_file(dir.file("out/r/fit/thickness/t_B=0.002/law.json")).law.K, K_before)
+    << "the stand-in's law depends on the mesh content";
+}
+
+TEST(RunPipeline, TwoGeometriesKeepTheirLawsApart)
+{
+  test_support::ScratchDir dir("pipeline_laws_apart");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("flanged.msh"), "another bearing\n");
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
+  const std::string second_study =
+    "  - name: thickness_flanged\n    scene: " + dir.file("fe.yaml") + "\n"
+    "    overrides: {geometry.mesh: " + dir.file("flanged.msh") + "}\n"
+    "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004]\n";
+  yaml.insert(yaml.find("fit:"), second_study);
+  yaml.insert(yaml.find("report:"),
+              "  - {name: flanged, scene: " + dir.file("mbd.yaml") +
+                ", laws: [{key: joint.law_file, study: thickness_flanged, value: 0.002}]}\n");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome o = run(dir, build);
+  ASSERT_EQ(o.exit_code, 0) << o.log;
+  const std::string a = dir.file("out/r/fit/thickness/t_B=0.002/law.json");
+  const std::string b = dir.file("out/r/fit/thickness_flanged/t_B=0.002/law.json");
+  const auto law_a = laws::read_law_file(a), law_b = laws::read_law_file(b);
+  EXPECT_NE(law_a.law.K, law_b.law.K) << "different geometry, different law";
+  EXPECT_FALSE(law_a.scene["geometry"].contains("mesh"));
+  EXPECT_EQ(law_b.scene["geometry"]["mesh"], dir.file("flanged.msh")) << "the law names its mesh";
+  EXPECT_EQ(read_json_file(dir.file("out/r/mbd/flanged/scene_used.json"))["joint"]["law_file"], b);
+  EXPECT_EQ(read_json_file(dir.file("out/r/mbd/fitted/scene_used.json"))["joint"]["law_file"], a);
+  // Same parameter value, two geometries: two families, each from its own study's cases.
+  EXPECT_TRUE(fs::exists(dir.file("out/r/fit/thickness/family/family.json")));
+  EXPECT_TRUE(fs::exists(dir.file("out/r/fit/thickness_flanged/family/family.json")));
+}
+
+TEST(RunPipeline, AGeoIsMeshedInItsOwnTaskSharedAndReused)
+{
+  if (!pipeline::gmsh_on_path())
+    GTEST_SKIP() << "gmsh not installed";
+  test_support::ScratchDir dir("pipeline_geo");
+  FakeBuild build(dir);
+  const std::string geo = std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/default_joint.geo";
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.006]");
+  const std::string study_keys = "    overrides: {geometry.mesh: " + geo + "}\n"
+                                 "    mesh_parameters: {h: 0.004}\n";
+  yaml.insert(yaml.find("    parameter:"), study_keys);
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome first = run(dir, build);
+  ASSERT_EQ(first.exit_code, 0) << first.log;
+  std::set<std::string> meshes;
+  for (const auto &name : with(first, "ran"))
+    if (name.rfind("mesh/", 0) == 0)
+      meshes.insert(name);
+  EXPECT_EQ(meshes.size(), 2u) << "one mesh per t_B (the joint's keys go to gmsh)\n" << first.log;
+  const auto scene = read_yaml_file(dir.file("out/r/scenes/fe_thickness_t_B=0.006.yaml"));
+  const std::string msh = scene["geometry"]["mesh"];
+  EXPECT_EQ(fs::path(msh).filename(), "mesh.msh");
+  EXPECT_TRUE(fs::exists(msh)) << msh;
+  EXPECT_NE(test_support::read_text(fs::path(msh).parent_path() / "command.txt").find("-setnumber t_B 0.006"),
+            std::string::npos);
+
+  const Outcome second = run(dir, build);
+  ASSERT_EQ(second.exit_code, 0) << second.log;
+  EXPECT_TRUE(with(second, "ran").empty()) << second.log;
+
+  // A finer mesh: re-meshed, and every FE case and what depends on it re-runs.
+  yaml.replace(yaml.find("h: 0.004"), 8, "h: 0.003");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome third = run(dir, build);
+  ASSERT_EQ(third.exit_code, 0) << third.log;
+  const auto ran = with(third, "ran");
+  EXPECT_TRUE(ran.count("fe/thickness/t_B=0.002") && ran.count("fe/thickness/t_B=0.006") &&
+              ran.count("fit/thickness/family") && ran.count("mbd/family"))
+    << third.log;
+  EXPECT_EQ(with(third, "reused"), std::set<std::string>{"mbd/paper"});
+}
+
+TEST(RunPipeline, AGeoWithoutGmshIsAClearErrorBeforeAnyWork)
+{
+  test_support::ScratchDir dir("pipeline_no_gmsh");
+  FakeBuild build(dir);
+  const std::string geo = std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/default_joint.geo";
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.006]");
+  yaml.insert(yaml.find("    parameter:"), "    overrides: {geometry.mesh: " + geo + "}\n");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome o = run(dir, build, "", "PATH=" + dir.path().string());
+  EXPECT_EQ(o.exit_code, 1) << o.log;
+  EXPECT_NE(o.log.find("geometry.mesh"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("gmsh is not on PATH"), std::string::npos) << o.log;
+  EXPECT_FALSE(fs::exists(dir.file("out/r/fe"))) << "nothing ran";
+}
+
+TEST(RunPipeline, AMissingMeshFileNamesTheKey)
+{
+  test_support::ScratchDir dir("pipeline_missing_mesh");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("p.yaml"), pipeline_yaml(dir.path(), "[0.002, 0.004]"));
+  test_support::write_text(dir.file("fe.yaml"), "{\"geometry\": {\"t_B\": 0.004, \"mesh\": \"nope.msh\"}}\n");
+  const Outcome o = run(dir, build);
+  EXPECT_EQ(o.exit_code, 1) << o.log;
+  EXPECT_NE(o.log.find("geometry.mesh"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("nope.msh"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("fe.yaml"), std::string::npos) << o.log;
+  EXPECT_FALSE(fs::exists(dir.file("out/r/fe"))) << "nothing ran";
 }

@@ -1,5 +1,5 @@
-// The default pipeline.yaml with the fast preset, end to end: FE thickness sweep, fits, law
-// family, MBD scenes, report. Then a second run must do no FE or fit work.
+// The default pipeline.yaml with the fast preset, end to end: FE thickness and misalignment
+// sweeps, fits, law families, MBD scenes (the tilted one on the misalignment family), report. Then a second run must do no FE or fit work.
 #include "common/strict_reader.h"
 #include "laws/law_family.h"
 #include "test_support.h"
@@ -33,6 +33,17 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
     EXPECT_GT(F, previous) << "t_B = " << m.value;
     previous = F;
   }
+  // The misalignment sweep: five laws (1, 1.5, 2, 2.5° and θ_max) in one family over θ in rad,
+  // which the tilted scene evaluates. No trend is asserted (SPEC §2: report the trend found).
+  const auto tilt = laws::read_law_family((run / "fit/misalignment/family/family.json").string());
+  EXPECT_EQ(tilt.unit(), "rad");
+  ASSERT_EQ(tilt.members().size(), 5u);
+  // θ_max of the default geometry, 3.2842259° (docs/geometry.md); 1e-8 rad covers the 7 digits
+  // written here (±5e-8° = 9e-10 rad) with room, and is far below the 0.5° member spacing.
+  EXPECT_NEAR(tilt.members().back().value, 3.2842259 * 3.14159265358979 / 180.0, 1e-8);
+  const auto tilted = read_json_file((run / "mbd/tilted_1deg/summary.json").string());
+  EXPECT_EQ(tilted["clearance_joints"][0]["normal_model"]["name"], "law_family");
+
   for (const auto &name : {"fe_law", "johnson", "ideal", "tilted_1deg", "fe_law_damped_paper"})
     EXPECT_TRUE(fs::exists(run / "mbd" / name / "timeseries.csv")) << name;
 

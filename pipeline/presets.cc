@@ -1,0 +1,75 @@
+#include "pipeline/presets.h"
+
+#include <cstdio>
+
+namespace clearjoint::pipeline
+{
+  std::string describe_preset_errors(const PipelineConfig &config, const std::string &preset)
+  {
+    const auto m = config.preset_measured.find(preset);
+    std::string out = "preset " + preset + ": estimated error of F(delta_max) per FE study:";
+    if (config.fe_studies.empty())
+      return out + " (no FE studies)";
+    for (const auto &study : config.fe_studies)
+    {
+      out += "\n    " + study.name + ": ";
+      const PresetError *e = nullptr;
+      if (m != config.preset_measured.end())
+        if (const auto it = m->second.error_F_max.find(study.name); it != m->second.error_F_max.end())
+          e = &it->second;
+      if (!e)
+        out += "not stated in pipeline.yaml";
+      else
+      {
+        if (e->percent)
+        {
+          char buf[32];
+          std::snprintf(buf, sizeof(buf), "%.3g %%", *e->percent);
+          out += buf;
+        }
+        else
+          out += "NOT YET MEASURED";
+        out += " (" + e->where + ")";
+      }
+    }
+    return out;
+  }
+
+  nlohmann::json presets_summary(const PipelineConfig &config)
+  {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto &name : preset_names())
+    {
+      nlohmann::json p = {{"name", name}, {"chosen", name == config.preset}};
+      p["fe"] = nlohmann::json::object();
+      p["mbd"] = nlohmann::json::object();
+      if (const auto it = config.presets.find(name); it != config.presets.end())
+        for (const auto &[key, value] : it->second)
+        {
+          const auto colon = key.find(':');
+          p[key.substr(0, colon)][key.substr(colon + 1)] = value;
+        }
+      p["measured"] = nullptr;
+      if (const auto it = config.preset_measured.find(name); it != config.preset_measured.end())
+      {
+        const PresetMeasured &m = it->second;
+        const auto opt = [](const std::optional<double> &v, const char *unit) -> nlohmann::json {
+          if (!v)
+            return nullptr;
+          return {{"value", *v}, {"unit", unit}};
+        };
+        nlohmann::json errors = nlohmann::json::object();
+        for (const auto &[study, e] : m.error_F_max)
+          errors[study] = {{"percent", e.percent ? nlohmann::json(*e.percent) : nlohmann::json()},
+                           {"where", e.where}};
+        p["measured"] = {{"note", m.note},
+                         {"fe_dofs", opt(m.fe_dofs, "1")},
+                         {"fe_case_time", opt(m.fe_case_time, "s")},
+                         {"pipeline_time", opt(m.pipeline_time, "s")},
+                         {"error_F_max", errors}};
+      }
+      out.push_back(p);
+    }
+    return out;
+  }
+} // namespace clearjoint::pipeline
