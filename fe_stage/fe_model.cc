@@ -217,6 +217,7 @@ namespace clearjoint::fe
       std::array<types::global_dof_index, dim> dofs;
       std::array<types::global_dof_index, dim> partner;  // journal node (two-body contact)
       bool two_body = false;
+      bool partner_driven_y = false;  // the partner's y-DoF is driven by the journal load
       Point<dim> X;
       unsigned int constrained_component = 1;
       bool owned = false;   // owned by this rank (its x-DoF is locally owned)
@@ -288,6 +289,24 @@ namespace clearjoint::fe
       double lambda_, mu_;
     };
 
+    /// The DoFs of each node of a face, grouped per node (x, y, z), in face order.
+    template <typename CellIterator>
+    std::vector<std::array<types::global_dof_index, dim>>
+    face_node_dofs(const CellIterator &cell, const unsigned int f,
+                   std::vector<types::global_dof_index> &face_dofs)
+    {
+      const auto &fe = cell->get_fe();
+      face_dofs.resize(fe.n_dofs_per_face());
+      cell->face(f)->get_dof_indices(face_dofs);
+      std::vector<std::array<types::global_dof_index, dim>> nodes(fe.n_dofs_per_face() / dim);
+      for (unsigned int k = 0; k < face_dofs.size(); ++k)
+        {
+          const auto ci = fe.face_system_to_component_index(k);
+          nodes[ci.second][ci.first] = face_dofs[k];
+        }
+      return nodes;
+    }
+
     struct Failure
     {
       std::string reason;
@@ -309,6 +328,7 @@ namespace clearjoint::fe
       bool bore_gap_below(const CellIterator &cell, double limit) const;
       void make_block_grid();
       void setup_system();
+      void build_fixed_constraints();
       void find_contact_nodes();
       void make_matrices();
       void set_fixed_constraints_for(double delta);
@@ -337,6 +357,7 @@ namespace clearjoint::fe
 
       Obstacle obstacle_;
       double symmetry_factor_ = 1.0;
+      double rim_z_ = 0.0;  // [m] |z| of the journal's end plane (tilted: of the first touch)
       double h_min_ = 0.0;
       double lame_lambda_ = 0.0, lame_mu_ = 0.0;
 
@@ -837,6 +858,9 @@ namespace clearjoint::fe
       const auto &G = scene_.geometry;
       obstacle_.radius = G.R_J();
       obstacle_.half_length = 0.5 * G.L_J();
+      const double theta =
+        scene_.study == Study::misalignment ? scene_.misalignment.theta_deg * units::deg : 0.0;
+      rim_z_ = 0.5 * G.L_J() * std::cos(theta) - G.R_J() * std::sin(theta);
       if (scene_.study == Study::misalignment)
         {
           const double theta = scene_.misalignment.theta_deg * units::deg;
@@ -914,6 +938,29 @@ namespace clearjoint::fe
                   phi += std::abs(std::atan2(cell->vertex(v)[0], -cell->vertex(v)[1]));
                 phi /= cell->n_vertices();
                 if (phi < window)
+                  cell->set_refine_flag();
+              }
+          tria_.execute_coarsening_and_refinement();
+        }
+      // The rim: cells inside the window whose axial extent reaches the end plane |z| = rim_z_.
+      const double tol = 1e-9 * scene_.geometry.R_B;
+      for (unsigned int k = 0; k < M.rim_refinements && rim_z_ > 0.0; ++k)
+        {
+          for (const auto &cell : tria_.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                double phi = 0.0, z_lo = std::numeric_limits<double>::max(), z_hi = -z_lo;
+                for (const auto v : cell->vertex_indices())
+                  {
+                    const Point<dim> &p = cell->vertex(v);
+                    phi += std::abs(std::atan2(p[0], -p[1]));
+                    z_lo = std::min(z_lo, p[2]);
+                    z_hi = std::max(z_hi, p[2]);
+                  }
+                phi /= cell->n_vertices();
+                const bool at_rim = (z_lo - tol <= rim_z_ && rim_z_ <= z_hi + tol) ||
+                                    (z_lo - tol <= -rim_z_ && -rim_z_ <= z_hi + tol);
+                if (phi < window && at_rim)
                   cell->set_refine_flag();
               }
           tria_.execute_coarsening_and_refinement();
@@ -1015,6 +1062,27 @@ namespace clearjoint::fe
       owned_ = dof_handler_.locally_owned_dofs();
       DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
 
+      two_body_ = joint && scene_.loading.journal != JournalLoading::rigid;
+      build_fixed_constraints();
+
+      {
+        const FEValuesExtractors::Scalar uy(1);
+        const IndexSet sy = DoFTools::extract_boundary_dofs(dof_handler_, fe_->component_mask(uy),
+                                                           {bid_fixed});
+        for (const auto i : sy)
+          if (owned_.is_element(i))
+            support_y_dofs_.push_back(i);
+      }
+
+    }
+
+    /// Hanging nodes, symmetry planes, supports and the journal load at δ = 1 on the locally
+    /// relevant DoFs. With several ranks the lines are made consistent across ranks, so a rank
+    /// also knows the constraints of the journal DoFs it was given as contact partners.
+    void ContactModel::build_fixed_constraints()
+    {
+      const bool joint = scene_.study == Study::radial || scene_.study == Study::misalignment;
+      loaded_y_dofs_.clear();
       const FEValuesExtractors::Scalar ux(0), uy(1), uz(2);
       fixed_constraints_.clear();
       fixed_constraints_.reinit(relevant_);
@@ -1022,17 +1090,14 @@ namespace clearjoint::fe
       hanging_constraints_.clear();
       hanging_constraints_.reinit(relevant_);
       DoFTools::make_hanging_node_constraints(dof_handler_, hanging_constraints_);
+      if (n_ranks_ > 1)
+        hanging_constraints_.make_consistent_in_parallel(owned_, relevant_, comm_);
       hanging_constraints_.close();
       const Functions::ZeroFunction<dim> zero(dim);
       VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_x, zero,
                                                fixed_constraints_, fe_->component_mask(ux));
       VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_sym_z, zero,
                                                fixed_constraints_, fe_->component_mask(uz));
-      two_body_ = joint && scene_.loading.journal != JournalLoading::rigid;
-      if (two_body_ && n_ranks_ > 1)
-        throw InputError(scene_.source_file, "loading.journal", to_string(scene_.loading.journal),
-                         "rigid (with more than one MPI rank)",
-                         "the deformable journal runs on one MPI rank in this version");
       if (joint)
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
                                                  fixed_constraints_);
@@ -1099,16 +1164,9 @@ namespace clearjoint::fe
             throw NumericalError("fe_stage: no journal DoFs found for the loading " +
                                  to_string(scene_.loading.journal));
         }
+      if (n_ranks_ > 1)
+        fixed_constraints_.make_consistent_in_parallel(owned_, relevant_, comm_);
       fixed_constraints_.close();
-
-      {
-        const IndexSet sy = DoFTools::extract_boundary_dofs(dof_handler_, fe_->component_mask(uy),
-                                                           {bid_fixed});
-        for (const auto i : sy)
-          if (owned_.is_element(i))
-            support_y_dofs_.push_back(i);
-      }
-
     }
 
     /// Matrices and vectors. The sparsity pattern is built with every candidate's contact line
@@ -1222,37 +1280,56 @@ namespace clearjoint::fe
         return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9),
                               std::lround(p[2] / 1e-11));
       };
-      std::map<std::pair<long, long>, std::array<types::global_dof_index, dim>> journal_nodes;
+      // Every rank gets every journal surface node (a few thousand): with several ranks the
+      // journal cell facing a bearing node is often neither owned nor a ghost, so the owner of
+      // each journal node contributes it (DoFs, position, whether its y-DoF is driven).
+      struct JournalNode
+      {
+        std::array<types::global_dof_index, dim> dofs;
+        Point<dim> X;
+        bool driven_y = false;
+      };
+      std::map<std::pair<long, long>, JournalNode> journal_nodes;
       if (two_body_)
-        for (const auto &cell : dof_handler_.active_cell_iterators())
-          if (cell->is_locally_owned() || cell->is_ghost())
-            for (const auto f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() == bid_journal_surface)
-                {
-                  cell->face(f)->get_dof_indices(face_dofs);
-                  std::map<unsigned int, std::array<types::global_dof_index, dim>> per_node;
-                  for (unsigned int k = 0; k < face_dofs.size(); ++k)
-                    {
-                      const auto ci = fe_->face_system_to_component_index(k);
-                      per_node[ci.second][ci.first] = face_dofs[k];
-                    }
-                  for (const auto &[node, dofs] : per_node)
-                    journal_nodes[key_of(support.at(dofs[0]))] = dofs;
-                }
+        {
+          std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag
+          std::set<types::global_dof_index> seen;
+          for (const auto &cell : dof_handler_.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const auto f : cell->face_indices())
+                if (cell->face(f)->at_boundary() &&
+                    cell->face(f)->boundary_id() == bid_journal_surface)
+                  for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
+                    if (owned_.is_element(dofs[0]) && seen.insert(dofs[0]).second)
+                      {
+                        const Point<dim> &X = support.at(dofs[0]);
+                        const auto key = key_of(X);
+                        mine.insert(mine.end(), {double(key.first), double(key.second),
+                                                 double(dofs[0]), double(dofs[1]),
+                                                 double(dofs[2]), X[0], X[1], X[2],
+                                                 std::binary_search(loaded_sorted_.begin(),
+                                                                    loaded_sorted_.end(),
+                                                                    dofs[1]) ? 1.0 : 0.0});
+                      }
+          for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
+            for (std::size_t i = 0; i + 9 <= part.size(); i += 9)
+              {
+                JournalNode jn;
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    jn.dofs[c] = static_cast<types::global_dof_index>(part[i + 2 + c]);
+                    jn.X[c] = part[i + 5 + c];
+                  }
+                jn.driven_y = part[i + 8] != 0.0;
+                journal_nodes[{std::lround(part[i]), std::lround(part[i + 1])}] = jn;
+              }
+        }
       for (const auto &cell : dof_handler_.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
               {
-                cell->face(f)->get_dof_indices(face_dofs);
-                std::map<unsigned int, std::array<types::global_dof_index, dim>> per_node;
-                for (unsigned int k = 0; k < face_dofs.size(); ++k)
-                  {
-                    const auto ci = fe_->face_system_to_component_index(k);
-                    per_node[ci.second][ci.first] = face_dofs[k];
-                  }
-                for (const auto &[node, dofs] : per_node)
+                for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
                   {
                     if (by_x_dof.count(dofs[0]))
                       continue;
@@ -1295,8 +1372,9 @@ namespace clearjoint::fe
                             format_value(cn.X[0]) + ", " + format_value(cn.X[1]) + ", " +
                             format_value(cn.X[2]) + ") m: the contact meshes do not match");
                         cn.two_body = true;
-                        cn.partner = it->second;
-                        const Point<dim> XJ = support.at(it->second[0]);
+                        cn.partner = it->second.dofs;
+                        cn.partner_driven_y = it->second.driven_y;
+                        const Point<dim> &XJ = it->second.X;
                         const double rB = std::hypot(cn.X[0], cn.X[1]);
                         cn.n = Tensor<1, dim>({cn.X[0] / rB, cn.X[1] / rB, 0.0});
                         cn.g0 = rB - std::hypot(XJ[0], XJ[1]);  // along the common ray
@@ -1307,6 +1385,22 @@ namespace clearjoint::fe
       nodes_.clear();
       for (auto &[d, cn] : by_x_dof)
         nodes_.push_back(cn);
+
+      // Partner DoFs this rank does not see yet become ghosts (solution values, constraint
+      // lines); the fixed constraints are rebuilt on the enlarged set and made consistent.
+      if (two_body_ && n_ranks_ > 1)
+        {
+          IndexSet extra(dof_handler_.n_dofs());
+          for (const auto &cn : nodes_)
+            if (cn.two_body)
+              for (const auto d : cn.partner)
+                if (!relevant_.is_element(d))
+                  extra.add_index(d);
+          extra.compress();
+          relevant_.add_indices(extra);
+          relevant_.compress();
+          build_fixed_constraints();
+        }
 
       // Cells that hold a candidate DoF: their condensed contributions change with the active
       // set; all other cells go into A_static once.
@@ -1715,8 +1809,7 @@ namespace clearjoint::fe
       // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
       // the contact force reaches that DoF through the constraint, not through K u: add it.
       for (const auto &cn : nodes_)
-        if (cn.two_body && cn.active && cn.owned &&
-            std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), cn.partner[1]))
+        if (cn.two_body && cn.active && cn.owned && cn.partner_driven_y)
           f_load -= cn.lambda * cn.n[1];
       rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
                                    symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);

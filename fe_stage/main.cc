@@ -170,13 +170,6 @@ int main(int argc, char **argv)
       if (no_fields)
         scene.output.fields = false;
       fe::validate_scene(scene);
-      int n_ranks = 1;
-      MPI_Comm_size(MPI_COMM_WORLD, &n_ranks);
-      if (n_ranks > 1 && scene.study == fe::Study::radial &&
-          scene.loading.journal != fe::JournalLoading::rigid)
-        throw InputError(scene_path, "loading.journal", fe::to_string(scene.loading.journal),
-                         "rigid when run on more than one MPI rank",
-                         "the deformable journal runs on one MPI rank in this version");
       if (scene.contact.mu > 0.0 && root)
         log::warning("fe_stage: contact.mu = " + format_value(scene.contact.mu) +
                      " but friction is not modelled in this version; the solve is frictionless "
