@@ -357,7 +357,6 @@ namespace clearjoint::fe
 
       Obstacle obstacle_;
       double symmetry_factor_ = 1.0;
-      double rim_z_ = 0.0;  // [m] |z| of the journal's end plane (tilted: of the first touch)
       double h_min_ = 0.0;
       double lame_lambda_ = 0.0, lame_mu_ = 0.0;
 
@@ -858,9 +857,6 @@ namespace clearjoint::fe
       const auto &G = scene_.geometry;
       obstacle_.radius = G.R_J();
       obstacle_.half_length = 0.5 * G.L_J();
-      const double theta =
-        scene_.study == Study::misalignment ? scene_.misalignment.theta_deg * units::deg : 0.0;
-      rim_z_ = 0.5 * G.L_J() * std::cos(theta) - G.R_J() * std::sin(theta);
       if (scene_.study == Study::misalignment)
         {
           const double theta = scene_.misalignment.theta_deg * units::deg;
@@ -938,29 +934,6 @@ namespace clearjoint::fe
                   phi += std::abs(std::atan2(cell->vertex(v)[0], -cell->vertex(v)[1]));
                 phi /= cell->n_vertices();
                 if (phi < window)
-                  cell->set_refine_flag();
-              }
-          tria_.execute_coarsening_and_refinement();
-        }
-      // The rim: cells inside the window whose axial extent reaches the end plane |z| = rim_z_.
-      const double tol = 1e-9 * scene_.geometry.R_B;
-      for (unsigned int k = 0; k < M.rim_refinements && rim_z_ > 0.0; ++k)
-        {
-          for (const auto &cell : tria_.active_cell_iterators())
-            if (cell->is_locally_owned())
-              {
-                double phi = 0.0, z_lo = std::numeric_limits<double>::max(), z_hi = -z_lo;
-                for (const auto v : cell->vertex_indices())
-                  {
-                    const Point<dim> &p = cell->vertex(v);
-                    phi += std::abs(std::atan2(p[0], -p[1]));
-                    z_lo = std::min(z_lo, p[2]);
-                    z_hi = std::max(z_hi, p[2]);
-                  }
-                phi /= cell->n_vertices();
-                const bool at_rim = (z_lo - tol <= rim_z_ && rim_z_ <= z_hi + tol) ||
-                                    (z_lo - tol <= -rim_z_ && -rim_z_ <= z_hi + tol);
-                if (phi < window && at_rim)
                   cell->set_refine_flag();
               }
           tria_.execute_coarsening_and_refinement();
@@ -1402,14 +1375,24 @@ namespace clearjoint::fe
           build_fixed_constraints();
         }
 
-      // Cells that hold a candidate DoF: their condensed contributions change with the active
-      // set; all other cells go into A_static once.
-      std::vector<bool> dummy;
+      // Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
+      // contributions change with the active set (a hanging node's share moves on through the
+      // contact line of its master); all other cells go into A_static once.
       IndexSet candidate_dofs(dof_handler_.n_dofs());
       for (const auto &cn : nodes_)
         if (cn.candidate)
           for (const auto d : cn.dofs)
             candidate_dofs.add_index(d);
+      candidate_dofs.compress();
+      IndexSet hanging_on_candidates(dof_handler_.n_dofs());
+      for (const auto &line : fixed_constraints_.get_lines())
+        for (const auto &entry : line.entries)
+          if (candidate_dofs.is_element(entry.first))
+            {
+              hanging_on_candidates.add_index(line.index);
+              break;
+            }
+      candidate_dofs.add_indices(hanging_on_candidates);
       candidate_dofs.compress();
       contact_cell_of_.assign(tria_.n_active_cells(), -1);
       std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());

@@ -140,7 +140,6 @@ namespace clearjoint::fe
         M.contact_refinements = uint_or(m, "contact_refinements", M.contact_refinements, 0, 8);
         M.contact_window_deg =
           m.number_or("contact_window_deg", M.contact_window_deg, Range::open(0.0, 180.0, "deg"));
-        M.rim_refinements = uint_or(m, "rim_refinements", M.rim_refinements, 0, 6);
         m.finish();
       }
     if (top.has("solver"))
@@ -351,8 +350,6 @@ namespace clearjoint::fe
       << "  # extra refinements of the cells inside the contact window\n"
       << "  contact_window_deg: " << d.mesh.contact_window_deg
       << "  # [deg] half-angle of the refined zone about the bottom\n"
-      << "  rim_refinements: " << d.mesh.rim_refinements
-      << "  # extra refinements of the window's cells at the journal's end plane |z| = L_J/2\n"
       << "solver:\n"
       << "  linear: automatic   # automatic | cg_amg | direct\n"
       << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
@@ -400,8 +397,7 @@ namespace clearjoint::fe
                  {"n_axial", s.mesh.n_axial},
                  {"global_refinements", s.mesh.global_refinements},
                  {"contact_refinements", s.mesh.contact_refinements},
-                 {"contact_window_deg", s.mesh.contact_window_deg},
-                 {"rim_refinements", s.mesh.rim_refinements}};
+                 {"contact_window_deg", s.mesh.contact_window_deg}};
     const char *lin = s.solver.linear == LinearSolver::automatic ? "automatic" :
                       s.solver.linear == LinearSolver::cg_amg    ? "cg_amg" :
                                                                    "direct";

@@ -84,10 +84,6 @@ namespace clearjoint::fe
     unsigned int global_refinements = 0;
     unsigned int contact_refinements = 1;  // extra refinements inside the contact window
     double contact_window_deg = 40.0;   // [deg] half-angle of the refined zone about the bottom
-    /// Extra refinements, inside the contact window, of the cells at the journal's end plane
-    /// |z| = L_J/2 (misalignment: the plane through the first touch point): the rim edge where
-    /// contact pressure and the end-face loading are singular.
-    unsigned int rim_refinements = 0;
   };
 
   struct Solver
