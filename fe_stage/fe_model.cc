@@ -1167,51 +1167,59 @@ namespace clearjoint::fe
       DynamicSparsityPattern dsp(relevant_);
       DoFTools::make_sparsity_pattern(dof_handler_, dsp, fixed_constraints_, true);
       DoFTools::make_sparsity_pattern(dof_handler_, dsp, worst, true);
-      if (two_body_)
-        {
-          // Condensing a bearing contact line moves entries K(i, d) to K(i, partner) and K(d, j)
-          // to K(partner, j) for every i, j of the cells holding d: add them explicitly (the
-          // partner's own hanging/Dirichlet chains are covered by make_sparsity_pattern above).
-          std::map<types::global_dof_index, std::vector<types::global_dof_index>> partners;
-          for (const auto &cn : nodes_)
-            if (cn.candidate && cn.two_body)
-              for (unsigned int k = 0; k < dim; ++k)
+      // Any mix of active and inactive candidates must fit the pattern, not only "none" and
+      // "all": condensing the contact line of a candidate d moves entries K(i, d) and K(d, j) of
+      // every cell holding d — or holding a hanging DoF that hangs from d — to the DoFs of d's
+      // line (its node's other components, the journal partner's components and their
+      // masters). A free candidate's row in such a cell then couples to them too. Add these
+      // couplings for every such cell explicitly.
+      {
+        std::map<types::global_dof_index, std::vector<types::global_dof_index>> line_dofs;
+        for (const auto &cn : nodes_)
+          if (cn.candidate)
+            {
+              auto &v = line_dofs[cn.dofs[cn.constrained_component]];
+              for (unsigned int l = 0; l < dim; ++l)
                 {
-                  auto &v = partners[cn.dofs[cn.constrained_component]];
-                  for (unsigned int l = 0; l < dim; ++l)
-                    {
-                      v.push_back(cn.partner[l]);
-                      for (const auto &e : worst.get_constraint_entries(cn.partner[l]) ?
-                                            *worst.get_constraint_entries(cn.partner[l]) :
-                                            std::vector<std::pair<types::global_dof_index, double>>())
-                        v.push_back(e.first);
-                    }
-                  (void)k;
+                  v.push_back(cn.dofs[l]);
+                  if (!cn.two_body)
+                    continue;
+                  v.push_back(cn.partner[l]);
+                  if (const auto *e = worst.get_constraint_entries(cn.partner[l]))
+                    for (const auto &entry : *e)
+                      v.push_back(entry.first);
                 }
-          std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
-          for (const auto &cell : dof_handler_.active_cell_iterators())
-            if (cell->is_locally_owned() || cell->is_ghost())
-              {
-                cell->get_dof_indices(cell_dofs);
-                std::vector<types::global_dof_index> ps;
-                for (const auto d : cell_dofs)
-                  {
-                    const auto it = partners.find(d);
-                    if (it != partners.end())
-                      ps.insert(ps.end(), it->second.begin(), it->second.end());
-                  }
-                if (ps.empty())
-                  continue;
-                std::sort(ps.begin(), ps.end());
-                ps.erase(std::unique(ps.begin(), ps.end()), ps.end());
-                std::vector<types::global_dof_index> all = cell_dofs;
-                all.insert(all.end(), ps.begin(), ps.end());
-                for (const auto i : all)
-                  if (relevant_.is_element(i))
-                    for (const auto j : all)
-                      dsp.add(i, j);
-              }
-        }
+            }
+        std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          if (cell->is_locally_owned() || cell->is_ghost())
+            {
+              cell->get_dof_indices(cell_dofs);
+              std::vector<types::global_dof_index> ps;
+              auto collect = [&](const types::global_dof_index d) {
+                const auto it = line_dofs.find(d);
+                if (it != line_dofs.end())
+                  ps.insert(ps.end(), it->second.begin(), it->second.end());
+              };
+              for (const auto d : cell_dofs)
+                {
+                  collect(d);
+                  if (const auto *e = fixed_constraints_.get_constraint_entries(d))
+                    for (const auto &entry : *e)
+                      collect(entry.first);
+                }
+              if (ps.empty())
+                continue;
+              std::vector<types::global_dof_index> all = cell_dofs;
+              all.insert(all.end(), ps.begin(), ps.end());
+              std::sort(all.begin(), all.end());
+              all.erase(std::unique(all.begin(), all.end()), all.end());
+              for (const auto i : all)
+                if (relevant_.is_element(i))
+                  for (const auto j : all)
+                    dsp.add(i, j);
+            }
+      }
       SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
       K_.reinit(owned_, owned_, dsp, comm_);
       A_static_.reinit(owned_, owned_, dsp, comm_);
