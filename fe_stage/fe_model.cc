@@ -1381,6 +1381,24 @@ namespace clearjoint::fe
           relevant_.add_indices(extra);
           relevant_.compress();
           build_fixed_constraints();
+          // A partner that hangs (its journal face is refined on one side) passes its line to
+          // masters this rank may not see either: they become ghosts too (closed lines have
+          // no chains, so one more round suffices).
+          IndexSet masters(dof_handler_.n_dofs());
+          for (const auto &cn : nodes_)
+            if (cn.two_body)
+              for (const auto d : cn.partner)
+                if (const auto *e = fixed_constraints_.get_constraint_entries(d))
+                  for (const auto &entry : *e)
+                    if (!relevant_.is_element(entry.first))
+                      masters.add_index(entry.first);
+          masters.compress();
+          if (Utilities::MPI::max(masters.n_elements(), comm_) > 0)
+            {
+              relevant_.add_indices(masters);
+              relevant_.compress();
+              build_fixed_constraints();
+            }
         }
 
       // Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed

@@ -41,6 +41,16 @@ namespace
     return o.str();
   }
 
+  /// An unexpected error may be thrown on one rank only, while the others wait in a collective
+  /// call: with several ranks, end them all rather than hang.
+  void abort_other_ranks(const int code)
+  {
+    int n = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &n);
+    if (n > 1)
+      MPI_Abort(MPI_COMM_WORLD, code);
+  }
+
   /// One case: CSV + fields + manifest in `dir`. Returns true if complete.
   bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
                 double &force_at_max)
@@ -254,14 +264,14 @@ int main(int argc, char **argv)
     }
   catch (const NumericalError &e)
     {
-      if (root)
-        log::error(e.what());
+      log::error(e.what());
+      abort_other_ranks(exit_numerical_error);
       return exit_numerical_error;
     }
   catch (const std::exception &e)
     {
-      if (root)
-        log::error(std::string("fe_stage: ") + e.what());
+      log::error(std::string("fe_stage: ") + e.what());
+      abort_other_ranks(exit_numerical_error);
       return exit_numerical_error;
     }
 }
