@@ -1368,37 +1368,36 @@ namespace clearjoint::fe
         nodes_.push_back(cn);
 
       // Partner DoFs this rank does not see yet become ghosts (solution values, constraint
-      // lines); the fixed constraints are rebuilt on the enlarged set and made consistent.
+      // lines), and then the masters of partners that hang (a journal face refined on one
+      // side): closed lines have no chains, so two rounds suffice. After each round the fixed
+      // constraints are rebuilt on the enlarged set and made consistent across ranks.
       if (two_body_ && n_ranks_ > 1)
         {
-          IndexSet extra(dof_handler_.n_dofs());
-          for (const auto &cn : nodes_)
-            if (cn.two_body)
-              for (const auto d : cn.partner)
-                if (!relevant_.is_element(d))
-                  extra.add_index(d);
-          extra.compress();
-          relevant_.add_indices(extra);
-          relevant_.compress();
-          build_fixed_constraints();
-          // A partner that hangs (its journal face is refined on one side) passes its line to
-          // masters this rank may not see either: they become ghosts too (closed lines have
-          // no chains, so one more round suffices).
-          IndexSet masters(dof_handler_.n_dofs());
-          for (const auto &cn : nodes_)
-            if (cn.two_body)
-              for (const auto d : cn.partner)
-                if (const auto *e = fixed_constraints_.get_constraint_entries(d))
-                  for (const auto &entry : *e)
-                    if (!relevant_.is_element(entry.first))
-                      masters.add_index(entry.first);
-          masters.compress();
-          if (Utilities::MPI::max(masters.n_elements(), comm_) > 0)
-            {
-              relevant_.add_indices(masters);
-              relevant_.compress();
-              build_fixed_constraints();
-            }
+          auto add_ghosts = [&](const auto &dofs_of_partner) {
+            IndexSet extra(dof_handler_.n_dofs());
+            for (const auto &cn : nodes_)
+              if (cn.two_body)
+                for (const auto p : cn.partner)
+                  for (const auto d : dofs_of_partner(p))
+                    if (!relevant_.is_element(d))
+                      extra.add_index(d);
+            extra.compress();
+            if (Utilities::MPI::max(extra.n_elements(), comm_) == 0)
+              return;  // collective: every rank takes the same branch
+            relevant_.add_indices(extra);
+            relevant_.compress();
+            build_fixed_constraints();
+          };
+          add_ghosts([](const types::global_dof_index p) {
+            return std::vector<types::global_dof_index>{p};
+          });
+          add_ghosts([&](const types::global_dof_index p) {
+            std::vector<types::global_dof_index> masters;
+            if (const auto *e = fixed_constraints_.get_constraint_entries(p))
+              for (const auto &entry : *e)
+                masters.push_back(entry.first);
+            return masters;
+          });
         }
 
       // Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
