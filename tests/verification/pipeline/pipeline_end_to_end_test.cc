@@ -55,3 +55,52 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
     ran += t["outcome"] == "ran";
   EXPECT_EQ(ran, 0) << test_support::read_text(dir.file("log2.txt"));
 }
+
+// The geometry swap with the real stages (issue 6 item 3): a pipeline naming a Gmsh bearing
+// (.geo, meshed by the pipeline) runs FE, fit and an MBD scene end to end, and its law records
+// the mesh it came from — apart from the default geometry's laws (another run folder). Small:
+// one thickness, a coarse Gmsh mesh (h = 3 mm), three increments, no report.
+TEST(PipelineEndToEnd, GmshBearingRunsEndToEnd)
+{
+  test_support::ScratchDir dir("pipeline_swap");
+  const fs::path yaml = dir.file("swap.yaml");
+  test_support::write_text(yaml,
+    "schema: clearjoint.pipeline/1\n"
+    "run: swap\n"
+    "output_root: " + dir.path().string() + "\n"
+    "preset: fast\n"
+    "mpi_ranks: 1\n"
+    "presets:\n"
+    "  fast: {fe: null, mbd: null}\n"
+    "  standard: {fe: null, mbd: null}\n"
+    "  accurate: {fe: null, mbd: null}\n"
+    "fe_studies:\n"
+    "  - name: flanged\n"
+    "    scene: " + std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/scenes/radial.yaml\n"
+    "    overrides: {geometry.mesh: " + std::string(CLEARJOINT_SOURCE_DIR) +
+      "/fe_stage/geometries/flanged_bearing.geo, loading.journal: rigid, "
+      "loading.n_increments: 3, mesh.contact_refinements: 0, output.fields: false}\n"
+    "    mesh_parameters: {h: 3.0e-3}\n"
+    "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n"
+    "    values: [0.004]\n"
+    "fit:\n"
+    "  weighting: absolute\n"
+    "mbd_runs:\n"
+    "  - name: flanged_law\n"
+    "    scene: " + std::string(CLEARJOINT_SOURCE_DIR) +
+      "/mbd_stage/scenes/slider_crank_fe_law_damped.yaml\n"
+    "    laws: [{key: clearance_joints.0.normal.law_file, study: flanged, value: 0.004}]\n"
+    "report: false\n");
+  const std::string cmd = std::string("cd ") + CLEARJOINT_SOURCE_DIR + " && " + RUN_PIPELINE_EXE +
+                          " " + yaml.string() + " --no-plots";
+  const int rc = test_support::run_command(cmd, dir.file("log.txt"));
+  ASSERT_EQ(rc, 0) << test_support::read_text(dir.file("log.txt"));
+  const fs::path run = dir.path() / "swap";
+  const auto law = read_json_file((run / "fit/flanged/t_B=0.004/law.json").string());
+  const std::string mesh = law["scene"]["geometry"]["mesh"].get<std::string>();
+  EXPECT_NE(mesh.find(".msh"), std::string::npos) << mesh;  // the Gmsh mesh, not generated
+  EXPECT_EQ(law["scene"]["loading"]["journal"], "rigid");
+  EXPECT_GT(law["diagnostics"]["r_squared"].get<double>(), 0.99);
+  EXPECT_TRUE(fs::exists(run / "mbd/flanged_law/timeseries.csv"));
+  EXPECT_EQ(read_json_file((run / "manifest.json").string())["status"], "complete");
+}
