@@ -1,16 +1,18 @@
 // fe_stage: the FE contact model of a revolute joint with clearance (SPEC §2).
 //
-//   fe_stage SCENE.yaml --output DIR [--full-model] [--no-fields]
+//   fe_stage SCENE.yaml --output DIR [--full-model] [--no-fields] [--no-plots]
 //   fe_stage --print-defaults
 //
 // Writes DIR/force_penetration.csv (delta, force, solver statistics per increment),
-// DIR/fields/ (VTU/PVTU + PVD) and DIR/manifest.json; with a `sweep` block, one such folder per
-// swept value under DIR plus DIR/manifest.json and DIR/sweep.csv.
+// DIR/fields/ (VTU/PVTU + PVD), DIR/force_penetration.png and DIR/manifest.json; with a `sweep`
+// block, one such folder per swept value under DIR plus DIR/manifest.json, DIR/sweep.csv and
+// DIR/sweep.png (every case's curve).
 // Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete).
 #include "common/csv.h"
 #include "common/error.h"
 #include "common/log.h"
 #include "common/manifest.h"
+#include "common/plot_script.h"
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/scene.h"
@@ -53,7 +55,7 @@ namespace
 
   /// One case: CSV + fields + manifest in `dir`. Returns true if complete.
   bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
-                double &force_at_max)
+                const bool plots, double &force_at_max)
   {
     const bool root = rank_of(MPI_COMM_WORLD) == 0;
     if (root)
@@ -114,6 +116,10 @@ namespace
         manifest->add_output(csv_path);
         for (const auto &f : result.field_files)
           manifest->add_output(f);
+        // F–δ, linear and log–log (a warning, not a failure, if Python/matplotlib is missing)
+        if (plots && !result.increments.empty() &&
+            run_plot_script("fe", {dir + "/force_penetration.png", dir}))
+          manifest->add_output(dir + "/force_penetration.png");
         auto &x = manifest->extra();
         x["n_dofs"] = result.n_dofs;
         x["n_cells"] = result.n_cells;
@@ -145,12 +151,14 @@ int main(int argc, char **argv)
   CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint).\n"
                "Exit codes: 0 success, 1 input error, 2 numerical failure."};
   std::string scene_path, output_dir;
-  bool print_defaults = false, full_model = false, no_fields = false, quiet = false;
+  bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
+       quiet = false;
   app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
   app.add_option("--output,-o", output_dir, "output directory");
   app.add_flag("--print-defaults", print_defaults, "print the default scene with units and exit");
   app.add_flag("--full-model", full_model, "model the full joint instead of the quarter model");
   app.add_flag("--no-fields", no_fields, "do not write VTU fields");
+  app.add_flag("--no-plots", no_plots, "do not draw the force-penetration plots (PNG)");
   app.add_flag("--quiet,-q", quiet, "warnings and errors only");
   try
     {
@@ -210,7 +218,7 @@ int main(int argc, char **argv)
       if (cases.empty())
         {
           double f;
-          complete = run_case(scene, output_dir, argc, argv, f);
+          complete = run_case(scene, output_dir, argc, argv, !no_plots, f);
         }
       else
         {
@@ -234,7 +242,7 @@ int main(int argc, char **argv)
               c.scene.sweep_t_B.clear();
               c.scene.sweep_theta_deg.clear();
               double f = 0.0;
-              const bool ok = run_case(c.scene, c.folder, argc, argv, f);
+              const bool ok = run_case(c.scene, c.folder, argc, argv, !no_plots, f);
               complete = complete && ok;
               if (root)
                 {
@@ -251,6 +259,15 @@ int main(int argc, char **argv)
               else
                 table->commit_incomplete("a case failed; see its manifest");
               top->add_output(output_dir + "/sweep.csv");
+              // every case's curve in one figure, labelled by its value
+              std::vector<std::string> plot_args = {output_dir + "/sweep.png"};
+              for (const auto &c : cases)
+                if (std::filesystem::exists(c.folder + "/force_penetration.csv"))
+                  plot_args.push_back(c.folder + "=" +
+                                      (by_theta ? "theta " + label(c.value) + " deg" :
+                                                  "t_B " + label(units::to_mm(c.value)) + " mm"));
+              if (!no_plots && run_plot_script("fe", plot_args))
+                top->add_output(output_dir + "/sweep.png");
               top->write(complete ? "complete" : "incomplete");
             }
         }

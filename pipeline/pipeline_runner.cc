@@ -165,6 +165,8 @@ namespace clearjoint::pipeline
                          std::to_string(config_.mpi_ranks)};
         fe.executable = stage_executable("fe_stage");
         fe.args = {scene, "--output", "{out}"};
+        if (!options_.plots)
+          fe.args.push_back("--no-plots");
         fe.input_files = {scene};
         for (const auto &f : files_named_in(scene_json))  // a mesh file's content, say
           fe.input_files.push_back(f);

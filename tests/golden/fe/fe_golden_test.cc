@@ -147,6 +147,7 @@ TEST(FeGolden, MisalignmentSweepOneFolderPerAngle)
   ASSERT_EQ(sweep.rows.size(), 5u);
   const auto theta = sweep.column("theta"), force = sweep.column("force_at_delta_max");
   EXPECT_NEAR(theta[4], 3.284226, 5e-7);  // θ_max of the default joint (docs/geometry.md)
+  EXPECT_TRUE(fs::exists(out / "sweep.png"));  // every case's F–δ in one figure
   const double golden[] = {5443.855379, 5552.484302, 5658.291099, 5761.161476, 5916.255639};
   const char *folders[] = {"theta_1deg", "theta_1.5deg", "theta_2deg", "theta_2.5deg",
                            "theta_3.28423deg"};
@@ -166,6 +167,7 @@ TEST(FeGolden, MisalignmentSweepOneFolderPerAngle)
       const CsvTable t = read_csv((out / folders[i] / "force_penetration.csv").string());
       EXPECT_EQ(t.status, "complete") << folders[i];
       EXPECT_EQ(t.column("force").back(), force[i]);
+      EXPECT_TRUE(fs::exists(out / folders[i] / "force_penetration.png")) << folders[i];
       const auto m = read_json_file((out / folders[i] / "manifest.json").string());
       EXPECT_NEAR(m.at("extra").at("scene").at("misalignment").at("theta_deg").get<double>(),
                   theta[i], 1e-12);
