@@ -710,12 +710,8 @@ namespace clearjoint::fe
     void ContactModel::make_gmsh_grid()
     {
       const auto &G = scene_.geometry;
-      const std::string &file = scene_.source_file;
-      if (scene_.loading.journal != JournalLoading::rigid)
-        throw InputError(file, "loading.journal", to_string(scene_.loading.journal),
-                         "rigid when geometry.mesh is given",
-                         "the journal of a Gmsh mesh does not share the bearing's contact nodes; "
-                         "this version pairs contact nodes only on its own generated meshes");
+      // validate_scene has checked the mesh against the scene (groups, cells, bore radius,
+      // journal loading, length) before any output was written
       const geometry::MshMesh msh = geometry::read_joint_mesh(G.mesh);
       auto tag_of = [&](const std::string &name, const int group_dim) {
         for (const auto &g : msh.groups)
@@ -751,21 +747,6 @@ namespace clearjoint::fe
             c.manifold_id = 0;
             cells.push_back(c);
           }
-
-      // The bore must be the scene's: the rigid journal is placed from R_B and c_r.
-      const double tol = 1e-6 * G.R_B;  // Gmsh writes coordinates to ~16 digits
-      double r_lo = std::numeric_limits<double>::max(), r_hi = 0.0;
-      for (const std::size_t node : msh.nodes_of("bearing_contact"))
-        {
-          const double r = std::hypot(msh.nodes[node][0], msh.nodes[node][1]);
-          r_lo = std::min(r_lo, r);
-          r_hi = std::max(r_hi, r);
-        }
-      if (std::abs(r_lo - G.R_B) > tol || std::abs(r_hi - G.R_B) > tol)
-        throw InputError(file, "geometry.R_B", format_value(G.R_B),
-                         "the bore radius of " + G.mesh + " (its bearing_contact nodes lie at " +
-                           format_value(r_lo) + " .. " + format_value(r_hi) + " m)",
-                         "the scene's geometry numbers must describe the meshed joint");
 
       // Surface groups → boundary ids, keyed by the sorted corner vertices of each quad.
       std::map<std::array<unsigned int, 4>, types::boundary_id> face_id;
@@ -831,10 +812,6 @@ namespace clearjoint::fe
       if (n_contact == 0 || n_fixed == 0)
         throw InputError(G.mesh, n_contact == 0 ? "bearing_contact" : "bearing_fixed",
                          "(no boundary face of the bearing)", "boundary faces of the bearing");
-      if (scene_.study == Study::misalignment && sym_z)
-        throw InputError(file, "geometry.mesh", G.mesh,
-                         "a mesh of the whole length for study misalignment",
-                         "the tilted journal breaks the z = 0 symmetry (mesh with quarter = 0)");
 
       tria_.copy_triangulation(serial);
       tria_.set_manifold(0, RayChart(G.c_r, G.R_J(), false));

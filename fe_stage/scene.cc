@@ -4,9 +4,11 @@
 #include "common/strict_reader.h"
 #include "common/units.h"
 #include "geometry/joint_geometry.h"
+#include "geometry/msh_check.h"
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 namespace clearjoint::fe
@@ -264,9 +266,8 @@ namespace clearjoint::fe
           geometry::check_tilt(jg, geometry::radians(s.sweep_theta_deg[i]), f,
                                "sweep.theta_deg." + std::to_string(i));
       }
-    if (!G.mesh.empty() && !joint)
-      throw InputError(f, "geometry.mesh", G.mesh, "study radial or misalignment",
-                       "the verification problems generate their own block");
+    if (!G.mesh.empty())
+      check_mesh_against_scene(s);
     if (joint && s.loading.delta_max >= G.R_J())
       throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max),
                        "(0, R_J) m", "the push must be smaller than the journal radius");
@@ -291,6 +292,45 @@ namespace clearjoint::fe
                        "paper Eq. 3 has no root for this geometry: the journal can turn over "
                        "inside the bearing, so there is no largest tilt");
     return geometry::degrees(*t);
+  }
+
+  /// A Gmsh mesh must be usable (geometry::read_joint_mesh: groups, hexahedra, no inverted
+  /// cells) and describe the scene's joint, before any output is written.
+  void check_mesh_against_scene(const FeScene &s)
+  {
+    const auto &G = s.geometry;
+    const std::string &f = s.source_file;
+    if (s.study != Study::radial && s.study != Study::misalignment)
+      throw InputError(f, "geometry.mesh", G.mesh, "study radial or misalignment",
+                       "the verification problems generate their own block");
+    if (s.loading.journal != JournalLoading::rigid)
+      throw InputError(f, "loading.journal", to_string(s.loading.journal),
+                       "rigid when geometry.mesh is given",
+                       "the journal of a Gmsh mesh does not share the bearing's contact nodes; "
+                       "this version pairs contact nodes only on its own generated meshes");
+    const geometry::MshMesh msh = geometry::read_joint_mesh(G.mesh);
+    // The bore must be the scene's: the rigid journal is placed from R_B and c_r.
+    const double tol = 1e-6 * G.R_B;  // Gmsh writes coordinates to ~16 digits
+    double r_lo = std::numeric_limits<double>::max(), r_hi = 0.0;
+    for (const std::size_t node : msh.nodes_of("bearing_contact"))
+      {
+        const double r = std::hypot(msh.nodes[node][0], msh.nodes[node][1]);
+        r_lo = std::min(r_lo, r);
+        r_hi = std::max(r_hi, r);
+      }
+    if (std::abs(r_lo - G.R_B) > tol || std::abs(r_hi - G.R_B) > tol)
+      throw InputError(f, "geometry.R_B", format_value(G.R_B),
+                       "the bore radius of " + G.mesh + " (its bearing_contact nodes lie at " +
+                         format_value(r_lo) + " .. " + format_value(r_hi) + " m)",
+                       "the scene's geometry numbers must describe the meshed joint");
+    // The tilted journal breaks the z = 0 symmetry: the bearing must reach z < 0.
+    double z_lo = std::numeric_limits<double>::max();
+    for (const std::size_t node : msh.nodes_of("bearing"))
+      z_lo = std::min(z_lo, msh.nodes[node][2]);
+    if (s.study == Study::misalignment && z_lo > -tol)
+      throw InputError(f, "geometry.mesh", G.mesh,
+                       "a mesh of the whole length for study misalignment",
+                       "the tilted journal breaks the z = 0 symmetry (mesh with quarter = 0)");
   }
 
   FeScene read_scene(const std::string &path)

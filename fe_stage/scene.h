@@ -134,6 +134,10 @@ namespace clearjoint::fe
   FeScene scene_from_json(const nlohmann::json &j, const std::string &source);
   /// Checks the combined constraints (geometry possible, etc.). Throws InputError.
   void validate_scene(const FeScene &scene);
+  /// geometry.mesh: readable and checked (groups, hexahedra, no inverted cells), a rigid
+  /// journal, the bore radius equal to R_B, the whole length for the misalignment study.
+  /// Part of validate_scene, so a bad mesh stops the run before any output. Throws InputError.
+  void check_mesh_against_scene(const FeScene &scene);
 
   /// The joint's dimensions for the geometry library (θ_max, tilt checks).
   geometry::JointGeometry joint_geometry(const Geometry &g);

@@ -41,12 +41,13 @@ namespace
     return s.str();
   }
 
-  /// Runs the scene and returns the InputError message ("" if none was thrown).
-  std::string input_error_of(const FeScene &s)
+  /// Reads (and runs) the scene and returns the InputError message ("" if none was thrown).
+  /// The mesh checks belong to reading the scene: they stop a run before any output.
+  std::string input_error_of(const std::string &yaml)
   {
     try
       {
-        run(s);
+        run(scene(yaml));
       }
     catch (const InputError &e)
       {
@@ -87,9 +88,9 @@ TEST(FeGmsh, FlangedBearingRunsBothStudies)
                                  "-setnumber h 2e-3");
   ASSERT_FALSE(msh.empty()) << read(scratch / "flanged_h2.log");
   const std::string common = "contact: {mu: 0}\ngeometry: {mesh: " + msh.string() +
-                             "}\nmesh: {contact_refinements: 1}\nloading: {n_increments: 2}\n";
-  FeScene aligned = scene(common);
-  aligned.loading.journal = JournalLoading::rigid;
+                             "}\nmesh: {contact_refinements: 1}\nloading: {journal: rigid, "
+                             "n_increments: 2}\n";
+  const FeScene aligned = scene(common);
   const FeScene tilted = scene(common + "study: misalignment\nmisalignment: {theta_deg: 1.0}\n");
   const RunResult a = run(aligned), t = run(tilted);
   ASSERT_TRUE(a.complete && t.complete) << a.message << t.message;
@@ -119,7 +120,7 @@ TEST(FeGmsh, BadMeshesAndInconsistentScenesAreInputErrors)
     t.replace(t.find("\"bearing_contact\""), 17, "\"bearing_inside\"");
     const fs::path bad = scratch / "missing_group.msh";
     std::ofstream(bad) << t;
-    const std::string msg = input_error_of(scene(rigid + "geometry: {mesh: " + bad.string() + "}\n"));
+    const std::string msg = input_error_of(rigid + "geometry: {mesh: " + bad.string() + "}\n");
     EXPECT_NE(msg.find("bearing_contact"), std::string::npos) << msg;
   }
   // an inverted hexahedron: the first hexahedron's bottom and top corners swapped
@@ -154,25 +155,25 @@ TEST(FeGmsh, BadMeshesAndInconsistentScenesAreInputErrors)
     ASSERT_TRUE(done);
     const fs::path bad = scratch / "inverted.msh";
     std::ofstream(bad) << out.str();
-    const std::string msg = input_error_of(scene(rigid + "geometry: {mesh: " + bad.string() + "}\n"));
+    const std::string msg = input_error_of(rigid + "geometry: {mesh: " + bad.string() + "}\n");
     EXPECT_NE(msg.find("inverted"), std::string::npos) << msg;
   }
   // the scene's bore radius is not the mesh's
   {
     const std::string msg = input_error_of(
-      scene(rigid + "geometry: {mesh: " + msh.string() + ", R_B: 0.0105, c_r: 0.0005}\n"));
+      rigid + "geometry: {mesh: " + msh.string() + ", R_B: 0.0105, c_r: 0.0005}\n");
     EXPECT_NE(msg.find("geometry.R_B"), std::string::npos) << msg;
   }
   // a deformable journal needs the generated meshes' paired contact nodes
   {
     const std::string msg =
-      input_error_of(scene("geometry: {mesh: " + msh.string() + "}\nloading: {journal: end_faces}\n"));
+      input_error_of("geometry: {mesh: " + msh.string() + "}\nloading: {journal: end_faces}\n");
     EXPECT_NE(msg.find("loading.journal"), std::string::npos) << msg;
   }
   // the misalignment study needs the whole length (the default .geo meshes z >= 0 only)
   {
-    const std::string msg = input_error_of(
-      scene("study: misalignment\ngeometry: {mesh: " + msh.string() + "}\n"));
+    const std::string msg =
+      input_error_of("study: misalignment\ngeometry: {mesh: " + msh.string() + "}\n");
     EXPECT_NE(msg.find("whole length"), std::string::npos) << msg;
   }
 }
