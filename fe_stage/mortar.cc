@@ -177,10 +177,11 @@ namespace clearjoint::fe::mortar
                 lo[d] = std::min(lo[d], X[d]), hi[d] = std::max(hi[d], X[d]);
             // Q2 edges bulge beyond their nodes by at most ¼ of the midpoint's offset from
             // the chord; a margin of ¼ of the node box covers that comfortably for sane faces.
-            const Vec3 margin = Vec3::Constant(0.25 * (hi - lo).maxCoeff() + max_distance);
+            const Vec3 margin = Vec3::Constant(0.25 * (hi - lo).maxCoeff());
             lo_[i] = lo - margin, hi_[i] = hi + margin;
-            all_lo = all_lo.cwiseMin(lo_[i]), all_hi = all_hi.cwiseMax(hi_[i]);
-            mean_extent += (hi_[i] - lo_[i]).maxCoeff() / double(n);
+            lo = lo_[i] - Vec3::Constant(max_distance), hi = hi_[i] + Vec3::Constant(max_distance);
+            all_lo = all_lo.cwiseMin(lo), all_hi = all_hi.cwiseMax(hi);
+            mean_extent += (hi - lo).maxCoeff() / double(n);
           }
         if (n == 0)
           return;
@@ -214,7 +215,8 @@ namespace clearjoint::fe::mortar
               }
             for (std::size_t i = 0; i < n; ++i)
               {
-                const auto a = cell_index(lo_[i]), b = cell_index(hi_[i]);
+                const Vec3 md = Vec3::Constant(max_distance);
+                const auto a = cell_index(lo_[i] - md), b = cell_index(hi_[i] + md);
                 for (long z = a[2]; z <= b[2]; ++z)
                   for (long y = a[1]; y <= b[1]; ++y)
                     for (long x = a[0]; x <= b[0]; ++x)
@@ -229,9 +231,10 @@ namespace clearjoint::fe::mortar
           }
       }
 
-      /// Calls visit(face index) for each master face whose inflated box contains x.
+      /// Calls visit(face index) for each master face whose box the segment
+      /// x ± max_distance·n crosses (only those can hold the projection).
       template <typename Visit>
-      void for_candidates(const Vec3 &x, Visit &&visit) const
+      void for_candidates(const Vec3 &x, const Vec3 &n, double max_distance, Visit &&visit) const
       {
         if (faces_.empty())
           return;
@@ -243,7 +246,22 @@ namespace clearjoint::fe::mortar
         for (std::size_t j = start_[cell]; j < start_[cell + 1]; ++j)
           {
             const unsigned i = items_[j];
-            if ((x.array() >= lo_[i].array()).all() && (x.array() <= hi_[i].array()).all())
+            // slab test of the segment x + t n, t ∈ [−max_distance, max_distance]
+            double t0 = -max_distance, t1 = max_distance;
+            for (int d = 0; d < 3 && t0 <= t1; ++d)
+              {
+                if (n[d] == 0)
+                  {
+                    if (x[d] < lo_[i][d] || x[d] > hi_[i][d])
+                      t0 = 1, t1 = 0;
+                    continue;
+                  }
+                double ta = (lo_[i][d] - x[d]) / n[d], tb = (hi_[i][d] - x[d]) / n[d];
+                if (ta > tb)
+                  std::swap(ta, tb);
+                t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+              }
+            if (t0 <= t1)
               visit(i);
           }
       }
@@ -515,7 +533,7 @@ namespace clearjoint::fe::mortar
             long   best = -1;
             double ba = 0, bb = 0, bg = std::numeric_limits<double>::infinity();
             if (wq[q] > 0)
-              search.for_candidates(xq[q], [&](unsigned mf) {
+              search.for_candidates(xq[q], nq[q], options.max_distance, [&](unsigned mf) {
                 double a, b, g;
                 if (project(master_faces[mf], xq[q], nq[q], options.max_distance, a, b, g) &&
                     std::abs(g) < std::abs(bg))

@@ -206,9 +206,13 @@ TEST(FeMortar, EveryGaussOrderGivesTheExactNodalAreas)
 // The patch test on non-matching flat meshes: slave 4×4 Q2, master 3×3 Q2, gap 0.
 TEST(FeMortar, NonMatchingFlatMeshesPassThePatchTest)
 {
-  const Mesh slave = make_grid(4, 4, 2, 0, [](double u, double v) { return P3{u, v, 0}; });
-  // master interior nodes moved in-plane (boundary fixed), so its faces are not affine images
-  // of the square: the patch test must not rely on a regular master mesh
+  // Both meshes' interior nodes moved in-plane (boundary fixed), so no face is an affine image
+  // of the square: on a uniform Q2 slave even the standard (non-dual) mortar would pass, as
+  // the Q2 shape functions' first moments vanish there.
+  const Mesh slave = make_grid(4, 4, 2, 0, [](double u, double v) {
+    return P3{u + 0.04 * std::sin(pi * u) * std::sin(2 * pi * v),
+              v - 0.04 * std::sin(2 * pi * u) * std::sin(pi * v), 0};
+  });
   const Mesh master = make_grid(3, 3, 2, 1000, [](double u, double v) {
     return P3{u + 0.03 * std::sin(2 * pi * u) * std::sin(pi * v),
               v + 0.03 * std::sin(pi * u) * std::sin(2 * pi * v), 0};
@@ -324,31 +328,61 @@ TEST(FeMortar, CylindricalBoreAroundCoaxialCylinderGivesTheRadialGap)
       return P3{r * std::cos(t), r * std::sin(t), z0 + (z1 - z0) * v};
     };
   };
-  const Mesh slave  = make_grid(6, 2, 2, 0, cylinder(R, 0, pi / 2, 0, L));
   // master wider in θ and z, so the slave lies entirely over it; non-matching in both
   const Mesh master = make_grid(5, 3, 2, 1000, cylinder(R - g, -0.2, pi / 2 + 0.2, -2e-3, L + 2e-3));
-  const auto nodes  = slave_nodes(slave, [](const P3 &x) {
-    const double r = std::hypot(x[0], x[1]);
-    return P3{x[0] / r, x[1] / r, 0};
-  });
-  Options opt;
+  Options    opt;
   opt.max_distance = 2e-3;
-  // Each pointwise gap is off by at most the two surfaces' radial Q2 errors e_s + e_m (the
-  // projection direction is tilted by O(h²/R²), a second-order effect on top). The weighted
-  // gap of such a smooth error is close to its nodal value (patch-test property), so the
-  // tolerance is e_s + e_m (observed 0.6 of it). A rigorous bound would be 4.7 (e_s + e_m):
-  // max ∫|ψ_s| / D_s for the Q2 dual basis (2.18² at a corner node), as ψ changes sign.
-  const double e_s = radial_error(slave, R), e_m = radial_error(master, R - g);
-  double       worst = 0;
-  for (const auto &c : couple(slave.faces, nodes, master.faces, opt))
+  // θ increasing, the face normal ∂x/∂a × ∂x/∂b is +e_r; decreasing, it is −e_r and must be
+  // turned by the node normals
+  for (bool reversed : {false, true})
+    {
+      SCOPED_TRACE(reversed ? "θ decreasing" : "θ increasing");
+      const Mesh slave = make_grid(6, 2, 2, 0, reversed ? cylinder(R, pi / 2, 0, 0, L)
+                                                        : cylinder(R, 0, pi / 2, 0, L));
+      const auto nodes = slave_nodes(slave, [](const P3 &x) {
+        const double r = std::hypot(x[0], x[1]);
+        return P3{x[0] / r, x[1] / r, 0};
+      });
+      // Each pointwise gap is off by at most the two surfaces' radial Q2 errors e_s + e_m (the
+      // projection direction is tilted by O(h²/R²), a second-order effect on top). The weighted
+      // gap of such a smooth error is close to its nodal value (patch-test property), so the
+      // tolerance is e_s + e_m (observed 0.6 of it). A rigorous bound would be 4.7 (e_s + e_m):
+      // max ∫|ψ_s| / D_s for the Q2 dual basis (2.18² at a corner node), as ψ changes sign.
+      const double e_s = radial_error(slave, R), e_m = radial_error(master, R - g);
+      double       worst = 0;
+      for (const auto &c : couple(slave.faces, nodes, master.faces, opt))
+        {
+          EXPECT_TRUE(c.complete) << c.node;
+          EXPECT_NEAR(row_sum(c), 1.0, 1e-12) << c.node; // partition of unity, round-off
+          EXPECT_NEAR(c.gap, g, e_s + e_m) << c.node;
+          worst = std::max(worst, std::abs(c.gap - g));
+        }
+      std::cout << "cylinder: Q2 radial errors slave " << e_s << " m, master " << e_m
+                << " m; max |gap − g| = " << worst << " m\n";
+    }
+}
+
+// Several master surfaces within max_distance (e.g. a thin master body): the nearest wins.
+TEST(FeMortar, NearestOfSeveralMasterSurfacesIsTaken)
+{
+  const Mesh slave = make_grid(3, 3, 2, 0, [](double u, double v) { return P3{u, v, 0}; });
+  auto       nodes = slave_nodes(slave, [](const P3 &) { return P3{0, 0, -1}; });
+  std::vector<Face> master;
+  // the nearest layer (|g| = 0.01) is listed between a penetrating one and a farther gap one
+  for (auto [z, id0] : {std::pair{-0.02, 1000L}, std::pair{0.01, 2000L}, std::pair{0.03, 3000L}})
+    for (const auto &f : make_grid(2, 2, 1, id0, [z = z](double u, double v) {
+                           return P3{u, v, z};
+                         }).faces)
+      master.push_back(f);
+  Options opt;
+  opt.max_distance = 0.05; // all three layers are within reach
+  for (const auto &c : couple(slave.faces, nodes, master, opt))
     {
       EXPECT_TRUE(c.complete) << c.node;
-      EXPECT_NEAR(row_sum(c), 1.0, 1e-12) << c.node; // partition of unity, round-off
-      EXPECT_NEAR(c.gap, g, e_s + e_m) << c.node;
-      worst = std::max(worst, std::abs(c.gap - g));
+      EXPECT_NEAR(c.gap, 0.01, 1e-14) << c.node; // flat and parallel: round-off only
+      for (const auto &[m, C] : c.masters)
+        EXPECT_TRUE(m >= 2000 && m < 3000) << c.node << " → " << m;
     }
-  std::cout << "cylinder: Q2 radial errors slave " << e_s << " m, master " << e_m
-            << " m; max |gap − g| = " << worst << " m\n";
 }
 
 // A slave strip of 4 faces over a master that ends in the middle of the last face.
