@@ -39,7 +39,9 @@ namespace clearjoint::fe::mortar
     /// Iterated Gauss rule on each slave face: each direction is split into `subdivisions`
     /// intervals with `gauss_points` points each (default 4 × 3 → 144 points per face). The
     /// integrands have kinks where master faces meet, so one high-order rule would not help.
-    unsigned subdivisions = 4;
+    /// subdivisions × gauss_points must be ≥ 3: with fewer points per direction the 9-node
+    /// mass matrix Me is singular.
+    unsigned subdivisions = 4; ///< 1..1000
     unsigned gauss_points = 3; ///< 1..20
     /// [m] largest |gap| a quadrature point may have to its master face; also inflates the
     /// master faces' bounding boxes for the search. Must be set (> 0).
@@ -68,6 +70,9 @@ namespace clearjoint::fe::mortar
   /// Throws std::invalid_argument on bad input (node count not 4 or 9, X/nodes size mismatch,
   /// non-finite positions, a slave face node without a normal, a degenerate face, bad options);
   /// the message names the face index.
+  /// Cost: master faces sit in a uniform bucket grid; ~2 s per 10⁶ slave quadrature points
+  /// (7200 Q2 slave faces on 5200 master faces) on one core.
+  /// Note: the caller must check `complete` and not use an incomplete node.
   std::vector<Coupling> couple(const std::vector<Face>      &slave_faces,
                                const std::vector<SlaveNode> &slave_nodes,
                                const std::vector<Face>      &master_faces,
