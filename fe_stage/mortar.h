@@ -26,7 +26,7 @@ namespace clearjoint::fe::mortar
   };
 
   /// A slave node's normal: unit vector from the master body INTO the slave body (the slave
-  /// body's inward normal); the gap is measured along it. coupling() uses the node normals
+  /// body's inward normal); the gap is measured along it. couple() uses the node normals
   /// only to orient the faces' geometric normals; the caller uses them in the constraint.
   struct SlaveNode
   {
