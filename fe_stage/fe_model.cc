@@ -15,6 +15,7 @@
 //     are re-added when the active set changes; the AMG (ML, with the six rigid-body modes) is
 //     built once and reused while it stays effective.
 #include "fe_stage/fe_model.h"
+#include "fe_stage/mortar.h"
 
 #include "common/error.h"
 #include "common/log.h"
@@ -43,6 +44,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
@@ -85,6 +87,39 @@ namespace clearjoint::fe
     constexpr types::boundary_id bid_sym_z = 4;     // symmetry plane z = 0: u_z = 0
     constexpr types::boundary_id bid_journal_surface = 5;  // journal's cylindrical surface
     constexpr types::boundary_id bid_journal_end = 6;      // journal end face z = L_J/2
+    constexpr types::boundary_id bid_indenter_surface = 7; // deformable indenter's bottom
+    constexpr types::boundary_id bid_indenter_top = 8;     // deformable indenter's top (pushed)
+
+    /// The deformable Hertz indenter: (x, η, z) ↦ (x, η + cap(r)·(1 − η/H), z), r = √(x²+z²),
+    /// a block of height H whose bottom is cap(r) = p/(1 + p/c), p = r²/2R — Hertz's profile
+    /// near the contact (at the contact radius a ≈ 0.3 mm it differs from r²/2R by p/c ≈ 5e-4
+    /// relative) that levels off far away, so the block stays a block (c = H/2).
+    class IndenterChart : public ChartManifold<dim, dim, dim>
+    {
+    public:
+      IndenterChart(const double R, const double H) : R_(R), H_(H) {}
+      double cap(const double x, const double z) const
+      {
+        const double p = (x * x + z * z) / (2.0 * R_);
+        return p / (1.0 + p / (0.5 * H_));
+      }
+      Point<dim> pull_back(const Point<dim> &X) const override
+      {
+        const double c = cap(X[0], X[2]);
+        return Point<dim>(X[0], (X[1] - c) / (1.0 - c / H_), X[2]);
+      }
+      Point<dim> push_forward(const Point<dim> &c) const override
+      {
+        return Point<dim>(c[0], c[1] + cap(c[0], c[2]) * (1.0 - c[1] / H_), c[2]);
+      }
+      std::unique_ptr<Manifold<dim, dim>> clone() const override
+      {
+        return std::make_unique<IndenterChart>(R_, H_);
+      }
+
+    private:
+      double R_, H_;
+    };
 
     /// Polar chart about the bearing axis (z): (φ, s, z) ↦ s·ρ(φ)·(sin φ, −cos φ) + z e_z, with φ
     /// measured from −y. For the bearing ρ ≡ 1 (s is the radius); for the journal, whose axis is
@@ -215,9 +250,16 @@ namespace clearjoint::fe
     struct ContactNode
     {
       std::array<types::global_dof_index, dim> dofs;
-      std::array<types::global_dof_index, dim> partner;  // journal node (two-body contact)
+      /// Two-body contact: the other body's point facing this node is Σ weight·(partner node);
+      /// node-to-node (matching meshes) has one partner of weight 1, a mortar coupling several.
+      struct Partner
+      {
+        std::array<types::global_dof_index, dim> dofs;
+        double weight = 1.0;
+        bool driven_y = false;  // the partner's y-DoF is driven by the journal load
+      };
+      std::vector<Partner> partners;
       bool two_body = false;
-      bool partner_driven_y = false;  // the partner's y-DoF is driven by the journal load
       Point<dim> X;
       unsigned int constrained_component = 1;
       bool owned = false;   // owned by this rank (its x-DoF is locally owned)
@@ -229,6 +271,17 @@ namespace clearjoint::fe
       double weight = 0.0;  // [m²] ∫ φ_i dA over the contact surface (nodal area)
       Tensor<1, dim> n;
       double g0 = 0.0;
+      // Coulomb friction (contact.mu > 0). An active node sticks (its whole relative
+      // displacement is constrained: no new tangential slip) or slips (normal constraint, and
+      // the friction force μλ·e with its own normal force λ, implicit in the linear system).
+      bool stick = true;
+      Tensor<1, dim> traction;     // [N] total contact force on this node (K u at its DoFs)
+      Tensor<1, dim> slip_direction;  // unit tangent of the friction force on a slipping node
+      Tensor<1, dim> direction_update;  // its last fixed-point update (relaxation)
+      unsigned int stick_slip_flips = 0;  // in this increment (cycle breaking)
+      unsigned int contact_flips = 0;     // active ↔ inactive, in this increment (friction)
+      Tensor<1, dim> relative;     // [m] u − u_partner (rigid obstacle: − its translation)
+      Tensor<1, dim> relative_converged;  // [m] the same at the last converged increment
     };
 
     /// Stress, strain, von Mises stress and principal strains from the displacement gradient.
@@ -330,6 +383,8 @@ namespace clearjoint::fe
       void setup_system();
       void build_fixed_constraints();
       void find_contact_nodes();
+      void find_mortar_contact_nodes(const std::map<types::global_dof_index, Point<dim>> &support,
+                                     std::map<types::global_dof_index, ContactNode> &by_x_dof);
       void make_matrices();
       void set_fixed_constraints_for(double delta);
       void assemble_static();
@@ -341,6 +396,8 @@ namespace clearjoint::fe
                                 const TrilinosWrappers::MPI::Vector &b);
       void build_amg();
       void evaluate_contact(double delta);
+      bool friction_cell_matrix(unsigned int k, FullMatrix<double> &M,
+                                std::vector<types::global_dof_index> &ext) const;
       void condense_hanging(TrilinosWrappers::MPI::Vector &r);
       void write_fields(unsigned int counter, double delta);
 
@@ -368,6 +425,9 @@ namespace clearjoint::fe
       std::vector<types::global_dof_index> loaded_y_dofs_;  // owned journal DoFs driven by δ
       std::vector<types::global_dof_index> loaded_sorted_;  // the same, sorted (lookups)
       bool two_body_ = false;
+      bool friction_ = false;                         // contact.mu > 0
+      bool nonsymmetric_ = false;                     // slipping nodes in A_ (GMRES, not CG)
+      std::map<types::global_dof_index, unsigned int> slipping_;  // x-DoF → node (this iteration)
       AffineConstraints<double> constraints_;         // + contact lines of the active set
       TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions)
       TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
@@ -417,6 +477,7 @@ namespace clearjoint::fe
       const double E = scene.material.E, nu = scene.material.nu;
       lame_lambda_ = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
       lame_mu_ = E / (2.0 * (1.0 + nu));
+      friction_ = scene.contact.mu > 0.0;
     }
 
     // ------------------------------------------------------------------------------------------
@@ -923,24 +984,87 @@ namespace clearjoint::fe
     {
       const auto &V = scene_.verification;
       const unsigned int n = V.n_cells;
-      GridGenerator::subdivided_hyper_rectangle(tria_, {n, n, n},
-                                                Point<dim>(0.0, -V.block_height, 0.0),
-                                                Point<dim>(V.block_width, 0.0, V.block_width));
+      if (!V.deformable_indenter)
+        GridGenerator::subdivided_hyper_rectangle(tria_, {n, n, n},
+                                                  Point<dim>(0.0, -V.block_height, 0.0),
+                                                  Point<dim>(V.block_width, 0.0, V.block_width));
+      else
+        {
+          // Two bodies in one triangulation that share no vertex (they touch at y = 0): the
+          // block below (material 0) and the indenter above (material 1), meshed with
+          // different cell counts so that their contact surfaces do not match.
+          Triangulation<dim> lower, upper;
+          const unsigned int m = V.indenter_n_cells;
+          GridGenerator::subdivided_hyper_rectangle(lower, {n, n, n},
+                                                    Point<dim>(0.0, -V.block_height, 0.0),
+                                                    Point<dim>(V.block_width, 0.0, V.block_width));
+          GridGenerator::subdivided_hyper_rectangle(upper, {m, m, m}, Point<dim>(0.0, 0.0, 0.0),
+                                                    Point<dim>(V.block_width, V.indenter_height,
+                                                               V.block_width));
+          const IndenterChart chart(V.sphere_radius, V.indenter_height);
+          if (scene_.study == Study::hertz)
+            GridTools::transform([&](const Point<dim> &p) { return chart.push_forward(p); },
+                                 upper);
+          auto [vertices, cells, sub] = GridTools::get_coarse_mesh_description(lower);
+          auto [vertices_u, cells_u, sub_u] = GridTools::get_coarse_mesh_description(upper);
+          const unsigned int offset = vertices.size();
+          vertices.insert(vertices.end(), vertices_u.begin(), vertices_u.end());
+          for (auto c : cells_u)
+            {
+              for (auto &v : c.vertices)
+                v += offset;
+              c.material_id = 1;
+              c.manifold_id = scene_.study == Study::hertz ? 1 : numbers::flat_manifold_id;
+              cells.push_back(c);
+            }
+          tria_.create_triangulation(vertices, cells, SubCellData());
+          if (scene_.study == Study::hertz)
+            {
+              for (const auto &cell : tria_.active_cell_iterators())
+                if (cell->material_id() == 1)
+                  cell->set_all_manifold_ids(1);
+              tria_.set_manifold(1, chart);
+            }
+        }
+      // Boundary ids from the face vertices (exact: they lie on the generating planes).
       const double tol = 1e-10 * V.block_width;
+      const IndenterChart chart(V.sphere_radius, V.indenter_height);
       for (const auto &cell : tria_.active_cell_iterators())
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary())
             {
-              const Point<dim> c = cell->face(f)->center();
+              auto all = [&](auto &&pred) {
+                for (unsigned int v = 0; v < cell->face(f)->n_vertices(); ++v)
+                  {
+                    Point<dim> X = cell->face(f)->vertex(v);
+                    if (cell->material_id() == 1 && scene_.study == Study::hertz)
+                      X = chart.pull_back(X);
+                    if (!pred(X))
+                      return false;
+                  }
+                return true;
+              };
               types::boundary_id id = bid_free;
-              if (std::abs(c[1]) < tol)
+              if (cell->material_id() == 1)
+                {
+                  if (all([&](const Point<dim> &X) { return std::abs(X[1]) < tol; }))
+                    id = bid_indenter_surface;
+                  else if (all([&](const Point<dim> &X) {
+                             return std::abs(X[1] - V.indenter_height) < tol;
+                           }))
+                    id = bid_indenter_top;
+                }
+              else if (all([&](const Point<dim> &X) { return std::abs(X[1]) < tol; }))
                 id = bid_contact;
-              else if (std::abs(c[1] + V.block_height) < tol)
+              else if (all([&](const Point<dim> &X) { return std::abs(X[1] + V.block_height) < tol; }))
                 id = bid_fixed;
-              else if (std::abs(c[0]) < tol)
-                id = bid_sym_x;
-              else if (std::abs(c[2]) < tol)
-                id = bid_sym_z;
+              if (id == bid_free)
+                {
+                  if (all([&](const Point<dim> &X) { return std::abs(X[0]) < tol; }))
+                    id = bid_sym_x;
+                  else if (all([&](const Point<dim> &X) { return std::abs(X[2]) < tol; }))
+                    id = bid_sym_z;
+                }
               cell->face(f)->set_boundary_id(id);
             }
       if (scene_.study == Study::patch)
@@ -1012,7 +1136,8 @@ namespace clearjoint::fe
       owned_ = dof_handler_.locally_owned_dofs();
       DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
 
-      two_body_ = joint && scene_.loading.journal != JournalLoading::rigid;
+      two_body_ = joint ? scene_.loading.journal != JournalLoading::rigid :
+                          scene_.verification.deformable_indenter;
       build_fixed_constraints();
 
       {
@@ -1062,10 +1187,12 @@ namespace clearjoint::fe
           Vector<double> down(dim);
           down[1] = -1.0;
           const Functions::ConstantFunction<dim> unit_push(down);
-          if (scene_.loading.journal == JournalLoading::end_faces)
+          if (!joint || scene_.loading.journal == JournalLoading::end_faces)
             {
+              // the journal's end face, or the top of a deformable indenter
               AffineConstraints<double> load(relevant_);
-              VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_journal_end,
+              VectorTools::interpolate_boundary_values(*mapping_, dof_handler_,
+                                                       joint ? bid_journal_end : bid_indenter_top,
                                                        unit_push, load, fe_->component_mask(uy));
               for (const auto &line : load.get_lines())
                 {
@@ -1111,8 +1238,9 @@ namespace clearjoint::fe
           loaded_sorted_ = loaded_y_dofs_;
           std::sort(loaded_sorted_.begin(), loaded_sorted_.end());
           if (Utilities::MPI::sum(loaded_y_dofs_.size(), comm_) == 0)
-            throw NumericalError("fe_stage: no journal DoFs found for the loading " +
-                                 to_string(scene_.loading.journal));
+            throw NumericalError(joint ? "fe_stage: no journal DoFs found for the loading " +
+                                           to_string(scene_.loading.journal) :
+                                         std::string("fe_stage: the indenter has no top face"));
         }
       if (n_ranks_ > 1)
         fixed_constraints_.make_consistent_in_parallel(owned_, relevant_, comm_);
@@ -1133,9 +1261,19 @@ namespace clearjoint::fe
               {
                 if (k != cn.constrained_component)
                   worst.add_entry(d, cn.dofs[k], 1.0);
-                if (cn.two_body)
-                  worst.add_entry(d, cn.partner[k], 1.0);
+                for (const auto &p : cn.partners)
+                  worst.add_entry(d, p.dofs[k], 1.0);
               }
+            // a sticking node constrains its other free components to its partners too
+            if (friction_)
+              for (unsigned int k = 0; k < dim; ++k)
+                if (k != cn.constrained_component &&
+                    !fixed_constraints_.is_constrained(cn.dofs[k]))
+                  {
+                    worst.add_line(cn.dofs[k]);
+                    for (const auto &p : cn.partners)
+                      worst.add_entry(cn.dofs[k], p.dofs[k], 1.0);
+                  }
           }
       worst.merge(fixed_constraints_, AffineConstraints<double>::left_object_wins, true);
       worst.close();
@@ -1155,17 +1293,24 @@ namespace clearjoint::fe
         for (const auto &cn : nodes_)
           if (cn.candidate)
             {
-              auto &v = line_dofs[cn.dofs[cn.constrained_component]];
+              std::vector<types::global_dof_index> v;
               for (unsigned int l = 0; l < dim; ++l)
                 {
                   v.push_back(cn.dofs[l]);
-                  if (!cn.two_body)
-                    continue;
-                  v.push_back(cn.partner[l]);
-                  if (const auto *e = worst.get_constraint_entries(cn.partner[l]))
-                    for (const auto &entry : *e)
-                      v.push_back(entry.first);
+                  for (const auto &p : cn.partners)
+                    {
+                      v.push_back(p.dofs[l]);
+                      if (const auto *e = worst.get_constraint_entries(p.dofs[l]))
+                        for (const auto &entry : *e)
+                          v.push_back(entry.first);
+                    }
                 }
+              for (unsigned int l = 0; l < dim; ++l)
+                if (l == cn.constrained_component || friction_)
+                  {
+                    auto &target = line_dofs[cn.dofs[l]];
+                    target.insert(target.end(), v.begin(), v.end());
+                  }
             }
         std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
         for (const auto &cell : dof_handler_.active_cell_iterators())
@@ -1248,7 +1393,9 @@ namespace clearjoint::fe
         bool driven_y = false;
       };
       std::map<std::pair<long, long>, JournalNode> journal_nodes;
-      if (two_body_)
+      const bool mortar = two_body_ && scene_.study != Study::radial &&
+                          scene_.study != Study::misalignment;
+      if (two_body_ && !mortar)
         {
           std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag
           std::set<types::global_dof_index> seen;
@@ -1282,6 +1429,9 @@ namespace clearjoint::fe
                 journal_nodes[{std::lround(part[i]), std::lround(part[i + 1])}] = jn;
               }
         }
+      if (mortar)
+        find_mortar_contact_nodes(support, by_x_dof);
+      else
       for (const auto &cell : dof_handler_.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           for (const auto f : cell->face_indices())
@@ -1330,8 +1480,7 @@ namespace clearjoint::fe
                             format_value(cn.X[0]) + ", " + format_value(cn.X[1]) + ", " +
                             format_value(cn.X[2]) + ") m: the contact meshes do not match");
                         cn.two_body = true;
-                        cn.partner = it->second.dofs;
-                        cn.partner_driven_y = it->second.driven_y;
+                        cn.partners = {{it->second.dofs, 1.0, it->second.driven_y}};
                         const Point<dim> &XJ = it->second.X;
                         const double rB = std::hypot(cn.X[0], cn.X[1]);
                         cn.n = Tensor<1, dim>({cn.X[0] / rB, cn.X[1] / rB, 0.0});
@@ -1353,8 +1502,8 @@ namespace clearjoint::fe
           auto add_ghosts = [&](const auto &dofs_of_partner) {
             IndexSet extra(dof_handler_.n_dofs());
             for (const auto &cn : nodes_)
-              if (cn.two_body)
-                for (const auto p : cn.partner)
+              for (const auto &partner : cn.partners)
+                for (const auto p : partner.dofs)
                   for (const auto d : dofs_of_partner(p))
                     if (!relevant_.is_element(d))
                       extra.add_index(d);
@@ -1412,6 +1561,104 @@ namespace clearjoint::fe
           }
       contact_cell_matrices_.resize(n);
       contact_cell_dofs_.resize(n);
+    }
+
+    /// Two non-matching bodies (the verification block and a deformable indenter): dual mortar
+    /// (mortar.h). Each slave node of the block's top face (the plane y = 0, normal −e_y into
+    /// the block) gets ĝ = g̃0 + n·(u − Σ_m C_sm u_m) with the weighted gap g̃0 and the mortar
+    /// coefficients C_sm of the indenter's bottom nodes; an active node's constraint is then the
+    /// same kind of line as node-to-node contact, with several partners.
+    void ContactModel::find_mortar_contact_nodes(
+      const std::map<types::global_dof_index, Point<dim>> &support,
+      std::map<types::global_dof_index, ContactNode> &by_x_dof)
+    {
+      std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
+      using NodeDofs = std::array<types::global_dof_index, dim>;
+      // Master faces from every rank (the face facing a slave node is often on no cell this
+      // rank sees): per face its node count, then per node 3 DoFs and the position.
+      std::vector<double> mine;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == bid_indenter_surface)
+              {
+                const auto nodes = face_node_dofs(cell, f, face_dofs);
+                mine.push_back(double(nodes.size()));
+                for (const auto &d : nodes)
+                  {
+                    const Point<dim> &X = support.at(d[0]);
+                    mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), X[0],
+                                             X[1], X[2]});
+                  }
+              }
+      std::vector<mortar::Face> master;
+      std::map<long, NodeDofs> master_dofs;
+      for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
+        for (std::size_t i = 0; i < part.size();)
+          {
+            const unsigned int nn = static_cast<unsigned int>(part[i++]);
+            mortar::Face face;
+            for (unsigned int k = 0; k < nn; ++k, i += 6)
+              {
+                NodeDofs d;
+                for (unsigned int c = 0; c < dim; ++c)
+                  d[c] = static_cast<types::global_dof_index>(part[i + c]);
+                face.nodes.push_back(static_cast<long>(d[0]));
+                face.X.push_back({part[i + 3], part[i + 4], part[i + 5]});
+                master_dofs[static_cast<long>(d[0])] = d;
+              }
+            master.push_back(std::move(face));
+          }
+      // Slave faces: this rank's owned and ghost cells (every cell holding a DoF of an owned
+      // cell is among them, so owned and ghost nodes of owned cells see all their faces).
+      std::vector<mortar::Face> slave;
+      std::map<long, NodeDofs> slave_dofs;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+              {
+                mortar::Face face;
+                for (const auto &d : face_node_dofs(cell, f, face_dofs))
+                  {
+                    const Point<dim> &X = support.at(d[0]);
+                    face.nodes.push_back(static_cast<long>(d[0]));
+                    face.X.push_back({X[0], X[1], X[2]});
+                    slave_dofs[static_cast<long>(d[0])] = d;
+                  }
+                slave.push_back(std::move(face));
+              }
+      std::vector<mortar::SlaveNode> slave_nodes;
+      for (const auto &[id, d] : slave_dofs)
+        slave_nodes.push_back({id, {0.0, -1.0, 0.0}});
+      mortar::Options options;
+      // 8 × 3 Gauss points per direction of each slave face: the mortar integrals have kinks
+      // where master faces end; their error (≈ 2e-3 of a master nodal force at 8 sub-intervals,
+      // 8e-3 at 4, mortar_test) shows up as non-uniform pressure in the patch test.
+      options.subdivisions = 8;
+      // Quadrature points farther apart than this cannot close under a push of δ_max; their
+      // nodes come out incomplete and are left out (they cannot touch).
+      options.max_distance = 4.0 * scene_.loading.delta_max;
+      const double window_gap = 2.0 * scene_.loading.delta_max;
+      for (const auto &cp : mortar::couple(slave, slave_nodes, master, options))
+        {
+          const NodeDofs &dofs = slave_dofs.at(cp.node);
+          if (!cp.complete || cp.weight <= 0.0 || fixed_constraints_.is_constrained(dofs[1]))
+            continue;  // out of reach, or hanging (it follows its masters)
+          ContactNode cn;
+          cn.dofs = dofs;
+          cn.X = support.at(dofs[0]);
+          cn.owned = owned_.is_element(dofs[0]);
+          cn.n = Tensor<1, dim>({0.0, -1.0, 0.0});
+          cn.g0 = cp.gap;
+          cn.two_body = true;
+          cn.constrained_component = 1;
+          cn.candidate = cp.gap <= window_gap;
+          for (const auto &[m, w] : cp.masters)
+            cn.partners.push_back({master_dofs.at(m), w, false});
+          by_x_dof.emplace(dofs[0], cn);
+        }
     }
 
     void ContactModel::assemble_static()
@@ -1613,9 +1860,15 @@ namespace clearjoint::fe
           SolverControl control(scene_.solver.max_linear_iterations,
                                 scene_.solver.tolerance * b_norm);
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+          SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+            control,  // right preconditioning: the tolerance applies to the true residual
+            SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100, true));
           try
             {
-              cg.solve(A_, x, b, *amg_);
+              if (nonsymmetric_)
+                gmres.solve(A_, x, b, *amg_);
+              else
+                cg.solve(A_, x, b, *amg_);
             }
           catch (const SolverControl::NoConvergence &e)
             {
@@ -1624,7 +1877,8 @@ namespace clearjoint::fe
                   amg_.reset();  // the reused preconditioner may be stale: rebuild once
                   continue;
                 }
-              throw Failure{"CG did not converge in " + std::to_string(e.last_step) +
+              throw Failure{std::string(nonsymmetric_ ? "GMRES" : "CG") +
+                            " did not converge in " + std::to_string(e.last_step) +
                             " iterations (residual " + format_value(e.last_residual) + ")"};
             }
           const unsigned int its = control.last_step();
@@ -1643,24 +1897,87 @@ namespace clearjoint::fe
 
     /// λ_i = (K u)_i · n_i and ĝ_i = g0_i + n_i · u_i for every candidate node (ghosted values,
     /// so every rank evaluates the same numbers for the nodes it shares).
+    /// A slipping node s carries the friction force μλ_s·e_s and its partners −w_p·μλ_s·e_s,
+    /// with λ_s = n·(K u)_s its own normal contact force: rows (s,k) of the system get
+    /// −μ e_k nᵀK_s and rows (p,k) +w_p μ e_k nᵀK_s (K_s: the rows of s's DoFs), cell by cell:
+    /// the contact cell's matrix is extended by the partners' rows and condensed as a whole
+    /// (so the constraints' inhomogeneities reach the right-hand side too). This makes A_
+    /// non-symmetric (GMRES). Returns false if the cell holds no slipping node.
+    bool ContactModel::friction_cell_matrix(const unsigned int k, FullMatrix<double> &M,
+                                            std::vector<types::global_dof_index> &ext) const
+    {
+      const auto &dofs = contact_cell_dofs_[k];
+      const auto &Kc = contact_cell_matrices_[k];
+      ext = dofs;
+      bool any = false;
+      std::vector<std::pair<const ContactNode *, std::vector<double>>> rows_of;
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        {
+          const auto it = slipping_.find(dofs[i]);
+          if (it == slipping_.end())
+            continue;
+          const ContactNode &cn = nodes_[it->second];
+          any = true;
+          // n·(K_cell u) over this node's rows: one row over the cell's columns
+          std::vector<double> row(dofs.size(), 0.0);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const auto li = std::find(dofs.begin(), dofs.end(), cn.dofs[c]) - dofs.begin();
+              for (unsigned int j = 0; j < dofs.size(); ++j)
+                row[j] += cn.n[c] * Kc(li, j);
+            }
+          rows_of.emplace_back(&cn, std::move(row));
+          for (const auto &p : cn.partners)
+            for (const auto d : p.dofs)
+              if (std::find(ext.begin(), ext.end(), d) == ext.end())
+                ext.push_back(d);
+        }
+      if (!any)
+        return false;
+      M.reinit(ext.size(), ext.size());
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        for (unsigned int j = 0; j < dofs.size(); ++j)
+          M(i, j) = Kc(i, j);
+      const double mu = scene_.contact.mu;
+      auto local = [&](const types::global_dof_index d) {
+        return std::find(ext.begin(), ext.end(), d) - ext.begin();
+      };
+      for (const auto &[cn, row] : rows_of)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            const double f = mu * cn->slip_direction[c];
+            const auto ls = local(cn->dofs[c]);
+            for (unsigned int j = 0; j < dofs.size(); ++j)
+              M(ls, j) -= f * row[j];
+            for (const auto &p : cn->partners)
+              {
+                const auto lp = local(p.dofs[c]);
+                for (unsigned int j = 0; j < dofs.size(); ++j)
+                  M(lp, j) += p.weight * f * row[j];
+              }
+          }
+      return true;
+    }
+
     void ContactModel::evaluate_contact(const double delta)
     {
-      (void)delta;
       K_.vmult(residual_owned_, solution_owned_);
       condense_hanging(residual_owned_);
       residual_ = residual_owned_;
       for (auto &cn : nodes_)
         {
-          double lambda = 0.0, un = 0.0;
           for (unsigned int c = 0; c < dim; ++c)
             {
-              lambda += residual_[cn.dofs[c]] * cn.n[c];
-              un += solution_[cn.dofs[c]] * cn.n[c];
-              if (cn.two_body)
-                un -= solution_[cn.partner[c]] * cn.n[c];
+              cn.traction[c] = residual_[cn.dofs[c]];
+              cn.relative[c] = solution_[cn.dofs[c]];
+              for (const auto &p : cn.partners)
+                cn.relative[c] -= p.weight * solution_[p.dofs[c]];
             }
-          cn.lambda = lambda;
-          cn.gap = cn.g0 + un;
+          if (!cn.two_body)
+            cn.relative[1] += delta;  // a rigid obstacle moves by −δ e_y
+          cn.lambda = cn.traction * cn.n;
+          // ĝ = g0 + n·(u − u_partner); the rigid obstacle's motion is already in g0
+          cn.gap = cn.g0 + cn.n * cn.relative - (cn.two_body ? 0.0 : delta * cn.n[1]);
         }
     }
 
@@ -1695,6 +2012,10 @@ namespace clearjoint::fe
       // ε_g: a penetration below this is round-off, not contact (makes the active set
       // deterministic across rank counts). 1e-9 of the push is far below any physical effect.
       const double eps_g = 1e-9 * scene_.loading.delta_max;
+      for (auto &cn : nodes_)
+        cn.stick_slip_flips = cn.contact_flips = 0;
+      double omega = 1.0;
+      bool relaxation_history = false;
 
       unsigned int it = 0;
       for (; it < scene_.contact.max_iterations; ++it)
@@ -1702,7 +2023,26 @@ namespace clearjoint::fe
           constraints_.clear();
           constraints_.reinit(relevant_);
           for (const auto &cn : nodes_)
-            if (cn.active)
+            if (cn.active && friction_ && cn.stick)
+              {
+                // No new slip: u = Σ w·u_partner + P_t(r_conv + u_obstacle) − g0·n, with r_conv
+                // the relative displacement of the last converged increment and P_t = I − n nᵀ
+                // (the normal part is ĝ = 0). Components fixed by symmetry stay as they are.
+                Tensor<1, dim> target = cn.relative_converged;
+                if (!cn.two_body)
+                  target[1] -= delta;
+                target -= (target * cn.n) * cn.n;
+                target -= cn.g0 * cn.n;  // (a rigid obstacle's g0 holds its motion already)
+                for (unsigned int k = 0; k < dim; ++k)
+                  if (!fixed_delta_.is_constrained(cn.dofs[k]))
+                    {
+                      constraints_.add_line(cn.dofs[k]);
+                      for (const auto &p : cn.partners)
+                        constraints_.add_entry(cn.dofs[k], p.dofs[k], p.weight);
+                      constraints_.set_inhomogeneity(cn.dofs[k], target[k]);
+                    }
+              }
+            else if (cn.active)
               {
                 const unsigned int cc = cn.constrained_component;
                 const auto d = cn.dofs[cc];
@@ -1711,8 +2051,8 @@ namespace clearjoint::fe
                   {
                     if (k != cc)
                       constraints_.add_entry(d, cn.dofs[k], -cn.n[k] / cn.n[cc]);
-                    if (cn.two_body)
-                      constraints_.add_entry(d, cn.partner[k], cn.n[k] / cn.n[cc]);
+                    for (const auto &p : cn.partners)
+                      constraints_.add_entry(d, p.dofs[k], p.weight * cn.n[k] / cn.n[cc]);
                   }
                 constraints_.set_inhomogeneity(d, -cn.g0 / cn.n[cc]);
               }
@@ -1724,12 +2064,27 @@ namespace clearjoint::fe
           rhs_ = 0.0;  // the static part δ·rhs_static_unit_ is added after compress(): adding
                        // into a vector whose last operation was an assignment is collective
           Vector<double> cell_rhs(fe_->n_dofs_per_cell());
+          slipping_.clear();
+          if (friction_)
+            for (unsigned int i = 0; i < nodes_.size(); ++i)
+              if (nodes_[i].candidate && nodes_[i].active && !nodes_[i].stick)
+                slipping_[nodes_[i].dofs[0]] = i;
+          nonsymmetric_ = Utilities::MPI::max(slipping_.empty() ? 0u : 1u, comm_) > 0;
+          FullMatrix<double> friction_matrix;
+          std::vector<types::global_dof_index> friction_dofs;
           for (unsigned int k = 0; k < contact_cell_matrices_.size(); ++k)
-            {
-              cell_rhs = 0.0;
-              constraints_.distribute_local_to_global(contact_cell_matrices_[k], cell_rhs,
-                                                      contact_cell_dofs_[k], A_, rhs_);
-            }
+            if (friction_ && friction_cell_matrix(k, friction_matrix, friction_dofs))
+              {
+                Vector<double> zero(friction_dofs.size());
+                constraints_.distribute_local_to_global(friction_matrix, zero, friction_dofs, A_,
+                                                        rhs_);
+              }
+            else
+              {
+                cell_rhs = 0.0;
+                constraints_.distribute_local_to_global(contact_cell_matrices_[k], cell_rhs,
+                                                        contact_cell_dofs_[k], A_, rhs_);
+              }
           A_.compress(VectorOperation::add);
           rhs_.compress(VectorOperation::add);
           rhs_.add(delta, rhs_static_unit_);
@@ -1745,32 +2100,120 @@ namespace clearjoint::fe
           solution_ = solution_owned_;
           evaluate_contact(delta);
 
+          // Normal: active where λ − c·ĝ > 0. Friction (the same semi-smooth complementarity,
+          // Hüeber–Stadler–Wohlmuth): with t_T the tangential contact force and Δs_T the slip in
+          // this increment, z = t_T − c·Δs_T; stick where |z| ≤ μ(λ − c·ĝ), else slip in the
+          // direction e = z/|z| (the friction force μλ·e of the next solve; iterated until the
+          // sets settle and no direction changes by more than 1e-5).
           unsigned int n_changed = 0;
-          for (auto &cn : nodes_)
+          double max_direction_change = 0.0;
+          double relax_num = 0.0, relax_den = 0.0;  // Σ r_old·(r − r_old), Σ |r − r_old|²
+          std::vector<Tensor<1, dim>> direction_target(nodes_.size());
+          for (unsigned int i = 0; i < nodes_.size(); ++i)
             {
+              auto &cn = nodes_[i];
               if (!cn.candidate)
                 continue;
-              const bool now = cn.lambda - c * cn.gap > c * eps_g;
-              if (now != cn.active && cn.owned)
+              const double lambda_trial = cn.lambda - c * cn.gap;
+              bool now = lambda_trial > c * eps_g;
+              // With friction a node at the edge of the contact zone can cycle: active it pulls
+              // (λ < 0, a fraction of a percent of the largest nodal force), released it
+              // penetrates by ~1e-4 δ_max. After two flips it stays active (exact
+              // non-penetration; the small pull stays in the force). Frictionless contact
+              // does not cycle and is left as it is.
+              if (friction_ && cn.candidate && now != cn.active && ++cn.contact_flips > 2)
+                now = true;
+              bool stick = cn.stick;
+              if (friction_ && now)
+                {
+                  Tensor<1, dim> z = cn.traction - cn.lambda * cn.n;
+                  Tensor<1, dim> slip = cn.relative - cn.relative_converged;
+                  slip -= (slip * cn.n) * cn.n;
+                  z -= c * slip;  // (c ×0.01 … ×100 here converged slower or not at all)
+                  const double bound = scene_.contact.mu * lambda_trial;
+                  stick = z.norm() <= bound + c * eps_g;
+                  // A node on the stick/slip boundary (|t_T| = μλ with no slip) can flip
+                  // between the two every iteration; after two flips it stays slipping with
+                  // its direction frozen: its force is μλ (Coulomb's bound) and its slip in
+                  // this increment ~0 — both states' answer — and a direction that follows a
+                  // ~0 slip would only oscillate.
+                  if (cn.active && stick != cn.stick && ++cn.stick_slip_flips > 2)
+                    stick = false;
+                  const bool frozen = cn.stick_slip_flips > 2 && cn.active && !cn.stick;
+                  if (!stick && !frozen)
+                    {
+                      const Tensor<1, dim> e = z / z.norm();
+                      if (cn.active && !cn.stick)
+                        {
+                          direction_target[i] = e;
+                          const Tensor<1, dim> r = e - cn.slip_direction;
+                          if (cn.owned)
+                            {
+                              max_direction_change = std::max(max_direction_change, r.norm());
+                              const Tensor<1, dim> d = r - cn.direction_update;
+                              relax_num += cn.direction_update * d;
+                              relax_den += d * d;
+                            }
+                        }
+                      else
+                        {
+                          cn.slip_direction = e;  // starts slipping: no history
+                          cn.direction_update = Tensor<1, dim>();
+                        }
+                    }
+                }
+              if (cn.owned && (now != cn.active || (friction_ && now && stick != cn.stick)))
                 ++n_changed;
               cn.active = now;
+              cn.stick = stick;
             }
           n_changed = Utilities::MPI::sum(n_changed, comm_);
-          if (n_changed == 0)
+          if (friction_)
+            {
+              // The slip directions converge linearly (ratio ≈ 0.45 on the radial study):
+              // relax their update e ← e + ω (e_target − e), ω from the last two updates
+              // (Irons–Tuck), kept in [0.1, 4] and restarted at 1 when the sets change.
+              relax_num = Utilities::MPI::sum(relax_num, comm_);
+              relax_den = Utilities::MPI::sum(relax_den, comm_);
+              if (n_changed != 0 || !relaxation_history || relax_den <= 0.0)
+                omega = 1.0;
+              else
+                omega = std::clamp(-omega * relax_num / relax_den, 0.1, 4.0);
+              relaxation_history = n_changed == 0;
+              for (unsigned int i = 0; i < nodes_.size(); ++i)
+                if (direction_target[i].norm() > 0.0)
+                  {
+                    auto &cn = nodes_[i];
+                    const Tensor<1, dim> r = direction_target[i] - cn.slip_direction;
+                    Tensor<1, dim> e = cn.slip_direction + omega * r;
+                    e -= (e * cn.n) * cn.n;
+                    cn.slip_direction = e / e.norm();
+                    cn.direction_update = r;
+                  }
+            }
+          // slip directions settled: the friction forces are μλ·e to 1e-5 of μλ (~1e-7 of F,
+          // friction being ~0.5 % of it)
+          const bool forces_settled = Utilities::MPI::max(max_direction_change, comm_) <= 1e-5;
+          if (n_changed == 0 && forces_settled)
             {
               ++it;
               break;
             }
           if (it + 1 == scene_.contact.max_iterations)
             throw Failure{"active set did not settle in " + std::to_string(it + 1) +
-                          " iterations (" + std::to_string(n_changed) + " nodes still changing)"};
+                          " iterations (" + std::to_string(n_changed) + " nodes still changing" +
+                          (forces_settled ? "" : ", slip forces still changing") + ")"};
         }
       rec.contact_iterations = it;
 
       // Forces and checks.
       double f_contact = 0.0, max_pen = 0.0;
       double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
-      unsigned int n_act = 0;
+      unsigned int n_act = 0, n_slip = 0;
+      // the y-force a node's contact passes on: normal only, or with its friction force
+      auto contact_force_y = [&](const ContactNode &cn) {
+        return friction_ ? cn.traction[1] : cn.lambda * cn.n[1];
+      };
       for (const auto &cn : nodes_)
         if (cn.owned)
           {
@@ -1778,7 +2221,9 @@ namespace clearjoint::fe
             if (cn.active)
               {
                 ++n_act;
-                f_contact -= cn.lambda * cn.n[1];
+                if (friction_ && !cn.stick)
+                  ++n_slip;
+                f_contact -= contact_force_y(cn);
                 if (cn.weight > 0.0)
                   {
                     p_min = std::min(p_min, cn.lambda / cn.weight);
@@ -1794,13 +2239,16 @@ namespace clearjoint::fe
       // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
       // the contact force reaches that DoF through the constraint, not through K u: add it.
       for (const auto &cn : nodes_)
-        if (cn.two_body && cn.active && cn.owned && cn.partner_driven_y)
-          f_load -= cn.lambda * cn.n[1];
+        if (cn.active && cn.owned)
+          for (const auto &p : cn.partners)
+            if (p.driven_y)
+              f_load -= p.weight * contact_force_y(cn);
       rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
                                    symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
       rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
       rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
       rec.n_active = Utilities::MPI::sum(n_act, comm_);
+      rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
       rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
       rec.pressure_min = Utilities::MPI::min(p_min, comm_);
       rec.pressure_max = Utilities::MPI::max(p_max, comm_);
@@ -1928,9 +2376,7 @@ namespace clearjoint::fe
               const double try_delta = std::min(target, delta_done + step);
               // keep what converged so far, to restore after a failed attempt
               const TrilinosWrappers::MPI::Vector saved = solution_owned_;
-              std::vector<bool> saved_active;
-              for (const auto &cn : nodes_)
-                saved_active.push_back(cn.active);
+              const std::vector<ContactNode> saved_nodes = nodes_;  // active set, friction
               try
                 {
                   // Predictor: extrapolate the displacement linearly in δ from the last two
@@ -1949,6 +2395,8 @@ namespace clearjoint::fe
                           cn.active = true;
                     }
                   rec = solve_increment(try_delta);
+                  for (auto &cn : nodes_)
+                    cn.relative_converged = cn.relative;  // friction: slip counts from here
                   solution_previous = saved;
                   delta_previous = delta_done;
                   have_previous = true;
@@ -1960,8 +2408,7 @@ namespace clearjoint::fe
                 {
                   solution_owned_ = saved;
                   solution_ = solution_owned_;
-                  for (unsigned int i = 0; i < nodes_.size(); ++i)
-                    nodes_[i].active = saved_active[i];
+                  nodes_ = saved_nodes;
                   if (cuts >= L.max_cuts)
                     {
                       result.message = "increment " + std::to_string(inc) + " to delta = " +

@@ -25,6 +25,7 @@ namespace clearjoint::fe
     unsigned int contact_iterations = 0;  // active-set iterations
     unsigned int linear_iterations = 0;   // summed over the active-set iterations
     unsigned int n_active = 0;            // active contact nodes (of the modelled part)
+    unsigned int n_slip = 0;              // of these, slipping (friction); the rest stick
     double max_penetration = 0.0;  // [m] largest penetration at any contact candidate node
     double pressure_min = 0.0;     // [Pa] min/max nodal pressure over the active nodes
     double pressure_max = 0.0;

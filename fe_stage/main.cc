@@ -83,18 +83,20 @@ namespace
           "force_support = the same force measured as the reaction of the supports (equilibrium "
           "check); force_load = the reaction on the journal's loaded set (the paper's measure)",
           "delta = push of the rigid obstacle beyond first touch"};
-        if (scene.contact.mu > 0.0)
-          comments.push_back("WARNING: friction mu = " + format_value(scene.contact.mu) +
-                             " requested but NOT modelled in this version: frictionless solve");
+        comments.push_back(scene.contact.mu > 0.0 ?
+                             "Coulomb friction mu = " + format_value(scene.contact.mu) +
+                               " (stick/slip active set); slipping_contact_points of the active "
+                               "points slip, the rest stick" :
+                             "frictionless contact (mu = 0)");
         csv = std::make_unique<CsvWriter>(
           csv_path,
           std::vector<std::string>{"delta", "force", "force_support", "force_load", "contact_iterations",
                                    "linear_iterations", "active_contact_points",
-                                   "max_penetration", "pressure_min", "pressure_max",
-                                   "wall_time"},
-          std::vector<std::string>{"m", "N", "N", "N", "1", "1", "1", "m", "Pa", "Pa", "s"},
+                                   "slipping_contact_points", "max_penetration", "pressure_min",
+                                   "pressure_max", "wall_time"},
+          std::vector<std::string>{"m", "N", "N", "N", "1", "1", "1", "1", "m", "Pa", "Pa", "s"},
           comments);
-        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
       }
     fe::RunOptions options;
     options.output_dir = dir;
@@ -102,7 +104,8 @@ namespace
     options.on_increment = [&](const fe::IncrementRecord &r) {
       if (csv)
         csv->write_row({r.delta, r.force, r.force_support, r.force_load, double(r.contact_iterations),
-                        double(r.linear_iterations), double(r.n_active), r.max_penetration,
+                        double(r.linear_iterations), double(r.n_active), double(r.n_slip),
+                        r.max_penetration,
                         r.pressure_min, r.pressure_max, r.wall_time});
     };
     const fe::RunResult result = fe::run_scene(scene, options);
@@ -127,7 +130,9 @@ namespace
         x["symmetry_factor"] = result.symmetry_factor;
         x["h_min"] = {{"value", result.h_min}, {"unit", "m"}};
         x["setup_time"] = {{"value", result.setup_time}, {"unit", "s"}};
-        x["friction_modelled"] = false;
+        x["friction"] = {{"mu", scene.contact.mu}, {"model", scene.contact.mu > 0.0 ?
+                                                              "Coulomb, stick/slip active set" :
+                                                              "frictionless"}};
         if (!result.increments.empty())
           x["force_at_delta_max"] = {{"value", result.increments.back().force}, {"unit", "N"}};
         manifest->write(result.complete ? "complete" : "incomplete", result.message);
@@ -188,10 +193,6 @@ int main(int argc, char **argv)
       if (no_fields)
         scene.output.fields = false;
       fe::validate_scene(scene);
-      if (scene.contact.mu > 0.0 && root)
-        log::warning("fe_stage: contact.mu = " + format_value(scene.contact.mu) +
-                     " but friction is not modelled in this version; the solve is frictionless "
-                     "(SPEC §2: mu = 0.1 changes F by about 0.5 %)");
 
       bool complete = true;
       // One case per swept value (t_B [m] or θ [deg]), each in its own folder.

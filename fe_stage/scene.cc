@@ -168,6 +168,12 @@ namespace clearjoint::fe
         V.n_cells = uint_or(v, "n_cells", V.n_cells, 1, 256);
         V.contact_refinements = uint_or(v, "contact_refinements", V.contact_refinements, 0, 10);
         V.refine_radius = v.number_or("refine_radius", V.refine_radius, Range::positive("m"));
+        V.deformable_indenter =
+          v.string_or("indenter", V.deformable_indenter ? "deformable" : "rigid",
+                      {"rigid", "deformable"}) == "deformable";
+        V.indenter_n_cells = uint_or(v, "indenter_n_cells", V.indenter_n_cells, 1, 256);
+        V.indenter_height =
+          v.number_or("indenter_height", V.indenter_height, Range::positive("m"));
         v.finish();
       }
     if (top.has("misalignment"))
@@ -367,8 +373,7 @@ namespace clearjoint::fe
       << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
       << "contact:\n"
       << "  mu: " << d.contact.mu
-      << "          # [1] Coulomb friction, [0, 10]. NOT MODELLED in this version: the solve\n"
-      << "                    #     is frictionless and the run warns when mu > 0\n"
+      << "          # [1] Coulomb friction coefficient, [0, 10] (0: frictionless)\n"
       << "  active_set_scale: " << d.contact.active_set_scale
       << "  # [1] complementarity constant c = scale*E*h; does not change the solution\n"
       << "  max_iterations: " << d.contact.max_iterations
@@ -404,6 +409,12 @@ namespace clearjoint::fe
       << "  contact_refinements: " << d.verification.contact_refinements << "\n"
       << "  refine_radius: " << d.verification.refine_radius
       << "  # [m] hertz: cells within this distance of the contact point are refined\n"
+      << "  indenter: " << (d.verification.deformable_indenter ? "deformable" : "rigid")
+      << "      # rigid | deformable (same material, non-matching mesh, dual mortar)\n"
+      << "  indenter_n_cells: " << d.verification.indenter_n_cells
+      << "    # coarse cells per edge of a deformable indenter\n"
+      << "  indenter_height: " << d.verification.indenter_height
+      << "  # [m] height of a deformable indenter (its top is pushed by delta)\n"
       << "output:\n"
       << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
       << "# sweep:              # optional: one run (and output folder) per value\n"
@@ -450,7 +461,10 @@ namespace clearjoint::fe
                          {"block_height", s.verification.block_height},
                          {"n_cells", s.verification.n_cells},
                          {"contact_refinements", s.verification.contact_refinements},
-                         {"refine_radius", s.verification.refine_radius}};
+                         {"refine_radius", s.verification.refine_radius},
+                         {"indenter", s.verification.deformable_indenter ? "deformable" : "rigid"},
+                         {"indenter_n_cells", s.verification.indenter_n_cells},
+                         {"indenter_height", s.verification.indenter_height}};
     j["output"] = {{"fields", s.output.fields}};
     return j;
   }

@@ -103,6 +103,14 @@ namespace clearjoint::fe
     unsigned int n_cells = 4;        // coarse cells per edge
     unsigned int contact_refinements = 4;
     double refine_radius = 1.0e-3;   // [m] hertz: cells within this distance get refined
+    /// The body pressed onto the block: `rigid` (a rigid sphere / flat, step-42's obstacle) or
+    /// `deformable` (same material, meshed independently, coupled by dual mortar): for hertz
+    /// a body [0,W]×[0,H_i]×[0,W] whose bottom is the Hertz profile y = r²/2R (saturating far
+    /// from the contact), for patch a second block; its top face is pushed down by δ.
+    bool deformable_indenter = false;
+    unsigned int indenter_n_cells = 3;  // coarse cells per edge of the indenter (≠ n_cells:
+                                        // non-matching meshes)
+    double indenter_height = 20.0e-3;   // [m] H_i
   };
 
   struct Output

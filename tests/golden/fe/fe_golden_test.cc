@@ -63,7 +63,8 @@ TEST(FeGolden, CoarseEndFacesCurveAndOutputContract)
     }
   const auto manifest = read_json_file((out / "manifest.json").string());
   EXPECT_EQ(manifest.at("status"), "complete");
-  EXPECT_FALSE(manifest.at("extra").at("friction_modelled").get<bool>());
+  EXPECT_EQ(manifest.at("extra").at("friction").at("model"), "frictionless");
+  EXPECT_EQ(manifest.at("extra").at("friction").at("mu").get<double>(), 0.0);
   EXPECT_TRUE(fs::exists(out / "fields" / "solution.pvd"));
   EXPECT_TRUE(fs::exists(out / "fields" / "solution_0003.pvtu"));
   fs::remove_all(dir);

@@ -26,9 +26,26 @@ namespace
   }
 } // namespace
 
+namespace
+{
+  /// Fitted n and K at the Hertz exponent of a Hertz run, against (4/3) E* √R.
+  std::pair<double, double> hertz_n_and_K_ratio(const FeScene &s, const RunResult &r,
+                                                const double E_star)
+  {
+    const auto [K_free, n] = fit_power_law(r);
+    (void)K_free;  // in N/m^n: with n free, K moves ~7 % per 0.006 of n at δ ≈ 10 µm, so K is
+                   // compared at the Hertz exponent: K = exp(mean(log F − 1.5 log δ))
+    double mean_log_K = 0.0;
+    for (const auto &i : r.increments)
+      mean_log_K += (std::log(i.force) - 1.5 * std::log(i.delta)) / r.increments.size();
+    const double K_hertz = 4.0 / 3.0 * E_star * std::sqrt(s.verification.sphere_radius);
+    return {n, std::exp(mean_log_K) / K_hertz};
+  }
+} // namespace
+
 // Rigid sphere on an elastic block (quarter model): Hertz, F = (4/3) E* √R δ^{3/2} with
-// 1/E* = (1 − ν²)/E (only the block deforms; the SPEC's same-material two-body version is not
-// done). Issue 3: fitted n within 0.03 of 1.5, K (at n = 1.5) within 3 %. The block (20 mm) is 30x the largest contact radius (0.32 mm), so the finite-body
+// 1/E* = (1 − ν²)/E (only the block deforms). Issue 3: fitted n within 0.03 of 1.5, K (at
+// n = 1.5) within 3 %. The block (20 mm) is 30x the largest contact radius (0.32 mm), so the finite-body
 // correction is of order a/H ≈ 1.6 % at most; the contact zone has ≥ 8 cells across its radius.
 TEST(FeHertz, RigidSphereOnBlockMatchesHertz)
 {
@@ -39,20 +56,79 @@ TEST(FeHertz, RigidSphereOnBlockMatchesHertz)
   const RunResult r = run(s);
   ASSERT_TRUE(r.complete) << r.message;
   ASSERT_EQ(r.increments.size(), 4u);
-  const auto [K_free, n] = fit_power_law(r);
-  (void)K_free;  // in N/m^n: with n free, K moves ~7 % per 0.006 of n at δ ≈ 10 µm, so K is
-                 // compared at the Hertz exponent: K = exp(mean(log F − 1.5 log δ))
-  double mean_log_K = 0.0;
-  for (const auto &i : r.increments)
-    mean_log_K += (std::log(i.force) - 1.5 * std::log(i.delta)) / r.increments.size();
-  const double K = std::exp(mean_log_K);
   const double E_star = s.material.E / (1.0 - s.material.nu * s.material.nu);
-  const double K_hertz = 4.0 / 3.0 * E_star * std::sqrt(s.verification.sphere_radius);
+  const auto [n, K_ratio] = hertz_n_and_K_ratio(s, r, E_star);
   RecordProperty("n", std::to_string(n));
-  RecordProperty("K_over_K_hertz", std::to_string(K / K_hertz));
-  std::printf("Hertz: n = %.5f, K/K_hertz = %.5f\n", n, K / K_hertz);
+  RecordProperty("K_over_K_hertz", std::to_string(K_ratio));
+  std::printf("Hertz: n = %.5f, K/K_hertz = %.5f\n", n, K_ratio);
   EXPECT_NEAR(n, 1.5, 0.03);
-  EXPECT_NEAR(K / K_hertz, 1.0, 0.03);
+  EXPECT_NEAR(K_ratio, 1.0, 0.03);
+}
+
+// The SPEC's same-material Hertz test: both bodies deform, 1/E* = 2(1 − ν²)/E. The indenter is
+// a block whose bottom is Hertz's profile r²/2R near the contact (IndenterChart), meshed with
+// 5 coarse cells per edge against the block's 6, so the contact surfaces do not match and are
+// coupled by dual mortar. Pushed 10 µm at its top; the two 20 mm bodies add a finite-body
+// compliance of order a/H ≈ 1.5 % (a ≤ 0.22 mm): limits of issue 3 (n ± 0.03, K ± 3 %).
+TEST(FeHertz, SameMaterialTwoBodiesOnNonMatchingMeshesMatchHertz)
+{
+  const FeScene s = scene("study: hertz\ncontact: {mu: 0}\n"
+                          "loading: {delta_max: 1.0e-5, n_increments: 4}\n"
+                          "verification: {n_cells: 6, contact_refinements: 5, "
+                          "refine_radius: 0.5e-3, indenter: deformable, indenter_n_cells: 5}\n");
+  const RunResult r = run(s);
+  ASSERT_TRUE(r.complete) << r.message;
+  ASSERT_EQ(r.increments.size(), 4u);
+  const double E_star = s.material.E / (2.0 * (1.0 - s.material.nu * s.material.nu));
+  const auto [n, K_ratio] = hertz_n_and_K_ratio(s, r, E_star);
+  RecordProperty("n", std::to_string(n));
+  RecordProperty("K_over_K_hertz", std::to_string(K_ratio));
+  std::printf("two-body Hertz: n = %.5f, K/K_hertz = %.5f\n", n, K_ratio);
+  EXPECT_NEAR(n, 1.5, 0.03);
+  EXPECT_NEAR(K_ratio, 1.0, 0.03);
+  for (const auto &inc : r.increments)
+    {
+      // equilibrium: contact force = support reaction = reaction on the pushed top (CG 1e-10,
+      // AMG; measured ≤ 2e-7)
+      EXPECT_NEAR(inc.force_support / inc.force, 1.0, 1e-6);
+      EXPECT_NEAR(inc.force_load / inc.force, 1.0, 1e-6);
+      EXPECT_LT(inc.max_penetration, 1e-9 * s.loading.delta_max);  // exact at active nodes
+    }
+}
+
+// Two-body contact patch test: a block (H = 20 mm) pressed by a second block (H_i = 20 mm) of
+// the same material, both on rollers with free lateral faces: uniaxial stress σ = E δ/(H + H_i)
+// in both, which Q2 represents exactly. Matching meshes (4 | 4 cells per edge) and
+// non-matching ones (4 | 3) with dual mortar; SPEC: pressure uniform within 0.1 % (matching)
+// and 2 % (non-matching), total force exact.
+TEST(FePatch, TwoBlocksMatchingAndNonMatchingMeshes)
+{
+  for (const unsigned int upper_cells : {4u, 3u})
+    {
+      const FeScene s = scene("study: patch\ncontact: {mu: 0}\n"
+                              "loading: {delta_max: 1.0e-5, n_increments: 2}\n"
+                              "verification: {n_cells: 4, contact_refinements: 0, "
+                              "indenter: deformable, indenter_n_cells: " +
+                              std::to_string(upper_cells) + "}\n");
+      const RunResult r = run(s);
+      ASSERT_TRUE(r.complete) << r.message;
+      const auto &V = s.verification;
+      const bool matching = upper_cells == V.n_cells;
+      for (const auto &inc : r.increments)
+        {
+          const double p_exact = s.material.E * inc.delta / (V.block_height + V.indenter_height);
+          const double F_exact = p_exact * 4.0 * V.block_width * V.block_width;
+          // Matching: 1e-8 (solver tolerance 1e-10 plus summation). Non-matching: the mortar
+          // integrals' quadrature error across master-face edges (≈ 2e-3 of a master nodal
+          // force, mortar_test) perturbs the uniform state; measured 3.2e-8, limit 1e-6.
+          EXPECT_NEAR(inc.force / F_exact, 1.0, matching ? 1e-8 : 1e-6) << upper_cells;
+          EXPECT_NEAR(inc.force_load / F_exact, 1.0, matching ? 1e-8 : 1e-6) << upper_cells;
+          const double tol = matching ? 1e-3 : 2e-2;  // SPEC §2
+          EXPECT_NEAR(inc.pressure_min / p_exact, 1.0, tol) << upper_cells;
+          EXPECT_NEAR(inc.pressure_max / p_exact, 1.0, tol) << upper_cells;
+          EXPECT_EQ(inc.n_active, 81u);  // every node of the block's 4 x 4 Q2 top face
+        }
+    }
 }
 
 // Contact patch test: a rigid flat pushed δ into a block on rollers (free lateral faces) gives
@@ -77,6 +153,44 @@ TEST(FePatch, RigidFlatGivesExactForceAndUniformPressure)
       EXPECT_NEAR(inc.pressure_min / p_exact, 1.0, 1e-3);
       EXPECT_NEAR(inc.pressure_max / p_exact, 1.0, 1e-3);
       EXPECT_EQ(inc.n_active, 81u);  // every node of the 4 x 4 Q2 top face (9 x 9)
+    }
+}
+
+// Coulomb friction μ = 0.1 between journal and bore (two bodies, end_faces): the push makes
+// the journal's surface and the bore slide against each other, friction resists it, so the
+// joint gets stiffer — SPEC §2 (a peer model): by about 0.5 %. Equilibrium must still hold
+// with the friction forces (contact = support = load), non-penetration stays exact, and the
+// converged state must not depend on the active-set constant c (×10).
+TEST(FeFriction, CoulombStiffensTheJointByAboutHalfAPercent)
+{
+  const RunResult frictionless = run(scene(coarse_two_body("end_faces")));
+  FeScene s = scene(coarse_two_body("end_faces"));
+  s.contact.mu = 0.1;
+  const RunResult r = run(s);
+  FeScene s10 = s;
+  s10.contact.active_set_scale = 10.0;
+  const RunResult r10 = run(s10);
+  ASSERT_TRUE(frictionless.complete && r.complete && r10.complete) << r.message << r10.message;
+  ASSERT_EQ(r.increments.size(), frictionless.increments.size());
+  for (std::size_t i = 0; i < r.increments.size(); ++i)
+    {
+      const auto &f = r.increments[i];
+      const double change = f.force / frictionless.increments[i].force - 1.0;
+      std::printf("delta = %.3g m: F = %.6g N, frictionless %.6g N (%+.3f %%), %u of %u slip\n",
+                  f.delta, f.force, frictionless.increments[i].force, 100.0 * change, f.n_slip,
+                  f.n_active);
+      EXPECT_GT(change, 0.0);
+      EXPECT_LT(change, 0.02);  // "about 0.5 %": a factor 4 of room for this coarse mesh
+      EXPECT_GT(f.n_slip, 0u);
+      // equilibrium with the friction forces: CG/GMRES to 1e-10, measured ~1e-9
+      EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);
+      EXPECT_NEAR(f.force_load / f.force, 1.0, 1e-6);
+      EXPECT_LT(f.max_penetration, 1e-9 * s.loading.delta_max);
+      // Issue 3's criterion for the method's parameter: < 0.5 % for c ×10. Frictionless, c
+      // does not change F at all (FeRadial.ActiveSetConstant...); with friction the nodes on
+      // the stick/slip boundary that are held slipping after two flips depend on the iteration
+      // path c steers: measured 0.12 % at δ_max on this coarse mesh.
+      EXPECT_NEAR(r10.increments[i].force / f.force, 1.0, 5e-3);
     }
 }
 
@@ -212,7 +326,10 @@ namespace
             EXPECT_EQ(parallel.increments[i].n_active, serial.increments[i].n_active);
           }
         std::printf("%s: np=1 F = %.12g N, np=%d F = %.12g N\n",
-                    to_string(s.loading.journal).c_str(), serial.increments.back().force, size,
+                    (s.study == Study::radial ? to_string(s.loading.journal) + " journal" :
+                                                to_string(s.study) + " study")
+                      .c_str(),
+                    serial.increments.back().force, size,
                     parallel.increments.back().force);
         MPI_Comm_free(&self);
       }
@@ -234,6 +351,17 @@ TEST(FeMpi, TwoRanksMatchOneRank)
   hanging.mesh.contact_refinements = 1;
   hanging.mesh.contact_window_deg = 20.0;  // hanging nodes inside the contact zone
   expect_ranks_agree(hanging);
+  FeScene friction = scene(coarse_two_body("end_faces"));
+  friction.contact.mu = 0.1;  // stick/slip sets and slip directions, GMRES
+  expect_ranks_agree(friction);
+  // dual mortar between non-matching meshes (master faces gathered on every rank)
+  expect_ranks_agree(scene("study: patch\ncontact: {mu: 0}\nloading: {n_increments: 2}\n"
+                           "verification: {n_cells: 4, contact_refinements: 0, "
+                           "indenter: deformable, indenter_n_cells: 3}\n"));
+  expect_ranks_agree(scene("study: hertz\ncontact: {mu: 0}\n"
+                           "loading: {delta_max: 1.0e-5, n_increments: 2}\n"
+                           "verification: {n_cells: 4, contact_refinements: 3, "
+                           "refine_radius: 1.0e-3, indenter: deformable, indenter_n_cells: 3}\n"));
 }
 
 // Hanging nodes inside the two-body contact zone (refined window 20°, contact reaches ~30°):
