@@ -2272,17 +2272,27 @@ namespace clearjoint::fe
     {
       const std::string dir = options_.output_dir + "/fields";
       // contact fields at the nodes, in the x/y/z slots of a system vector
-      TrilinosWrappers::MPI::Vector cf_owned(owned_, comm_);
+      TrilinosWrappers::MPI::Vector cf_owned(owned_, comm_), ff_owned(owned_, comm_);
       for (const auto &cn : nodes_)
         if (cn.owned)
           {
             cf_owned[cn.dofs[0]] = cn.active && cn.weight > 0.0 ? cn.lambda / cn.weight : 0.0;
             cf_owned[cn.dofs[1]] = cn.gap;
             cf_owned[cn.dofs[2]] = cn.active ? 1.0 : 0.0;
+            // friction: status 0 open, 1 stick, 2 slip; shear stress |t_T|/w; tangential
+            // relative displacement of the node against the other body since the start
+            const Tensor<1, dim> t_T = cn.traction - cn.lambda * cn.n;
+            Tensor<1, dim> slip = cn.relative;
+            slip -= (slip * cn.n) * cn.n;
+            ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && !cn.stick ? 2.0 : 1.0);
+            ff_owned[cn.dofs[1]] = cn.active && cn.weight > 0.0 ? t_T.norm() / cn.weight : 0.0;
+            ff_owned[cn.dofs[2]] = slip.norm();
           }
       cf_owned.compress(VectorOperation::insert);
-      TrilinosWrappers::MPI::Vector cf(owned_, relevant_, comm_);
+      ff_owned.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector cf(owned_, relevant_, comm_), ff(owned_, relevant_, comm_);
       cf = cf_owned;
+      ff = ff_owned;
 
       StressPostprocessor post(lame_lambda_, lame_mu_);
       DataOut<dim> out;
@@ -2296,6 +2306,9 @@ namespace clearjoint::fe
         dim, DataComponentInterpretation::component_is_scalar);
       out.add_data_vector(cf, std::vector<std::string>{"contact_pressure", "contact_gap",
                                                        "contact_active"},
+                          DataOut<dim>::type_dof_data, sc);
+      out.add_data_vector(ff, std::vector<std::string>{"contact_status", "contact_shear",
+                                                       "contact_slip"},
                           DataOut<dim>::type_dof_data, sc);
       Vector<float> subdomain(tria_.n_active_cells());
       for (auto &s : subdomain)
