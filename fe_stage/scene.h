@@ -64,7 +64,8 @@ namespace clearjoint::fe
     /// solution does not depend on it (non-penetration is exact at the contact nodes); it only
     /// steers how the active set is guessed between iterations.
     double active_set_scale = 1.0;
-    unsigned int max_iterations = 40;  // active-set iterations per increment before a cut
+    unsigned int max_iterations = 100;  // active-set iterations per increment before a cut
+                                        // (frictionless: 1–5; Coulomb friction: up to ~45)
   };
 
   struct Loading
