@@ -984,6 +984,7 @@ namespace clearjoint::fe
     {
       const auto &V = scene_.verification;
       const unsigned int n = V.n_cells;
+      const IndenterChart chart(V.sphere_radius, V.indenter_height);
       if (!V.deformable_indenter)
         GridGenerator::subdivided_hyper_rectangle(tria_, {n, n, n},
                                                   Point<dim>(0.0, -V.block_height, 0.0),
@@ -1001,7 +1002,6 @@ namespace clearjoint::fe
           GridGenerator::subdivided_hyper_rectangle(upper, {m, m, m}, Point<dim>(0.0, 0.0, 0.0),
                                                     Point<dim>(V.block_width, V.indenter_height,
                                                                V.block_width));
-          const IndenterChart chart(V.sphere_radius, V.indenter_height);
           if (scene_.study == Study::hertz)
             GridTools::transform([&](const Point<dim> &p) { return chart.push_forward(p); },
                                  upper);
@@ -1028,7 +1028,6 @@ namespace clearjoint::fe
         }
       // Boundary ids from the face vertices (exact: they lie on the generating planes).
       const double tol = 1e-10 * V.block_width;
-      const IndenterChart chart(V.sphere_radius, V.indenter_height);
       for (const auto &cell : tria_.active_cell_iterators())
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary())
