@@ -360,6 +360,31 @@ namespace clearjoint::fe
       return nodes;
     }
 
+    /// Appends the coarse cells of `body` to (vertices, cells) as a separate body with the given
+    /// material id: its vertices are copied, never shared, so two bodies that touch stay apart
+    /// (GridGenerator::merge_triangulations would glue their coincident vertices).
+    void append_body(const Triangulation<dim> &body, const types::material_id material,
+                     std::vector<Point<dim>> &vertices, std::vector<CellData<dim>> &cells)
+    {
+      auto [body_vertices, body_cells, body_sub] = GridTools::get_coarse_mesh_description(body);
+      (void)body_sub;
+      const unsigned int offset = vertices.size();
+      vertices.insert(vertices.end(), body_vertices.begin(), body_vertices.end());
+      for (auto c : body_cells)
+        {
+          for (auto &v : c.vertices)
+            v += offset;
+          c.material_id = material;
+          cells.push_back(c);
+        }
+    }
+
+    /// The part of v tangential to the unit normal n: (I − n nᵀ) v.
+    Tensor<1, dim> tangential(const Tensor<1, dim> &v, const Tensor<1, dim> &n)
+    {
+      return v - (v * n) * n;
+    }
+
     struct Failure
     {
       std::string reason;
@@ -675,16 +700,7 @@ namespace clearjoint::fe
           journal2d.create_triangulation(jv, jc, SubCellData());
           Triangulation<dim> journal3d;
           GridGenerator::extrude_triangulation(journal2d, journal_slices, journal3d, true);
-          auto [jv3, jc3, js3] = GridTools::get_coarse_mesh_description(journal3d);
-          const unsigned int offset = all_vertices.size();
-          all_vertices.insert(all_vertices.end(), jv3.begin(), jv3.end());
-          for (auto c : jc3)
-            {
-              for (auto &v : c.vertices)
-                v += offset;
-              c.material_id = 1;
-              all_cells.push_back(c);
-            }
+          append_body(journal3d, 1, all_vertices, all_cells);
         }
 
       // One coarse mesh without vertex merging: the bodies touch at φ = 0 but stay separate.
@@ -1005,18 +1021,10 @@ namespace clearjoint::fe
           if (scene_.study == Study::hertz)
             GridTools::transform([&](const Point<dim> &p) { return chart.push_forward(p); },
                                  upper);
-          auto [vertices, cells, sub] = GridTools::get_coarse_mesh_description(lower);
-          auto [vertices_u, cells_u, sub_u] = GridTools::get_coarse_mesh_description(upper);
-          const unsigned int offset = vertices.size();
-          vertices.insert(vertices.end(), vertices_u.begin(), vertices_u.end());
-          for (auto c : cells_u)
-            {
-              for (auto &v : c.vertices)
-                v += offset;
-              c.material_id = 1;
-              c.manifold_id = scene_.study == Study::hertz ? 1 : numbers::flat_manifold_id;
-              cells.push_back(c);
-            }
+          std::vector<Point<dim>> vertices;
+          std::vector<CellData<dim>> cells;
+          append_body(lower, 0, vertices, cells);
+          append_body(upper, 1, vertices, cells);
           tria_.create_triangulation(vertices, cells, SubCellData());
           if (scene_.study == Study::hertz)
             {
@@ -2030,8 +2038,7 @@ namespace clearjoint::fe
                 Tensor<1, dim> target = cn.relative_converged;
                 if (!cn.two_body)
                   target[1] -= delta;
-                target -= (target * cn.n) * cn.n;
-                target -= cn.g0 * cn.n;  // (a rigid obstacle's g0 holds its motion already)
+                target = tangential(target, cn.n) - cn.g0 * cn.n;  // (a rigid obstacle's g0 holds its motion already)
                 for (unsigned int k = 0; k < dim; ++k)
                   if (!fixed_delta_.is_constrained(cn.dofs[k]))
                     {
@@ -2125,10 +2132,10 @@ namespace clearjoint::fe
               bool stick = cn.stick;
               if (friction_ && now)
                 {
-                  Tensor<1, dim> z = cn.traction - cn.lambda * cn.n;
-                  Tensor<1, dim> slip = cn.relative - cn.relative_converged;
-                  slip -= (slip * cn.n) * cn.n;
-                  z -= c * slip;  // (c ×0.01 … ×100 here converged slower or not at all)
+                  // (c ×0.01 … ×100 here converged slower or not at all)
+                  const Tensor<1, dim> z =
+                    tangential(cn.traction, cn.n) -
+                    c * tangential(cn.relative - cn.relative_converged, cn.n);
                   const double bound = scene_.contact.mu * lambda_trial;
                   stick = z.norm() <= bound + c * eps_g;
                   // A node on the stick/slip boundary (|t_T| = μλ with no slip) can flip
@@ -2184,8 +2191,7 @@ namespace clearjoint::fe
                   {
                     auto &cn = nodes_[i];
                     const Tensor<1, dim> r = direction_target[i] - cn.slip_direction;
-                    Tensor<1, dim> e = cn.slip_direction + omega * r;
-                    e -= (e * cn.n) * cn.n;
+                    const Tensor<1, dim> e = tangential(cn.slip_direction + omega * r, cn.n);
                     cn.slip_direction = e / e.norm();
                     cn.direction_update = r;
                   }
@@ -2280,12 +2286,10 @@ namespace clearjoint::fe
             cf_owned[cn.dofs[2]] = cn.active ? 1.0 : 0.0;
             // friction: status 0 open, 1 stick, 2 slip; shear stress |t_T|/w; tangential
             // relative displacement of the node against the other body since the start
-            const Tensor<1, dim> t_T = cn.traction - cn.lambda * cn.n;
-            Tensor<1, dim> slip = cn.relative;
-            slip -= (slip * cn.n) * cn.n;
+            const double shear = tangential(cn.traction, cn.n).norm();
             ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && !cn.stick ? 2.0 : 1.0);
-            ff_owned[cn.dofs[1]] = cn.active && cn.weight > 0.0 ? t_T.norm() / cn.weight : 0.0;
-            ff_owned[cn.dofs[2]] = slip.norm();
+            ff_owned[cn.dofs[1]] = cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;
+            ff_owned[cn.dofs[2]] = tangential(cn.relative, cn.n).norm();
           }
       cf_owned.compress(VectorOperation::insert);
       ff_owned.compress(VectorOperation::insert);
