@@ -1,6 +1,6 @@
 // The FE contact model's interface: run one scene (one force–penetration curve) and get the
 // rows of force_penetration.csv back. No deal.II types here, so tests and main() compile fast;
-// the deal.II code lives in fe_model.cc.
+// the deal.II code lives in fe_stage/{mesh,core,contact,solve,results}/ (fe_stage/README.md).
 #pragma once
 
 #include "fe_stage/scene.h"

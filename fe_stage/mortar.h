@@ -1,6 +1,7 @@
 // Dual-mortar coupling of two non-matching contact surfaces (Wohlmuth's dual Lagrange
-// multipliers with lumped D). No deal.II here: fe_model.cc hands in the surface faces of both
-// bodies and turns each slave node's result into one linear non-penetration constraint
+// multipliers with lumped D). No deal.II here: contact/mortar_pairing.cc hands in the surface
+// faces of both bodies and turns each slave node's result into one linear non-penetration
+// constraint
 //     n_s · (u_s − Σ_m C_sm u_m) + gap_s = 0.
 // Theory: B. I. Wohlmuth, "A mortar finite element method using dual spaces for the Lagrange
 // multiplier", SIAM J. Numer. Anal. 38 (2000) 989–1012; Popp, Gee, Wall, "A finite deformation

@@ -1,0 +1,62 @@
+// A contact node: one row of the contact problem — which DoFs, facing which partner nodes (none
+// for a rigid obstacle, one for node-to-node, several for mortar), and its state (active,
+// stick/slip, force, gap) in the current iteration. deal.II value types only.
+#pragma once
+
+#include "fe_stage/core/dim.h"
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+#include <array>
+#include <vector>
+
+namespace clearjoint::fe::detail
+{
+
+  /// A contact candidate node: its three displacement DoFs, reference position and the
+  /// component whose DoF carries the contact constraint.
+  struct ContactNode
+  {
+    std::array<types::global_dof_index, dim> dofs;
+    /// Two-body contact: the other body's point facing this node is Σ weight·(partner node);
+    /// node-to-node (matching meshes) has one partner of weight 1, a mortar coupling several.
+    struct Partner
+    {
+      std::array<types::global_dof_index, dim> dofs;
+      double weight = 1.0;
+      bool driven_y = false;  // the partner's y-DoF is driven by the journal load
+    };
+    std::vector<Partner> partners;
+    bool two_body = false;
+    Point<dim> X;
+    unsigned int constrained_component = 1;
+    bool owned = false;   // owned by this rank (its x-DoF is locally owned)
+    bool candidate = true;  // false: only watched for penetration, never constrained
+    bool active = false;
+    // Values of the last evaluation:
+    double lambda = 0.0;  // [N] normal contact force on the body (≥ 0 in contact)
+    double gap = 0.0;     // [m] linearised gap ĝ = g0 + n·u
+    double weight = 0.0;  // [m²] ∫ φ_i dA over the contact surface (nodal area)
+    Tensor<1, dim> n;
+    double g0 = 0.0;
+    // Coulomb friction (contact.mu > 0). An active node sticks (its whole relative
+    // displacement is constrained: no new tangential slip) or slips (normal constraint, and
+    // the friction force μλ·e with its own normal force λ, implicit in the linear system).
+    bool stick = true;
+    Tensor<1, dim> traction;     // [N] total contact force on this node (K u at its DoFs)
+    Tensor<1, dim> slip_direction;  // unit tangent of the friction force on a slipping node
+    Tensor<1, dim> direction_update;  // its last fixed-point update (relaxation)
+    unsigned int stick_slip_flips = 0;  // in this increment (cycle breaking)
+    unsigned int contact_flips = 0;     // active ↔ inactive, in this increment (friction)
+    Tensor<1, dim> relative;     // [m] u − u_partner (rigid obstacle: − its translation)
+    Tensor<1, dim> relative_converged;  // [m] the same at the last converged increment
+  };
+
+  /// The part of v tangential to the unit normal n: (I − n nᵀ) v.
+  inline Tensor<1, dim> tangential(const Tensor<1, dim> &v, const Tensor<1, dim> &n)
+  {
+    return v - (v * n) * n;
+  }
+} // namespace clearjoint::fe::detail

@@ -1,0 +1,206 @@
+// Contact candidates: bearing nodes against the rigid journal (or obstacle), or paired with the
+// deformable journal's node on the same ray; partner ghosts across ranks; the cells whose
+// condensed matrices change with the active set.
+#include "fe_stage/core/contact_model.h"
+#include "fe_stage/core/face_dofs.h"
+
+namespace clearjoint::fe::detail
+{
+  void ContactModel::find_contact_nodes()
+  {
+    std::map<types::global_dof_index, Point<dim>> support;
+    DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+
+    // Candidates: surface nodes that could touch within the push (gap at δ_max below the
+    // push itself, with a factor 2 margin). After every solve all surface nodes are checked
+    // for penetration, so a window that was too small is an error, not a silent miss.
+    const double window_gap = 2.0 * scene_.loading.delta_max;
+    std::map<types::global_dof_index, ContactNode> by_x_dof;
+    std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
+
+    // Two bodies: the journal's surface nodes, keyed by (φ, z) — they lie on the same rays as
+    // the bearing's (RayChart), so pairing is an exact lookup.
+    auto key_of = [](const Point<dim> &p) {
+      return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9),
+                            std::lround(p[2] / 1e-11));
+    };
+    // Every rank gets every journal surface node (a few thousand): with several ranks the
+    // journal cell facing a bearing node is often neither owned nor a ghost, so the owner of
+    // each journal node contributes it (DoFs, position, whether its y-DoF is driven).
+    struct JournalNode
+    {
+      std::array<types::global_dof_index, dim> dofs;
+      Point<dim> X;
+      bool driven_y = false;
+    };
+    std::map<std::pair<long, long>, JournalNode> journal_nodes;
+    const bool mortar = two_body_ && scene_.study != Study::radial &&
+                        scene_.study != Study::misalignment;
+    if (two_body_ && !mortar)
+      {
+        std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag
+        std::set<types::global_dof_index> seen;
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == bid_journal_surface)
+                for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
+                  if (owned_.is_element(dofs[0]) && seen.insert(dofs[0]).second)
+                    {
+                      const Point<dim> &X = support.at(dofs[0]);
+                      const auto key = key_of(X);
+                      mine.insert(mine.end(), {double(key.first), double(key.second),
+                                               double(dofs[0]), double(dofs[1]),
+                                               double(dofs[2]), X[0], X[1], X[2],
+                                               std::binary_search(loaded_sorted_.begin(),
+                                                                  loaded_sorted_.end(),
+                                                                  dofs[1]) ? 1.0 : 0.0});
+                    }
+        for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
+          for (std::size_t i = 0; i + 9 <= part.size(); i += 9)
+            {
+              JournalNode jn;
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  jn.dofs[c] = static_cast<types::global_dof_index>(part[i + 2 + c]);
+                  jn.X[c] = part[i + 5 + c];
+                }
+              jn.driven_y = part[i + 8] != 0.0;
+              journal_nodes[{std::lround(part[i]), std::lround(part[i + 1])}] = jn;
+            }
+      }
+    if (mortar)
+      find_mortar_contact_nodes(support, by_x_dof);
+    else
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned() || cell->is_ghost())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+            {
+              for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
+                {
+                  if (by_x_dof.count(dofs[0]))
+                    continue;
+                  ContactNode cn;
+                  cn.dofs = dofs;
+                  cn.X = support.at(dofs[0]);
+                  double g0;
+                  Tensor<1, dim> n;
+                  if (!obstacle_gap(cn.X, scene_.loading.delta_max, g0, n))
+                    continue;
+                  cn.owned = owned_.is_element(dofs[0]);
+                  if (g0 > window_gap)
+                    {
+                      cn.candidate = false;  // watched only
+                      by_x_dof.emplace(dofs[0], cn);
+                      continue;
+                    }
+                  // the dominant normal component not already constrained
+                  std::array<unsigned int, dim> order = {0, 1, 2};
+                  std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+                    return std::abs(n[a]) > std::abs(n[b]);
+                  });
+                  bool found = false;
+                  for (const unsigned int c : order)
+                    if (std::abs(n[c]) > 0.3 && !fixed_constraints_.is_constrained(dofs[c]))
+                      {
+                        cn.constrained_component = c;
+                        found = true;
+                        break;
+                      }
+                  // Hanging or supported nodes are skipped: they follow their masters.
+                  if (!found)
+                    continue;
+                  if (two_body_)
+                    {
+                      const auto it = journal_nodes.find(key_of(cn.X));
+                      if (it == journal_nodes.end())
+                        throw NumericalError(
+                          "fe_stage: no journal node faces the bearing node at (" +
+                          format_value(cn.X[0]) + ", " + format_value(cn.X[1]) + ", " +
+                          format_value(cn.X[2]) + ") m: the contact meshes do not match");
+                      cn.two_body = true;
+                      cn.partners = {{it->second.dofs, 1.0, it->second.driven_y}};
+                      const Point<dim> &XJ = it->second.X;
+                      const double rB = std::hypot(cn.X[0], cn.X[1]);
+                      cn.n = Tensor<1, dim>({cn.X[0] / rB, cn.X[1] / rB, 0.0});
+                      cn.g0 = rB - std::hypot(XJ[0], XJ[1]);  // along the common ray
+                    }
+                  by_x_dof.emplace(dofs[0], cn);
+                }
+            }
+    nodes_.clear();
+    for (auto &[d, cn] : by_x_dof)
+      nodes_.push_back(cn);
+
+    // Partner DoFs this rank does not see yet become ghosts (solution values, constraint
+    // lines), and then the masters of partners that hang (a journal face refined on one
+    // side): closed lines have no chains, so two rounds suffice. After each round the fixed
+    // constraints are rebuilt on the enlarged set and made consistent across ranks.
+    if (two_body_ && n_ranks_ > 1)
+      {
+        auto add_ghosts = [&](const auto &dofs_of_partner) {
+          IndexSet extra(dof_handler_.n_dofs());
+          for (const auto &cn : nodes_)
+            for (const auto &partner : cn.partners)
+              for (const auto p : partner.dofs)
+                for (const auto d : dofs_of_partner(p))
+                  if (!relevant_.is_element(d))
+                    extra.add_index(d);
+          extra.compress();
+          if (Utilities::MPI::max(extra.n_elements(), comm_) == 0)
+            return;  // collective: every rank takes the same branch
+          relevant_.add_indices(extra);
+          relevant_.compress();
+          build_fixed_constraints();
+        };
+        add_ghosts([](const types::global_dof_index p) {
+          return std::vector<types::global_dof_index>{p};
+        });
+        add_ghosts([&](const types::global_dof_index p) {
+          std::vector<types::global_dof_index> masters;
+          if (const auto *e = fixed_constraints_.get_constraint_entries(p))
+            for (const auto &entry : *e)
+              masters.push_back(entry.first);
+          return masters;
+        });
+      }
+
+    // Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
+    // contributions change with the active set (a hanging node's share moves on through the
+    // contact line of its master); all other cells go into A_static once.
+    IndexSet candidate_dofs(dof_handler_.n_dofs());
+    for (const auto &cn : nodes_)
+      if (cn.candidate)
+        for (const auto d : cn.dofs)
+          candidate_dofs.add_index(d);
+    candidate_dofs.compress();
+    IndexSet hanging_on_candidates(dof_handler_.n_dofs());
+    for (const auto &line : fixed_constraints_.get_lines())
+      for (const auto &entry : line.entries)
+        if (candidate_dofs.is_element(entry.first))
+          {
+            hanging_on_candidates.add_index(line.index);
+            break;
+          }
+    candidate_dofs.add_indices(hanging_on_candidates);
+    candidate_dofs.compress();
+    contact_cell_of_.assign(tria_.n_active_cells(), -1);
+    std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
+    unsigned int n = 0;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(cell_dofs);
+          for (const auto d : cell_dofs)
+            if (candidate_dofs.is_element(d))
+              {
+                contact_cell_of_[cell->active_cell_index()] = n++;
+                break;
+              }
+        }
+    contact_cell_matrices_.resize(n);
+    contact_cell_dofs_.resize(n);
+  }
+} // namespace clearjoint::fe::detail

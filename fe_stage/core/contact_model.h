@@ -1,0 +1,193 @@
+// The FE contact model's state and steps, shared by the files of fe_stage (deal.II, dim = 3).
+// One class, its member functions defined by concept across fe_stage/{mesh,core,contact,solve,
+// results}/ — fe_stage/README.md maps each to its file. Internal: only fe_stage's own .cc files
+// include this; everything else sees the deal.II-free façade fe_model.h.
+//
+// Method (docs/fe.md has the equations):
+//   - small-strain linear elasticity, FE_Q(p)^3 on hexahedra with a curved mapping MappingQ(max(2,p))
+//     and cylindrical manifolds, parallel::distributed::Triangulation, Trilinos matrices;
+//   - contact against a rigid obstacle (cylinder = the journal, sphere, plane) enforced EXACTLY
+//     at the contact nodes by a primal–dual active set (as deal.II's step-41/42): an active node
+//     gets the linearised non-penetration constraint n·u = −g0 as an AffineConstraints line on its
+//     dominant displacement component; the contact force at a node is λ = (K u)·n from the
+//     unconstrained stiffness K; a node is active next iteration iff λ − c·ĝ > c·ε. The converged
+//     solution does not depend on c;
+//   - the stiffness is constant (linear elasticity), so K and the part of the condensed matrix
+//     from cells without contact nodes are assembled once; only the cells that hold contact nodes
+//     are re-added when the active set changes; the AMG (ML, with the six rigid-body modes) is
+//     built once and reused while it stays effective.
+#pragma once
+
+#include "fe_stage/contact/contact_node.h"
+#include "fe_stage/contact/rigid_obstacle.h"
+#include "fe_stage/core/scoped_timer.h"
+#include "fe_stage/core/step_failure.h"
+#include "fe_stage/fe_model.h"
+#include "fe_stage/mesh/boundary_ids.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <Epetra_Map.h>
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace clearjoint::fe::detail
+{
+  using namespace dealii;
+
+  class ContactModel
+  {
+  public:
+    ContactModel(const FeScene &scene, const RunOptions &options);
+    RunResult run();
+
+  private:
+    void make_grid();
+    void make_radial_grid();
+    void make_gmsh_grid();
+    void set_joint_obstacle();
+    void refine_joint_mesh();
+    template <typename CellIterator>
+    bool bore_gap_below(const CellIterator &cell, double limit) const;
+    void make_block_grid();
+    void setup_system();
+    void build_fixed_constraints();
+    void find_contact_nodes();
+    void find_mortar_contact_nodes(const std::map<types::global_dof_index, Point<dim>> &support,
+                                   std::map<types::global_dof_index, ContactNode> &by_x_dof);
+    void make_matrices();
+    void set_fixed_constraints_for(double delta);
+    void assemble_static();
+    void compute_nodal_weights();
+    void set_obstacle_position(double delta);
+    /// One increment to `delta` from the current state; throws StepFailure.
+    IncrementRecord solve_increment(double delta);
+    // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)
+    void build_contact_constraints(double delta);
+    void assemble_system(double delta);
+    struct ActiveSetChange
+    {
+      unsigned int n_changed = 0;         // nodes whose active or stick state changed (all ranks)
+      double max_direction_change = 0.0;  // largest slip-direction update (this rank)
+    };
+    ActiveSetChange update_active_set(double c, double eps_g, double &omega,
+                                      bool &relaxation_history);
+    void record_forces(double delta, IncrementRecord &rec);
+    /// The rigid obstacle's gap at a reference point (deal.II types around RigidObstacle::gap).
+    bool obstacle_gap(const Point<dim> &X, double delta, double &g0, Tensor<1, dim> &n) const
+    {
+      Vec3 normal;
+      if (!obstacle_.gap({X[0], X[1], X[2]}, delta, g0, normal))
+        return false;
+      n = Tensor<1, dim>({normal[0], normal[1], normal[2]});
+      return true;
+    }
+    unsigned int solve_linear(TrilinosWrappers::MPI::Vector &x,
+                              const TrilinosWrappers::MPI::Vector &b);
+    void build_amg();
+    void evaluate_contact(double delta);
+    bool friction_cell_matrix(unsigned int k, FullMatrix<double> &M,
+                              std::vector<types::global_dof_index> &ext) const;
+    void condense_hanging(TrilinosWrappers::MPI::Vector &r);
+    void write_fields(unsigned int counter, double delta);
+
+    const FeScene &scene_;
+    RunOptions options_;
+    MPI_Comm comm_;
+    const unsigned int rank_, n_ranks_;
+
+    parallel::distributed::Triangulation<dim> tria_;
+    std::unique_ptr<FESystem<dim>> fe_;
+    std::unique_ptr<MappingQ<dim>> mapping_;
+    DoFHandler<dim> dof_handler_;
+    IndexSet owned_, relevant_;
+
+    RigidObstacle obstacle_;
+    double symmetry_factor_ = 1.0;
+    double h_min_ = 0.0;
+    double lame_lambda_ = 0.0, lame_mu_ = 0.0;
+
+    AffineConstraints<double> hanging_constraints_; // hanging nodes only (residual condensing)
+    AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports,
+                                                    // journal load at δ = 1 (scaled by δ)
+    AffineConstraints<double> fixed_delta_;         // the same at the current δ
+    TrilinosWrappers::MPI::Vector rhs_static_unit_; // static cells' right-hand side at δ = 1
+    std::vector<types::global_dof_index> loaded_y_dofs_;  // owned journal DoFs driven by δ
+    std::vector<types::global_dof_index> loaded_sorted_;  // the same, sorted (lookups)
+    bool two_body_ = false;
+    bool friction_ = false;                         // contact.mu > 0
+    bool nonsymmetric_ = false;                     // slipping nodes in A_ (GMRES, not CG)
+    std::map<types::global_dof_index, unsigned int> slipping_;  // x-DoF → node (this iteration)
+    AffineConstraints<double> constraints_;         // + contact lines of the active set
+    TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions)
+    TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
+    TrilinosWrappers::SparseMatrix A_;              // condensed system of this iteration
+    TrilinosWrappers::MPI::Vector solution_owned_, rhs_, residual_owned_;
+    TrilinosWrappers::MPI::Vector solution_, residual_;  // ghosted
+    std::vector<types::global_dof_index> support_y_dofs_;  // owned y-DoFs of the supports
+
+    std::vector<ContactNode> nodes_;                 // locally relevant candidates
+    std::vector<int> contact_cell_of_;               // active_cell_index → index or −1
+    std::vector<FullMatrix<double>> contact_cell_matrices_;
+    std::vector<std::vector<types::global_dof_index>> contact_cell_dofs_;
+
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
+    std::unique_ptr<Epetra_MultiVector> null_space_;
+    unsigned int amg_reference_iterations_ = 0;
+    bool use_direct_ = false;
+
+    std::vector<std::pair<double, std::string>> pvd_records_;
+    std::vector<std::string> field_files_;
+    std::chrono::steady_clock::time_point start_;
+    double t_assemble_ = 0, t_solve_ = 0, t_amg_ = 0, t_evaluate_ = 0;
+  };
+
+
+} // namespace clearjoint::fe::detail

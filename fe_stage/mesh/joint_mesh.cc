@@ -1,0 +1,367 @@
+// The joint's generated mesh: bearing ring and (deformable) journal on common rays, the rigid
+// journal's placement (aligned or tilted), and the refinement toward the contact.
+#include "fe_stage/core/contact_model.h"
+#include "fe_stage/mesh/append_body.h"
+#include "fe_stage/mesh/charts.h"
+
+namespace clearjoint::fe::detail
+{
+  /// The bearing ring (and, unless the journal is rigid, the journal) as hexahedra on the
+  /// RayChart manifolds; φ is measured from −y toward +x: point = (r sin φ, −r cos φ).
+  void ContactModel::make_radial_grid()
+  {
+    const auto &G = scene_.geometry;
+    const auto &M = scene_.mesh;
+    // full: no x = 0 symmetry plane (φ over 360°); full_z: no z = 0 plane (the whole length:
+    // the tilted journal of the misalignment study breaks the axial symmetry).
+    const bool misaligned = scene_.study == Study::misalignment;
+    const bool full = scene_.full_model;
+    const bool full_z = full || misaligned;
+    const bool journal = scene_.loading.journal != JournalLoading::rigid;
+    const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
+    const unsigned int n_r =
+      M.n_radial > 0 ? M.n_radial :
+                       std::max(1u, static_cast<unsigned int>(std::lround(G.t_B / 2.0e-3)));
+    const double R_o = G.R_B + G.t_B;
+    const RayChart bearing_chart(G.c_r, G.R_J(), false), journal_chart(G.c_r, G.R_J(), true);
+
+    // φ of vertex i; the full ring closes at φ = ±π (vertex index modulo n_phi).
+    const unsigned int n_phi_vertices = full ? n_phi : n_phi + 1;
+    const double phi0 = full ? -units::pi : 0.0;
+    const double dphi = (full ? 2.0 * units::pi : units::pi) / n_phi;
+    auto phi_of = [&](unsigned int i) { return phi0 + (i % n_phi_vertices) * dphi; };
+
+    // --- bearing: 2D (r, φ) grid, local x along r (outward), local y along φ -------------
+    std::vector<Point<2>> vertices;
+    std::vector<CellData<2>> cells;
+    auto bid = [&](unsigned int i, unsigned int j) {
+      return (i % n_phi_vertices) * (n_r + 1) + j;
+    };
+    for (unsigned int i = 0; i < n_phi_vertices; ++i)
+      for (unsigned int j = 0; j <= n_r; ++j)
+        {
+          const double r = G.R_B + (R_o - G.R_B) * j / n_r;
+          vertices.emplace_back(r * std::sin(phi_of(i)), -r * std::cos(phi_of(i)));
+        }
+    for (unsigned int i = 0; i < n_phi; ++i)
+      for (unsigned int j = 0; j < n_r; ++j)
+        {
+          CellData<2> c;
+          c.vertices[0] = bid(i, j);
+          c.vertices[1] = bid(i, j + 1);
+          c.vertices[2] = bid(i + 1, j);
+          c.vertices[3] = bid(i + 1, j + 1);
+          c.material_id = 0;
+          c.manifold_id = 0;
+          cells.push_back(c);
+        }
+    Triangulation<2> bearing2d;
+    bearing2d.create_triangulation(vertices, cells, SubCellData());
+
+    // Axial slices: the journal's end L_J/2 is a mesh plane. The misalignment study's
+    // journal is rigid; there the plane goes through its first touch point P1 at
+    // z = −((L_J/2) cos θ − R_J sin θ) (and the mirrored plane through the diagonally
+    // opposite rim point, which touches at θ_max), so a node sits where contact starts.
+    const double theta = misaligned ? scene_.misalignment.theta_deg * units::deg : 0.0;
+    const double zJ = 0.5 * G.L_J() * std::cos(theta) - G.R_J() * std::sin(theta);
+    const double zB = 0.5 * G.L_B;
+    const unsigned int n_in = std::max(1u, M.n_axial > 1 ? M.n_axial - 1 : 1u);
+    std::vector<double> half_slices;
+    for (unsigned int k = 0; k <= n_in; ++k)
+      half_slices.push_back(zJ * k / n_in);
+    const unsigned int n_out =
+      std::max(1u, static_cast<unsigned int>(std::lround((zB - zJ) / (zJ / n_in))));
+    auto mirror = [&](const std::vector<double> &half) {
+      std::vector<double> sl;
+      if (full_z)
+        for (auto it = half.rbegin(); it != half.rend(); ++it)
+          if (*it > 0.0)
+            sl.push_back(-*it);
+      sl.insert(sl.end(), half.begin(), half.end());
+      return sl;
+    };
+    const std::vector<double> journal_slices = mirror(half_slices);
+    for (unsigned int k = 1; k <= n_out; ++k)
+      half_slices.push_back(zJ + (zB - zJ) * k / n_out);
+    const std::vector<double> bearing_slices = mirror(half_slices);
+
+    Triangulation<dim> bearing3d;
+    GridGenerator::extrude_triangulation(bearing2d, bearing_slices, bearing3d);
+    auto [all_vertices, all_cells, subcells] =
+      GridTools::get_coarse_mesh_description(bearing3d);
+    for (auto &c : all_cells)
+      {
+        c.material_id = 0;
+        c.manifold_id = 0;
+      }
+
+    if (journal)
+      {
+        // --- journal cross-section: one ring layer s ∈ [s0, 1] on the rays of the bearing's
+        // vertices, and a structured core whose boundary lies on s = s0 (Coons patch). -----
+        const double s0 = 0.6;
+        const unsigned int n = M.n_circumferential;  // cells over 180°
+        const unsigned int Nx = full ? n / 2 : n / 4, Ny = n / 2;
+        std::vector<Point<2>> jv;
+        std::vector<CellData<2>> jc;
+        auto ring_point = [&](unsigned int i, double s) {
+          const Point<dim> p = journal_chart.push_forward(Point<dim>(phi_of(i), s, 0.0));
+          return Point<2>(p[0], p[1]);
+        };
+        // ring vertices: (i, l), l = 0 (s0), 1 (surface)
+        auto rid = [&](unsigned int i, unsigned int l) { return (i % n_phi_vertices) * 2 + l; };
+        for (unsigned int i = 0; i < n_phi_vertices; ++i)
+          {
+            jv.push_back(ring_point(i, s0));
+            jv.push_back(ring_point(i, 1.0));
+          }
+        for (unsigned int i = 0; i < n_phi; ++i)
+          {
+            CellData<2> c;
+            c.vertices[0] = rid(i, 0);
+            c.vertices[1] = rid(i, 1);
+            c.vertices[2] = rid(i + 1, 0);
+            c.vertices[3] = rid(i + 1, 1);
+            c.material_id = 1;
+            c.manifold_id = 1;
+            jc.push_back(c);
+          }
+        // core boundary: ring index of boundary node (a, b), or −1 on the symmetry line
+        // (half model) where the points run straight through the journal's centre.
+        auto ring_index = [&](unsigned int a, unsigned int b) -> int {
+          if (full)
+            {
+              // counter-clockwise from the bottom-left corner (φ = −3π/4 ↔ i = n/2)
+              if (b == 0) return int(n / 2 + a);
+              if (a == Nx) return int(n / 2 + Nx + b);
+              if (b == Ny) return int((n / 2 + Nx + Ny + (Nx - a)) % n_phi);
+              if (a == 0) return int((n / 2 + 2 * Nx + Ny + (Ny - b)) % n_phi);
+              return -1;
+            }
+          if (b == 0) return int(a);
+          if (a == Nx) return int(Nx + b);
+          if (b == Ny) return int(Nx + Ny + (Nx - a));
+          return -1;
+        };
+        const Point<2> centre(0.0, -G.c_r);
+        auto boundary_point = [&](unsigned int a, unsigned int b) -> Point<2> {
+          const int i = ring_index(a, b);
+          if (i >= 0)
+            return ring_point(i, s0);
+          // half model, a = 0: bottom → centre → top, linear in each half
+          const Point<2> bot = ring_point(0, s0), top = ring_point(n, s0);
+          const double t = double(b) / Ny;
+          return t <= 0.5 ? bot + (centre - bot) * (2.0 * t) : centre + (top - centre) * (2.0 * t - 1.0);
+        };
+        std::vector<int> core_id((Nx + 1) * (Ny + 1), -1);
+        for (unsigned int b = 0; b <= Ny; ++b)
+          for (unsigned int a = 0; a <= Nx; ++a)
+            {
+              const int i = ring_index(a, b);
+              if (i >= 0)
+                {
+                  core_id[b * (Nx + 1) + a] = rid(i, 0);
+                  continue;
+                }
+              Point<2> p;
+              if (a == 0 || a == Nx || b == 0 || b == Ny)
+                p = boundary_point(a, b);
+              else
+                {
+                  const double u = double(a) / Nx, v = double(b) / Ny;
+                  const Point<2> B = boundary_point(a, 0), T = boundary_point(a, Ny),
+                                 Lp = boundary_point(0, b), R = boundary_point(Nx, b);
+                  const Point<2> P00 = boundary_point(0, 0), P10 = boundary_point(Nx, 0),
+                                 P01 = boundary_point(0, Ny), P11 = boundary_point(Nx, Ny);
+                  p = Point<2>((1 - v) * B + v * T + (1 - u) * Lp + u * R -
+                               ((1 - u) * (1 - v) * P00 + u * (1 - v) * P10 +
+                                (1 - u) * v * P01 + u * v * P11));
+                }
+              core_id[b * (Nx + 1) + a] = jv.size();
+              jv.push_back(p);
+            }
+        for (unsigned int b = 0; b < Ny; ++b)
+          for (unsigned int a = 0; a < Nx; ++a)
+            {
+              CellData<2> c;
+              c.vertices[0] = core_id[b * (Nx + 1) + a];
+              c.vertices[1] = core_id[b * (Nx + 1) + a + 1];
+              c.vertices[2] = core_id[(b + 1) * (Nx + 1) + a];
+              c.vertices[3] = core_id[(b + 1) * (Nx + 1) + a + 1];
+              c.material_id = 1;
+              c.manifold_id = numbers::flat_manifold_id;
+              jc.push_back(c);
+            }
+        Triangulation<2> journal2d;
+        GridTools::consistently_order_cells(jc);
+        journal2d.create_triangulation(jv, jc, SubCellData());
+        Triangulation<dim> journal3d;
+        GridGenerator::extrude_triangulation(journal2d, journal_slices, journal3d, true);
+        append_body(journal3d, 1, all_vertices, all_cells);
+      }
+
+    // One coarse mesh without vertex merging: the bodies touch at φ = 0 but stay separate.
+    Triangulation<dim> serial;
+    serial.create_triangulation(all_vertices, all_cells, SubCellData());
+
+    const double tol = 1e-8 * G.R_B;
+    for (const auto &cell : serial.active_cell_iterators())
+      {
+        const bool is_journal = cell->material_id() == 1;
+        if (is_journal)
+          {
+            // ring cells: all vertices at s ≥ s0 − tol on the journal chart
+            bool ring = true;
+            for (const auto v : cell->vertex_indices())
+              ring = ring && journal_chart.pull_back(cell->vertex(v))[1] > 0.6 - 1e-6;
+            cell->set_all_manifold_ids(ring ? 1 : numbers::flat_manifold_id);
+          }
+        else
+          cell->set_all_manifold_ids(0);
+      }
+    // ring faces toward the core carry the chart too (set after the core so they stay curved)
+    for (const auto &cell : serial.active_cell_iterators())
+      if (cell->material_id() == 1 && cell->manifold_id() == 1)
+        cell->set_all_manifold_ids(1);
+
+    for (const auto &cell : serial.active_cell_iterators())
+      for (const auto f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            const auto face = cell->face(f);
+            const Point<dim> c = face->center();
+            bool on_inner = true, on_outer = true, on_x0 = true, on_journal = true;
+            for (const auto v : face->vertex_indices())
+              {
+                const Point<dim> &p = face->vertex(v);
+                const double rv = std::hypot(p[0], p[1]);
+                on_inner = on_inner && std::abs(rv - G.R_B) < tol;
+                on_outer = on_outer && std::abs(rv - R_o) < tol;
+                on_x0 = on_x0 && std::abs(p[0]) < tol;
+                on_journal =
+                  on_journal && std::abs(std::hypot(p[0], p[1] + G.c_r) - G.R_J()) < tol;
+              }
+            types::boundary_id id = bid_free;
+            if (cell->material_id() == 1)
+              {
+                if (on_journal)
+                  id = bid_journal_surface;
+                else if (std::abs(std::abs(c[2]) - zJ) < tol)
+                  id = bid_journal_end;
+                else if (!full && on_x0)
+                  id = bid_sym_x;
+                else if (!full_z && std::abs(c[2]) < tol)
+                  id = bid_sym_z;
+              }
+            else if (on_inner)
+              id = bid_contact;
+            else if (on_outer)
+              id = (c[1] > 0.0) ? bid_fixed : bid_free;
+            else if (!full && on_x0)
+              id = bid_sym_x;
+            else if (!full_z && std::abs(c[2]) < tol)
+              id = bid_sym_z;
+            face->set_boundary_id(id);
+          }
+
+    tria_.copy_triangulation(serial);
+    tria_.set_manifold(0, bearing_chart);
+    tria_.set_manifold(1, journal_chart);
+
+    set_joint_obstacle();
+    refine_joint_mesh();
+    symmetry_factor_ = (full ? 1.0 : 2.0) * (full_z ? 1.0 : 2.0);
+  }
+
+  /// The rigid journal (or, for two bodies, the journal's place for the candidate search):
+  /// aligned, first touch at the bottom (0, −R_B); or tilted by θ in the y–z plane about its
+  /// centre, lowered until its lowest rim point — the bottom of the rim at z < 0, at
+  /// (0, y_c − (L_J/2) sin θ − R_J cos θ) — touches the bore (paper §3.3).
+  void ContactModel::set_joint_obstacle()
+  {
+    const auto &G = scene_.geometry;
+    obstacle_.radius = G.R_J();
+    obstacle_.half_length = 0.5 * G.L_J();
+    if (scene_.study == Study::misalignment)
+      {
+        const double theta = scene_.misalignment.theta_deg * units::deg;
+        obstacle_.kind = RigidObstacle::Kind::tilted_cylinder;
+        obstacle_.tilt = theta;
+        obstacle_.offset = G.R_B - 0.5 * G.L_J() * std::sin(theta) - G.R_J() * std::cos(theta);
+      }
+    else
+      {
+        obstacle_.kind = RigidObstacle::Kind::cylinder;
+        obstacle_.offset = G.c_r;
+      }
+  }
+
+  /// True if the bore (r = R_B) within the cell's angular and axial extent comes closer than
+  /// `limit` to the journal pushed to δ_max. Sampled on a 16 × 16 grid of the extent, not at
+  /// the vertices only: a rim contact patch can be much smaller than a coarse cell.
+  template <typename CellIterator>
+  bool ContactModel::bore_gap_below(const CellIterator &cell, const double limit) const
+  {
+    double phi_lo = std::numeric_limits<double>::max(), phi_hi = -phi_lo;
+    double z_lo = phi_lo, z_hi = -phi_lo;
+    for (const auto v : cell->vertex_indices())
+      {
+        const Point<dim> &p = cell->vertex(v);
+        const double phi = std::atan2(p[0], -p[1]);
+        phi_lo = std::min(phi_lo, phi);
+        phi_hi = std::max(phi_hi, phi);
+        z_lo = std::min(z_lo, p[2]);
+        z_hi = std::max(z_hi, p[2]);
+      }
+    if (phi_hi - phi_lo > units::pi)  // a cell of the full model across φ = ±π (the top)
+      return false;
+    constexpr unsigned int n = 16;
+    const double R = scene_.geometry.R_B;
+    for (unsigned int i = 0; i <= n; ++i)
+      for (unsigned int j = 0; j <= n; ++j)
+        {
+          const double phi = phi_lo + (phi_hi - phi_lo) * i / n;
+          const Point<dim> X(R * std::sin(phi), -R * std::cos(phi), z_lo + (z_hi - z_lo) * j / n);
+          double g0;
+          Tensor<1, dim> normal;
+          if (obstacle_gap(X, scene_.loading.delta_max, g0, normal) && g0 < limit)
+            return true;
+        }
+    return false;
+  }
+
+  /// Global refinements, then `contact_refinements` rounds near the contact: the radial study
+  /// refines the cells within contact_window_deg of the bottom (the mean vertex angle is the
+  /// same for a bearing cell and the journal cell on the same rays); the misalignment study,
+  /// whose contact is a small patch under one rim, the cells that hold contact candidates
+  /// (a vertex within 2 δ_max of the journal pushed to δ_max; hanging nodes in the contact
+  /// zone pass their force to their masters, see condense_hanging).
+  void ContactModel::refine_joint_mesh()
+  {
+    const auto &M = scene_.mesh;
+    for (unsigned int k = 0; k < M.global_refinements; ++k)
+      tria_.refine_global(1);
+    const double window = M.contact_window_deg * units::deg;
+    const bool by_gap = scene_.study == Study::misalignment;
+    for (unsigned int k = 0; k < M.contact_refinements; ++k)
+      {
+        for (const auto &cell : tria_.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              if (by_gap)
+                {
+                  if (bore_gap_below(cell, 2.0 * scene_.loading.delta_max))
+                    cell->set_refine_flag();
+                  continue;
+                }
+              double phi = 0.0;
+              for (const auto v : cell->vertex_indices())
+                phi += std::abs(std::atan2(cell->vertex(v)[0], -cell->vertex(v)[1]));
+              phi /= cell->n_vertices();
+              if (phi < window)
+                cell->set_refine_flag();
+            }
+        tria_.execute_coarsening_and_refinement();
+      }
+  }
+} // namespace clearjoint::fe::detail

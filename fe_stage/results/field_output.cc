@@ -1,0 +1,126 @@
+// VTU/PVTU/PVD fields for ParaView: displacement, stress, strain, von Mises, principal strains,
+// contact pressure/gap/status/shear/slip, subdomain.
+#include "fe_stage/core/contact_model.h"
+
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+namespace clearjoint::fe::detail
+{
+  /// Stress, strain, von Mises stress and principal strains from the displacement gradient.
+  class StressPostprocessor : public DataPostprocessor<dim>
+  {
+  public:
+    StressPostprocessor(const double lambda, const double mu) : lambda_(lambda), mu_(mu) {}
+
+    void evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &in,
+                               std::vector<Vector<double>> &out) const override
+    {
+      for (unsigned int q = 0; q < in.solution_gradients.size(); ++q)
+        {
+          Tensor<2, dim> grad;
+          for (unsigned int i = 0; i < dim; ++i)
+            grad[i] = in.solution_gradients[q][i];
+          const SymmetricTensor<2, dim> eps = symmetrize(grad);
+          const SymmetricTensor<2, dim> sig =
+            lambda_ * trace(eps) * unit_symmetric_tensor<dim>() + 2.0 * mu_ * eps;
+          unsigned int k = 0;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              out[q][k++] = sig[i][j];
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              out[q][k++] = eps[i][j];
+          const SymmetricTensor<2, dim> s = deviator(sig);
+          out[q][k++] = std::sqrt(1.5 * (s * s));
+          const auto ev = eigenvalues(eps);  // descending
+          for (unsigned int i = 0; i < dim; ++i)
+            out[q][k++] = ev[i];
+        }
+    }
+
+    std::vector<std::string> get_names() const override
+    {
+      std::vector<std::string> names(9, "stress");
+      names.resize(18, "strain");
+      names.push_back("von_mises_stress");
+      names.push_back("principal_strain_1");
+      names.push_back("principal_strain_2");
+      names.push_back("principal_strain_3");
+      return names;
+    }
+
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+    get_data_component_interpretation() const override
+    {
+      std::vector<DataComponentInterpretation::DataComponentInterpretation> v(
+        18, DataComponentInterpretation::component_is_part_of_tensor);
+      v.resize(22, DataComponentInterpretation::component_is_scalar);
+      return v;
+    }
+
+    UpdateFlags get_needed_update_flags() const override { return update_gradients; }
+
+  private:
+    double lambda_, mu_;
+  };
+
+  void ContactModel::write_fields(const unsigned int counter, const double delta)
+  {
+    const std::string dir = options_.output_dir + "/fields";
+    // contact fields at the nodes, in the x/y/z slots of a system vector
+    TrilinosWrappers::MPI::Vector cf_owned(owned_, comm_), ff_owned(owned_, comm_);
+    for (const auto &cn : nodes_)
+      if (cn.owned)
+        {
+          cf_owned[cn.dofs[0]] = cn.active && cn.weight > 0.0 ? cn.lambda / cn.weight : 0.0;
+          cf_owned[cn.dofs[1]] = cn.gap;
+          cf_owned[cn.dofs[2]] = cn.active ? 1.0 : 0.0;
+          // friction: status 0 open, 1 stick, 2 slip; shear stress |t_T|/w; tangential
+          // relative displacement of the node against the other body since the start
+          const double shear = tangential(cn.traction, cn.n).norm();
+          ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && !cn.stick ? 2.0 : 1.0);
+          ff_owned[cn.dofs[1]] = cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;
+          ff_owned[cn.dofs[2]] = tangential(cn.relative, cn.n).norm();
+        }
+    cf_owned.compress(VectorOperation::insert);
+    ff_owned.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector cf(owned_, relevant_, comm_), ff(owned_, relevant_, comm_);
+    cf = cf_owned;
+    ff = ff_owned;
+
+    StressPostprocessor post(lame_lambda_, lame_mu_);
+    DataOut<dim> out;
+    out.attach_dof_handler(dof_handler_);
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+    out.add_data_vector(solution_, std::vector<std::string>(dim, "displacement"),
+                        DataOut<dim>::type_dof_data, vec);
+    out.add_data_vector(solution_, post);
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> sc(
+      dim, DataComponentInterpretation::component_is_scalar);
+    out.add_data_vector(cf, std::vector<std::string>{"contact_pressure", "contact_gap",
+                                                     "contact_active"},
+                        DataOut<dim>::type_dof_data, sc);
+    out.add_data_vector(ff, std::vector<std::string>{"contact_status", "contact_shear",
+                                                     "contact_slip"},
+                        DataOut<dim>::type_dof_data, sc);
+    Vector<float> subdomain(tria_.n_active_cells());
+    for (auto &s : subdomain)
+      s = static_cast<float>(tria_.locally_owned_subdomain());
+    out.add_data_vector(subdomain, "subdomain");
+    out.build_patches(*mapping_, fe_->degree, DataOut<dim>::curved_inner_cells);
+    const std::string pvtu =
+      out.write_vtu_with_pvtu_record(dir + "/", "solution", counter, comm_, 4, 0);
+    if (rank_ == 0)
+      {
+        pvd_records_.emplace_back(delta, pvtu);
+        const std::string pvd = dir + "/solution.pvd";
+        std::ofstream f(pvd + ".tmp");
+        DataOutBase::write_pvd_record(f, pvd_records_);
+        f.close();
+        std::filesystem::rename(pvd + ".tmp", pvd);
+        field_files_.push_back(dir + "/" + pvtu);
+      }
+  }
+} // namespace clearjoint::fe::detail

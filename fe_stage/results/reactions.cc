@@ -1,0 +1,117 @@
+// Nodal reactions K u (hanging shares moved to their masters), the contact state of every node,
+// and the increment's forces and checks.
+#include "fe_stage/core/contact_model.h"
+
+namespace clearjoint::fe::detail
+{
+  /// λ_i = (K u)_i · n_i and ĝ_i = g0_i + n_i · u_i for every candidate node (ghosted values,
+  /// so every rank evaluates the same numbers for the nodes it shares).
+  void ContactModel::evaluate_contact(const double delta)
+  {
+    K_.vmult(residual_owned_, solution_owned_);
+    condense_hanging(residual_owned_);
+    residual_ = residual_owned_;
+    for (auto &cn : nodes_)
+      {
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            cn.traction[c] = residual_[cn.dofs[c]];
+            cn.relative[c] = solution_[cn.dofs[c]];
+            for (const auto &p : cn.partners)
+              cn.relative[c] -= p.weight * solution_[p.dofs[c]];
+          }
+        if (!cn.two_body)
+          cn.relative[1] += delta;  // a rigid obstacle moves by −δ e_y
+        cn.lambda = cn.traction * cn.n;
+        // ĝ = g0 + n·(u − u_partner); the rigid obstacle's motion is already in g0
+        cn.gap = cn.g0 + cn.n * cn.relative - (cn.two_body ? 0.0 : delta * cn.n[1]);
+      }
+  }
+
+  /// Moves the nodal forces K u of hanging DoFs to their masters (r_m += c_hm r_h, r_h = 0),
+  /// as the condensed equations see them: a hanging node inside the contact zone passes its
+  /// share of the contact force to the contact nodes it hangs from, and supports count the
+  /// share of hanging support nodes. Without it the contact force misses those shares.
+  void ContactModel::condense_hanging(TrilinosWrappers::MPI::Vector &r)
+  {
+    residual_ = r;  // ghosted copy: the hanging DoF's value on whichever rank owns its line
+    TrilinosWrappers::MPI::Vector moved;
+    moved.reinit(owned_, relevant_, comm_, true);  // writable: entries of masters elsewhere
+    for (const auto &line : hanging_constraints_.get_lines())
+      if (owned_.is_element(line.index))
+        {
+          const double rh = residual_[line.index];
+          for (const auto &[m, c] : line.entries)
+            moved[m] += c * rh;
+          moved[line.index] -= rh;
+        }
+    moved.compress(VectorOperation::add);
+    r += moved;
+  }
+
+  /// The increment's forces (contact, supports, loaded set; full body), active and slipping
+  /// nodes, penetration and pressure range, and the checks that make a wrong answer a failure.
+  void ContactModel::record_forces(const double delta, IncrementRecord &rec)
+  {
+  // Forces and checks.
+  double f_contact = 0.0, max_pen = 0.0;
+  double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
+  unsigned int n_act = 0, n_slip = 0;
+  // the y-force a node's contact passes on: normal only, or with its friction force
+  auto contact_force_y = [&](const ContactNode &cn) {
+    return friction_ ? cn.traction[1] : cn.lambda * cn.n[1];
+  };
+  for (const auto &cn : nodes_)
+    if (cn.owned)
+      {
+        max_pen = std::max(max_pen, -cn.gap);
+        if (cn.active)
+          {
+            ++n_act;
+            if (friction_ && !cn.stick)
+              ++n_slip;
+            f_contact -= contact_force_y(cn);
+            if (cn.weight > 0.0)
+              {
+                p_min = std::min(p_min, cn.lambda / cn.weight);
+                p_max = std::max(p_max, cn.lambda / cn.weight);
+              }
+          }
+      }
+  double f_support = 0.0, f_load = 0.0;
+  for (const auto d : support_y_dofs_)
+    f_support += residual_owned_[d];
+  for (const auto d : loaded_y_dofs_)
+    f_load -= residual_owned_[d];
+  // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
+  // the contact force reaches that DoF through the constraint, not through K u: add it.
+  for (const auto &cn : nodes_)
+    if (cn.active && cn.owned)
+      for (const auto &p : cn.partners)
+        if (p.driven_y)
+          f_load -= p.weight * contact_force_y(cn);
+  rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
+                               symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
+  rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
+  rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
+  rec.n_active = Utilities::MPI::sum(n_act, comm_);
+  rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
+  rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
+  rec.pressure_min = Utilities::MPI::min(p_min, comm_);
+  rec.pressure_max = Utilities::MPI::max(p_max, comm_);
+  if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
+    throw StepFailure{"non-finite contact force"};
+  // A pushed joint must touch somewhere: no active node means the journal slipped between
+  // the contact nodes (a rim patch smaller than the cells), and F = 0 would be a wrong answer.
+  if (rec.n_active == 0 && scene_.study != Study::patch && scene_.study != Study::hertz)
+    throw StepFailure{"no contact node touches the journal at delta = " + format_value(delta) +
+                      " m: the mesh is too coarse where the journal touches (raise "
+                      "mesh.contact_refinements or mesh.global_refinements)"};
+  // Watched (non-candidate) nodes must not penetrate: if one does, the candidate window was
+  // too small and the result would be wrong, so the run stops instead.
+  if (rec.max_penetration > 1e-6 * scene_.loading.delta_max)
+    throw StepFailure{"penetration " + format_value(rec.max_penetration) +
+                      " m at a contact-surface node (candidate window too small)"};
+  }
+
+} // namespace clearjoint::fe::detail

@@ -1,0 +1,131 @@
+// Linear solves: KLU below a size, else CG (GMRES when friction makes A non-symmetric) with ML AMG
+// on the six rigid-body modes, reused while it stays effective.
+#include "fe_stage/core/contact_model.h"
+
+namespace clearjoint::fe::detail
+{
+  void ContactModel::build_amg()
+  {
+    ScopedTimer timer(t_amg_);
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic = true;
+    data.higher_order_elements = fe_->degree > 1;
+    data.smoother_sweeps = 2;
+    data.aggregation_threshold = 0.02;
+    data.n_cycles = 1;
+    data.w_cycle = false;
+    Teuchos::ParameterList list;
+    std::unique_ptr<Epetra_MultiVector> translation_modes;
+    data.set_parameters(list, translation_modes, A_);
+
+    // All six rigid-body modes (SPEC §5: with only the translations ML needs ~3x the
+    // iterations). deal.II 9.4 passes only translations, so they go in through ML's list.
+    std::map<types::global_dof_index, Point<dim>> support;
+    DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+    const Epetra_Map &map = A_.trilinos_matrix().DomainMap();
+    null_space_ = std::make_unique<Epetra_MultiVector>(map, 6);
+    std::vector<std::pair<types::global_dof_index, unsigned int>> comp(owned_.n_elements());
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (owned_.is_element(dofs[i]))
+              {
+                const unsigned int local = owned_.index_within_set(dofs[i]);
+                const unsigned int c = fe_->system_to_component_index(i).first;
+                const Point<dim> &x = support.at(dofs[i]);
+                for (unsigned int m = 0; m < 6; ++m)
+                  (*null_space_)[m][local] = 0.0;
+                (*null_space_)[c][local] = 1.0;
+                // rotations about x, y, z: ω × x
+                if (c == 0)
+                  {
+                    (*null_space_)[4][local] = x[2];
+                    (*null_space_)[5][local] = -x[1];
+                  }
+                else if (c == 1)
+                  {
+                    (*null_space_)[3][local] = -x[2];
+                    (*null_space_)[5][local] = x[0];
+                  }
+                else
+                  {
+                    (*null_space_)[3][local] = x[1];
+                    (*null_space_)[4][local] = -x[0];
+                  }
+              }
+        }
+    list.set("null space: type", "pre-computed");
+    list.set("null space: dimension", 6);
+    list.set("null space: vectors", null_space_->Values());
+    amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg_->initialize(A_, list);
+    amg_reference_iterations_ = 0;
+  }
+
+  unsigned int ContactModel::solve_linear(TrilinosWrappers::MPI::Vector &x,
+                                          const TrilinosWrappers::MPI::Vector &b)
+  {
+    const double b_norm = b.l2_norm();
+    if (!std::isfinite(b_norm))
+      throw StepFailure{"non-finite right-hand side"};
+    if (use_direct_)
+      {
+        SolverControl control(1, 0);
+        TrilinosWrappers::SolverDirect::AdditionalData ad(false, "Amesos_Klu");
+        TrilinosWrappers::SolverDirect direct(control, ad);
+        try
+          {
+            direct.solve(A_, x, b);
+          }
+        catch (const std::exception &e)
+          {
+            throw StepFailure{std::string("direct solver (Amesos KLU) failed: ") + e.what()};
+          }
+        return 1;
+      }
+    if (b_norm == 0.0)
+      {
+        x = 0.0;
+        return 0;
+      }
+    for (unsigned int attempt = 0; attempt < 2; ++attempt)
+      {
+        if (!amg_)
+          build_amg();
+        SolverControl control(scene_.solver.max_linear_iterations,
+                              scene_.solver.tolerance * b_norm);
+        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+        SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+          control,  // right preconditioning: the tolerance applies to the true residual
+          SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100, true));
+        try
+          {
+            if (nonsymmetric_)
+              gmres.solve(A_, x, b, *amg_);
+            else
+              cg.solve(A_, x, b, *amg_);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            if (attempt == 0)
+              {
+                amg_.reset();  // the reused preconditioner may be stale: rebuild once
+                continue;
+              }
+            throw StepFailure{std::string(nonsymmetric_ ? "GMRES" : "CG") +
+                              " did not converge in " + std::to_string(e.last_step) +
+                              " iterations (residual " + format_value(e.last_residual) + ")"};
+          }
+        const unsigned int its = control.last_step();
+        if (amg_reference_iterations_ == 0)
+          amg_reference_iterations_ = std::max(1u, its);
+        else if (its > 2 * amg_reference_iterations_ + 10)
+          amg_.reset();  // reuse only while it stays effective; rebuilt at the next solve
+        return its;
+      }
+    throw StepFailure{"linear solver failed"};
+  }
+} // namespace clearjoint::fe::detail
