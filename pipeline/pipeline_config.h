@@ -2,6 +2,8 @@
 // run with which fitted laws, and the presets. See docs/pipeline.md for every key.
 #pragma once
 
+#include "common/key_path.h"
+
 #include <nlohmann/json.hpp>
 
 #include <map>
@@ -105,14 +107,6 @@ namespace clearjoint::pipeline
   /// that name an existing file from there are made absolute. Keywords in `values` are kept
   /// (NaN); resolve_value_keywords() (study_values.h) fills them in once the preset is known.
   PipelineConfig read_pipeline_config(const std::string &path);
-
-  /// Sets "a.b.c" in a JSON object, creating intermediate objects; throws InputError if a
-  /// non-object is in the way.
-  void set_key_path(nlohmann::json &root, const std::string &key_path, const nlohmann::json &value,
-                    const std::string &source);
-
-  /// The value at "a.b.c" (numeric components index lists), or nullptr if absent.
-  const nlohmann::json *find_key_path(const nlohmann::json &root, const std::string &key_path);
 
   /// The shortest text that reads back as exactly `value` ("0.004", "1.5",
   /// "3.2842262350456..." for θ_max): names of output folders and law labels.
