@@ -12,6 +12,7 @@ namespace clearjoint::fe
   {
     ContactModel::ContactModel(const FeScene &scene, const RunOptions &options)
       : scene_(scene)
+      , plan_(plan_study(scene))
       , options_(options)
       , comm_(options.comm)
       , rank_(Utilities::MPI::this_mpi_process(options.comm))
@@ -21,9 +22,9 @@ namespace clearjoint::fe
       , start_(std::chrono::steady_clock::now())
     {
       const double E = scene.material.E, nu = scene.material.nu;
-      lame_lambda_ = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-      lame_mu_ = E / (2.0 * (1.0 + nu));
+      material_ = LinearElastic::from_young_poisson(E, nu);
       friction_ = scene.contact.mu > 0.0;
+      obstacle_ = plan_.obstacle;
     }
   } // namespace detail
 

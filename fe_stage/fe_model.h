@@ -7,6 +7,7 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -32,6 +33,30 @@ namespace clearjoint::fe
     double wall_time = 0.0;        // [s] since the start of the run
   };
 
+  /// Where the linear-elastic von Mises stress exceeds the scene's yield stress, per body, at
+  /// the last converged increment (the model stays elastic: this says where it stops being
+  /// valid). Volumes are of the full body (symmetry factor applied).
+  struct YieldCheck
+  {
+    struct Body
+    {
+      std::string name;                  // bearing, journal, block, indenter
+      double volume = 0.0;               // [m^3]
+      double volume_above_yield = 0.0;   // [m^3]
+      double max_von_mises = 0.0;        // [Pa] largest at a quadrature point
+      std::array<double, 3> max_location{};  // [m] where (the modelled part's coordinates)
+    };
+    double yield_stress = 0.0;           // [Pa] scene material.yield_stress
+    std::vector<Body> bodies;
+    bool exceeded() const
+    {
+      for (const auto &b : bodies)
+        if (b.volume_above_yield > 0.0)
+          return true;
+      return false;
+    }
+  };
+
   struct RunResult
   {
     std::vector<IncrementRecord> increments;  // without the origin row
@@ -45,6 +70,7 @@ namespace clearjoint::fe
     double setup_time = 0.0;       // [s] mesh, DoFs, static matrices
     unsigned int n_ranks = 1;
     std::vector<std::string> field_files;  // written VTU/PVTU/PVD (rank 0 lists them)
+    YieldCheck yield_check;        // at the last converged increment (empty before the first)
   };
 
   struct RunOptions

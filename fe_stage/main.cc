@@ -1,6 +1,7 @@
 // fe_stage: the FE contact model of a revolute joint with clearance (SPEC §2).
 //
-//   fe_stage SCENE.yaml --output DIR [--full-model] [--no-fields] [--no-plots]
+//   fe_stage SCENE.yaml --output DIR [--preset fast|standard|accurate] [--full-model]
+//            [--no-fields] [--no-plots]
 //   fe_stage --print-defaults
 //
 // Writes DIR/force_penetration.csv (delta, force, solver statistics per increment),
@@ -13,8 +14,10 @@
 #include "common/log.h"
 #include "common/manifest.h"
 #include "common/plot_script.h"
+#include "common/strict_reader.h"
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
+#include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
 
 #include <CLI/CLI.hpp>
@@ -53,9 +56,36 @@ namespace
       MPI_Abort(MPI_COMM_WORLD, code);
   }
 
+  /// The yield check for the manifest: per body its volume, the volume above the yield stress
+  /// and the largest von Mises stress with its place (SI, units stated).
+  nlohmann::json yield_check_json(const fe::YieldCheck &y)
+  {
+    nlohmann::json bodies = nlohmann::json::array();
+    for (const auto &b : y.bodies)
+      bodies.push_back(
+        {{"body", b.name},
+         {"volume", {{"value", b.volume}, {"unit", "m^3"}}},
+         {"volume_above_yield", {{"value", b.volume_above_yield}, {"unit", "m^3"}}},
+         {"fraction_above_yield", b.volume > 0.0 ? b.volume_above_yield / b.volume : 0.0},
+         {"max_von_mises", {{"value", b.max_von_mises}, {"unit", "Pa"}}},
+         {"max_location", {{"value", b.max_location}, {"unit", "m"}}}});
+    return {{"yield_stress", {{"value", y.yield_stress}, {"unit", "Pa"}}},
+            {"exceeded", y.exceeded()},
+            {"note", "linear-elastic model: von Mises above the yield stress means the result "
+                     "is not valid there (field plastic_zone: volume fraction above yield)"},
+            {"bodies", bodies}};
+  }
+
+  /// How the scene was made: the preset of pipeline.yaml applied to it, if any.
+  struct PresetUse
+  {
+    std::string name, file;
+    fe::PresetOverrides overrides;
+  };
+
   /// One case: CSV + fields + manifest in `dir`. Returns true if complete.
   bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
-                const bool plots, double &force_at_max)
+                const bool plots, const PresetUse &preset, double &force_at_max)
   {
     const bool root = rank_of(MPI_COMM_WORLD) == 0;
     if (root)
@@ -73,6 +103,15 @@ namespace
           manifest->set_library_version(k, v);
         if (!scene.geometry.mesh.empty())
           manifest->add_input(scene.geometry.mesh);
+        if (!preset.name.empty())
+          {
+            manifest->add_input(preset.file);
+            nlohmann::json o = nlohmann::json::object();
+            for (const auto &[k, v] : preset.overrides)
+              o[k] = v;
+            manifest->extra()["preset"] = {{"name", preset.name}, {"file", preset.file},
+                                           {"scene_keys", o}};
+          }
         manifest->extra()["scene"] = fe::scene_to_json(scene);
         std::vector<std::string> comments = {
           "clearjoint fe_stage: force-penetration curve, study " + fe::to_string(scene.study) +
@@ -134,13 +173,21 @@ namespace
                                                               "Coulomb, stick/slip active set" :
                                                               "frictionless"}};
         if (!result.increments.empty())
-          x["force_at_delta_max"] = {{"value", result.increments.back().force}, {"unit", "N"}};
+          {
+            x["force_at_delta_max"] = {{"value", result.increments.back().force}, {"unit", "N"}};
+            x["yield_check"] = yield_check_json(result.yield_check);
+          }
         manifest->write(result.complete ? "complete" : "incomplete", result.message);
         log::info("fe_stage: " + dir + ": F(" + format_value(result.increments.empty() ?
                                                                0.0 :
                                                                result.increments.back().delta) +
                   " m) = " + format_value(force_at_max) + " N, " +
                   log::format_duration(result.wall_time));
+        if (!result.field_files.empty())
+          log::info("fe_stage: fields: open " + dir +
+                    "/fields/solution.pvd in ParaView (displacement, stress, von_mises_stress, "
+                    "plastic_zone, contact_pressure, contact_status, contact_shear, "
+                    "contact_slip; one step per increment)");
       }
     return result.complete;
   }
@@ -158,9 +205,16 @@ int main(int argc, char **argv)
   std::string scene_path, output_dir;
   bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
        quiet = false;
+  PresetUse preset;
   app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
   app.add_option("--output,-o", output_dir, "output directory");
   app.add_flag("--print-defaults", print_defaults, "print the default scene with units and exit");
+  app.add_option("--preset", preset.name,
+                 "the mesh of a pipeline preset, fast | standard | accurate, as run_pipeline "
+                 "uses it (its measured cost and error: docs/benchmarks.md)");
+  app.add_option("--presets-file", preset.file,
+                 "the pipeline file whose presets --preset reads (default: the source tree's "
+                 "pipeline.yaml)");
   app.add_flag("--full-model", full_model, "model the full joint instead of the quarter model");
   app.add_flag("--no-fields", no_fields, "do not write VTU fields");
   app.add_flag("--no-plots", no_plots, "do not draw the force-penetration plots (PNG)");
@@ -187,7 +241,25 @@ int main(int argc, char **argv)
         throw InputError("", "scene", "(none)", "a scene file", "usage: fe_stage SCENE.yaml --output DIR");
       if (output_dir.empty())
         throw InputError("", "--output", "(none)", "a directory", "usage: fe_stage SCENE.yaml --output DIR");
-      fe::FeScene scene = fe::read_scene(scene_path);  // all input errors before any output
+      // all input errors before any output: the scene, with the preset's keys set as
+      // run_pipeline sets them
+      nlohmann::json scene_doc = read_structured_file(scene_path);
+      if (!preset.name.empty())
+        {
+          if (preset.file.empty())
+            preset.file = fe::default_presets_file();
+          preset.overrides = fe::read_fe_preset(preset.file, preset.name);
+          fe::apply_preset(scene_doc, preset.overrides, preset.file);
+          std::string keys;
+          for (const auto &[k, v] : preset.overrides)
+            keys += (keys.empty() ? "" : ", ") + k + " = " + v.dump();
+          if (root)
+            log::info("fe_stage: preset " + preset.name + " (" + preset.file + "): " +
+                      (keys.empty() ? "no FE keys" : keys));
+        }
+      else if (!preset.file.empty())
+        throw InputError("", "--presets-file", preset.file, "only together with --preset");
+      fe::FeScene scene = fe::scene_from_json(scene_doc, scene_path);
       if (full_model)
         scene.full_model = true;
       if (no_fields)
@@ -219,7 +291,7 @@ int main(int argc, char **argv)
       if (cases.empty())
         {
           double f;
-          complete = run_case(scene, output_dir, argc, argv, !no_plots, f);
+          complete = run_case(scene, output_dir, argc, argv, !no_plots, preset, f);
         }
       else
         {
@@ -243,7 +315,7 @@ int main(int argc, char **argv)
               c.scene.sweep_t_B.clear();
               c.scene.sweep_theta_deg.clear();
               double f = 0.0;
-              const bool ok = run_case(c.scene, c.folder, argc, argv, !no_plots, f);
+              const bool ok = run_case(c.scene, c.folder, argc, argv, !no_plots, preset, f);
               complete = complete && ok;
               if (root)
                 {

@@ -101,6 +101,7 @@ namespace clearjoint::fe
         M.E = m.number_or("E", M.E, Range::positive("Pa"));
         M.nu = m.number_or("nu", M.nu, Range::open(-1.0, 0.5, ""));
         M.rho = m.number_or("rho", M.rho, Range::positive("kg/m^3"));
+        M.yield_stress = m.number_or("yield_stress", M.yield_stress, Range::positive("Pa"));
         m.finish();
       }
     if (top.has("contact"))
@@ -371,6 +372,8 @@ namespace clearjoint::fe
       << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
       << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
       << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
+      << "  yield_stress: " << d.material.yield_stress
+      << " # [Pa] (0, inf): the yield check reports where von Mises exceeds it\n"
       << "contact:\n"
       << "  mu: " << d.contact.mu
       << "          # [1] Coulomb friction coefficient, [0, 10] (0: frictionless)\n"
@@ -435,7 +438,8 @@ namespace clearjoint::fe
       j["geometry"]["mesh"] = s.geometry.mesh;
     if (s.study == Study::misalignment)
       j["misalignment"] = {{"theta_deg", s.misalignment.theta_deg}};
-    j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho}};
+    j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho},
+                     {"yield_stress", s.material.yield_stress}};
     j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
                     {"max_iterations", s.contact.max_iterations}};
     j["loading"] = {{"journal", to_string(s.loading.journal)},

@@ -55,6 +55,9 @@ namespace clearjoint::fe
     double E = 207.0e9;  // [Pa] Young's modulus
     double nu = 0.3;     // [1] Poisson's ratio
     double rho = 7800.0; // [kg/m³] density (kept for the dynamic studies; unused when static)
+    /// [Pa] the yield check's limit: the model stays linear elastic, the run reports where von
+    /// Mises exceeds this (SPEC §2's hardening table starts at 168.2 MPa, the paper's steel).
+    double yield_stress = 168.2e6;
   };
 
   struct Contact

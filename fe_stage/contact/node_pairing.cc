@@ -34,8 +34,7 @@ namespace clearjoint::fe::detail
       bool driven_y = false;
     };
     std::map<std::pair<long, long>, JournalNode> journal_nodes;
-    const bool mortar = two_body_ && scene_.study != Study::radial &&
-                        scene_.study != Study::misalignment;
+    const bool mortar = plan_.pairing == StudyPlan::Pairing::mortar;
     if (two_body_ && !mortar)
       {
         std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag

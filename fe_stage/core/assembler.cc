@@ -33,7 +33,7 @@ namespace clearjoint::fe::detail
               for (unsigned int i = 0; i < n_dofs; ++i)
                 for (unsigned int j = i; j < n_dofs; ++j)
                   cell_matrix(i, j) +=
-                    (lame_lambda_ * div[i] * div[j] + 2.0 * lame_mu_ * (eps[i] * eps[j])) * JxW;
+                    (material_.lambda * div[i] * div[j] + 2.0 * material_.mu * (eps[i] * eps[j])) * JxW;
             }
           for (unsigned int i = 0; i < n_dofs; ++i)
             for (unsigned int j = 0; j < i; ++j)

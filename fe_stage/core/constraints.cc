@@ -8,7 +8,7 @@ namespace clearjoint::fe::detail
   /// also knows the constraints of the journal DoFs it was given as contact partners.
   void ContactModel::build_fixed_constraints()
   {
-    const bool joint = scene_.study == Study::radial || scene_.study == Study::misalignment;
+    const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
     loaded_y_dofs_.clear();
     const FEValuesExtractors::Scalar ux(0), uy(1), uz(2);
     fixed_constraints_.clear();

@@ -23,7 +23,9 @@
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
+#include "fe_stage/material/linear_elastic.h"
 #include "fe_stage/mesh/boundary_ids.h"
+#include "fe_stage/study/study.h"
 
 #include "common/error.h"
 #include "common/log.h"
@@ -92,7 +94,6 @@ namespace clearjoint::fe::detail
     void make_grid();
     void make_radial_grid();
     void make_gmsh_grid();
-    void set_joint_obstacle();
     void refine_joint_mesh();
     template <typename CellIterator>
     bool bore_gap_below(const CellIterator &cell, double limit) const;
@@ -137,8 +138,13 @@ namespace clearjoint::fe::detail
                               std::vector<types::global_dof_index> &ext) const;
     void condense_hanging(TrilinosWrappers::MPI::Vector &r);
     void write_fields(unsigned int counter, double delta);
+    /// Von Mises against scene.material.yield_stress at every quadrature point (collective);
+    /// optionally each cell's volume fraction above yield (the plastic_zone field).
+    YieldCheck check_yield(Vector<float> *cell_fraction_above) const;
+    void log_yield_check(const YieldCheck &check) const;
 
     const FeScene &scene_;
+    const StudyPlan plan_;  // what the scene's study sets up (study/*.cc)
     RunOptions options_;
     MPI_Comm comm_;
     const unsigned int rank_, n_ranks_;
@@ -152,7 +158,7 @@ namespace clearjoint::fe::detail
     RigidObstacle obstacle_;
     double symmetry_factor_ = 1.0;
     double h_min_ = 0.0;
-    double lame_lambda_ = 0.0, lame_mu_ = 0.0;
+    LinearElastic material_;
 
     AffineConstraints<double> hanging_constraints_; // hanging nodes only (residual condensing)
     AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports,

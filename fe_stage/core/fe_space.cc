@@ -6,16 +6,14 @@ namespace clearjoint::fe::detail
 {
   void ContactModel::setup_system()
   {
-    const bool joint = scene_.study == Study::radial || scene_.study == Study::misalignment;
-    const unsigned int p = joint ? scene_.mesh.degree : 2;
+    const unsigned int p = plan_.degree;
     fe_ = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
     mapping_ = std::make_unique<MappingQ<dim>>(std::max(2u, p));
     dof_handler_.distribute_dofs(*fe_);
     owned_ = dof_handler_.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
 
-    two_body_ = joint ? scene_.loading.journal != JournalLoading::rigid :
-                        scene_.verification.deformable_indenter;
+    two_body_ = plan_.deformable_partner;
     build_fixed_constraints();
 
     {

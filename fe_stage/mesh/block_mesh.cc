@@ -12,7 +12,7 @@ namespace clearjoint::fe::detail
     const auto &V = scene_.verification;
     const unsigned int n = V.n_cells;
     const IndenterChart chart(V.sphere_radius, V.indenter_height);
-    if (!V.deformable_indenter)
+    if (!plan_.deformable_partner)
       GridGenerator::subdivided_hyper_rectangle(tria_, {n, n, n},
                                                 Point<dim>(0.0, -V.block_height, 0.0),
                                                 Point<dim>(V.block_width, 0.0, V.block_width));
@@ -29,7 +29,7 @@ namespace clearjoint::fe::detail
         GridGenerator::subdivided_hyper_rectangle(upper, {m, m, m}, Point<dim>(0.0, 0.0, 0.0),
                                                   Point<dim>(V.block_width, V.indenter_height,
                                                              V.block_width));
-        if (scene_.study == Study::hertz)
+        if (plan_.hertz)
           GridTools::transform([&](const Point<dim> &p) { return chart.push_forward(p); },
                                upper);
         std::vector<Point<dim>> vertices;
@@ -37,7 +37,7 @@ namespace clearjoint::fe::detail
         append_body(lower, 0, vertices, cells);
         append_body(upper, 1, vertices, cells);
         tria_.create_triangulation(vertices, cells, SubCellData());
-        if (scene_.study == Study::hertz)
+        if (plan_.hertz)
           {
             for (const auto &cell : tria_.active_cell_iterators())
               if (cell->material_id() == 1)
@@ -55,7 +55,7 @@ namespace clearjoint::fe::detail
               for (unsigned int v = 0; v < cell->face(f)->n_vertices(); ++v)
                 {
                   Point<dim> X = cell->face(f)->vertex(v);
-                  if (cell->material_id() == 1 && scene_.study == Study::hertz)
+                  if (cell->material_id() == 1 && plan_.hertz)
                     X = chart.pull_back(X);
                   if (!pred(X))
                     return false;
@@ -85,11 +85,8 @@ namespace clearjoint::fe::detail
               }
             cell->face(f)->set_boundary_id(id);
           }
-    if (scene_.study == Study::patch)
-      {
-        tria_.refine_global(V.contact_refinements);
-        obstacle_.kind = RigidObstacle::Kind::plane;
-      }
+    if (!plan_.hertz)  // the patch test: uniformly fine
+      tria_.refine_global(V.contact_refinements);
     else
       {
         // Graded: round k refines the cells within refine_radius·2^(n−1−k) of the contact
@@ -115,8 +112,6 @@ namespace clearjoint::fe::detail
                 }
             tria_.execute_coarsening_and_refinement();
           }
-        obstacle_.kind = RigidObstacle::Kind::sphere;
-        obstacle_.radius = V.sphere_radius;
       }
     symmetry_factor_ = 4.0;
   }

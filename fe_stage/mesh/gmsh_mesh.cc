@@ -122,7 +122,6 @@ namespace clearjoint::fe::detail
 
     tria_.copy_triangulation(serial);
     tria_.set_manifold(0, RayChart(G.c_r, G.R_J(), false));
-    set_joint_obstacle();
     refine_joint_mesh();
     symmetry_factor_ = (sym_x ? 2.0 : 1.0) * (sym_z ? 2.0 : 1.0);
     if (rank_ == 0)

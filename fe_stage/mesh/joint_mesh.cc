@@ -14,7 +14,7 @@ namespace clearjoint::fe::detail
     const auto &M = scene_.mesh;
     // full: no x = 0 symmetry plane (φ over 360°); full_z: no z = 0 plane (the whole length:
     // the tilted journal of the misalignment study breaks the axial symmetry).
-    const bool misaligned = scene_.study == Study::misalignment;
+    const bool misaligned = plan_.tilted;
     const bool full = scene_.full_model;
     const bool full_z = full || misaligned;
     const bool journal = scene_.loading.journal != JournalLoading::rigid;
@@ -268,32 +268,8 @@ namespace clearjoint::fe::detail
     tria_.set_manifold(0, bearing_chart);
     tria_.set_manifold(1, journal_chart);
 
-    set_joint_obstacle();
     refine_joint_mesh();
     symmetry_factor_ = (full ? 1.0 : 2.0) * (full_z ? 1.0 : 2.0);
-  }
-
-  /// The rigid journal (or, for two bodies, the journal's place for the candidate search):
-  /// aligned, first touch at the bottom (0, −R_B); or tilted by θ in the y–z plane about its
-  /// centre, lowered until its lowest rim point — the bottom of the rim at z < 0, at
-  /// (0, y_c − (L_J/2) sin θ − R_J cos θ) — touches the bore (paper §3.3).
-  void ContactModel::set_joint_obstacle()
-  {
-    const auto &G = scene_.geometry;
-    obstacle_.radius = G.R_J();
-    obstacle_.half_length = 0.5 * G.L_J();
-    if (scene_.study == Study::misalignment)
-      {
-        const double theta = scene_.misalignment.theta_deg * units::deg;
-        obstacle_.kind = RigidObstacle::Kind::tilted_cylinder;
-        obstacle_.tilt = theta;
-        obstacle_.offset = G.R_B - 0.5 * G.L_J() * std::sin(theta) - G.R_J() * std::cos(theta);
-      }
-    else
-      {
-        obstacle_.kind = RigidObstacle::Kind::cylinder;
-        obstacle_.offset = G.c_r;
-      }
   }
 
   /// True if the bore (r = R_B) within the cell's angular and axial extent comes closer than
@@ -342,7 +318,7 @@ namespace clearjoint::fe::detail
     for (unsigned int k = 0; k < M.global_refinements; ++k)
       tria_.refine_global(1);
     const double window = M.contact_window_deg * units::deg;
-    const bool by_gap = scene_.study == Study::misalignment;
+    const bool by_gap = plan_.tilted;
     for (unsigned int k = 0; k < M.contact_refinements; ++k)
       {
         for (const auto &cell : tria_.active_cell_iterators())

@@ -7,7 +7,7 @@ namespace clearjoint::fe::detail
   {
     if (!scene_.geometry.mesh.empty())
       make_gmsh_grid();
-    else if (scene_.study == Study::radial || scene_.study == Study::misalignment)
+    else if (plan_.mesh == StudyPlan::Mesh::joint)
       make_radial_grid();
     else
       make_block_grid();

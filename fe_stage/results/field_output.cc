@@ -1,5 +1,6 @@
 // VTU/PVTU/PVD fields for ParaView: displacement, stress, strain, von Mises, principal strains,
-// contact pressure/gap/status/shear/slip, subdomain.
+// plastic_zone (the yield check), contact pressure/gap/status/shear/slip as Abaqus's
+// CPRESS/COPEN/CSTATUS/CSHEAR/CSLIP, subdomain.
 #include "fe_stage/core/contact_model.h"
 
 #include <deal.II/numerics/data_out.h>
@@ -11,7 +12,7 @@ namespace clearjoint::fe::detail
   class StressPostprocessor : public DataPostprocessor<dim>
   {
   public:
-    StressPostprocessor(const double lambda, const double mu) : lambda_(lambda), mu_(mu) {}
+    explicit StressPostprocessor(const LinearElastic &material) : material_(material) {}
 
     void evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &in,
                                std::vector<Vector<double>> &out) const override
@@ -22,8 +23,7 @@ namespace clearjoint::fe::detail
           for (unsigned int i = 0; i < dim; ++i)
             grad[i] = in.solution_gradients[q][i];
           const SymmetricTensor<2, dim> eps = symmetrize(grad);
-          const SymmetricTensor<2, dim> sig =
-            lambda_ * trace(eps) * unit_symmetric_tensor<dim>() + 2.0 * mu_ * eps;
+          const SymmetricTensor<2, dim> sig = material_.stress(eps);
           unsigned int k = 0;
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
@@ -31,8 +31,7 @@ namespace clearjoint::fe::detail
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
               out[q][k++] = eps[i][j];
-          const SymmetricTensor<2, dim> s = deviator(sig);
-          out[q][k++] = std::sqrt(1.5 * (s * s));
+          out[q][k++] = von_mises(sig);
           const auto ev = eigenvalues(eps);  // descending
           for (unsigned int i = 0; i < dim; ++i)
             out[q][k++] = ev[i];
@@ -62,7 +61,7 @@ namespace clearjoint::fe::detail
     UpdateFlags get_needed_update_flags() const override { return update_gradients; }
 
   private:
-    double lambda_, mu_;
+    LinearElastic material_;
   };
 
   void ContactModel::write_fields(const unsigned int counter, const double delta)
@@ -76,12 +75,21 @@ namespace clearjoint::fe::detail
           cf_owned[cn.dofs[0]] = cn.active && cn.weight > 0.0 ? cn.lambda / cn.weight : 0.0;
           cf_owned[cn.dofs[1]] = cn.gap;
           cf_owned[cn.dofs[2]] = cn.active ? 1.0 : 0.0;
-          // friction: status 0 open, 1 stick, 2 slip; shear stress |t_T|/w; tangential
-          // relative displacement of the node against the other body since the start
-          const double shear = tangential(cn.traction, cn.n).norm();
-          ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && !cn.stick ? 2.0 : 1.0);
-          ff_owned[cn.dofs[1]] = cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;
-          ff_owned[cn.dofs[2]] = tangential(cn.relative, cn.n).norm();
+          // As Abaqus's CSTATUS, CSHEAR, CSLIP: status 0 open, 1 slip, 2 stick (frictionless
+          // contact slides freely: slip); shear = the friction traction |t_T|/w, zero without
+          // friction and off contact; slip = the tangential displacement against the other
+          // body since the start, where in contact. The friction force is K u on the node's
+          // DoFs that the contact holds: a DoF fixed by a symmetry plane or a support carries
+          // that reaction, not friction, and is left out.
+          Tensor<1, dim> t = cn.traction;
+          for (unsigned int k = 0; k < dim; ++k)
+            if (fixed_constraints_.is_constrained(cn.dofs[k]))
+              t[k] = 0.0;
+          const double shear = tangential(t, cn.n).norm();
+          ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && cn.stick ? 2.0 : 1.0);
+          ff_owned[cn.dofs[1]] =
+            friction_ && cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;
+          ff_owned[cn.dofs[2]] = cn.active ? tangential(cn.relative, cn.n).norm() : 0.0;
         }
     cf_owned.compress(VectorOperation::insert);
     ff_owned.compress(VectorOperation::insert);
@@ -89,7 +97,7 @@ namespace clearjoint::fe::detail
     cf = cf_owned;
     ff = ff_owned;
 
-    StressPostprocessor post(lame_lambda_, lame_mu_);
+    StressPostprocessor post(material_);
     DataOut<dim> out;
     out.attach_dof_handler(dof_handler_);
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
@@ -109,6 +117,9 @@ namespace clearjoint::fe::detail
     for (auto &s : subdomain)
       s = static_cast<float>(tria_.locally_owned_subdomain());
     out.add_data_vector(subdomain, "subdomain");
+    Vector<float> plastic_zone(tria_.n_active_cells());  // volume fraction above yield
+    check_yield(&plastic_zone);
+    out.add_data_vector(plastic_zone, "plastic_zone");
     out.build_patches(*mapping_, fe_->degree, DataOut<dim>::curved_inner_cells);
     const std::string pvtu =
       out.write_vtu_with_pvtu_record(dir + "/", "solution", counter, comm_, 4, 0);

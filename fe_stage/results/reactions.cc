@@ -103,7 +103,7 @@ namespace clearjoint::fe::detail
     throw StepFailure{"non-finite contact force"};
   // A pushed joint must touch somewhere: no active node means the journal slipped between
   // the contact nodes (a rim patch smaller than the cells), and F = 0 would be a wrong answer.
-  if (rec.n_active == 0 && scene_.study != Study::patch && scene_.study != Study::hertz)
+  if (rec.n_active == 0 && plan_.must_touch)
     throw StepFailure{"no contact node touches the journal at delta = " + format_value(delta) +
                       " m: the mesh is too coarse where the journal touches (raise "
                       "mesh.contact_refinements or mesh.global_refinements)"};

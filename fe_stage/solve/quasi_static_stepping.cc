@@ -1,5 +1,6 @@
-// Quasi-static stepping: increments of δ from 0 to δ_max, a linear predictor, and step cutting
-// with rollback on failure.
+// Quasi-static stepping: increments of δ from 0 to δ_max, a linear predictor, step cutting with
+// rollback on failure, one log line per increment (as an Abaqus .sta file) with an ETA, and the
+// yield check of the last converged state.
 #include "fe_stage/core/contact_model.h"
 
 namespace clearjoint::fe::detail
@@ -46,9 +47,26 @@ namespace clearjoint::fe::detail
         evaluate_contact(0.0);
         write_fields(0, 0.0);
       }
-    std::unique_ptr<log::Progress> progress;
-    if (rank_ == 0)
-      progress = std::make_unique<log::Progress>("fe_stage increments", L.delta_max * 1e6, "um");
+    const double stepping_start = seconds();
+    // One line per converged increment: what an Abaqus user reads in the .sta file. The ETA
+    // assumes the remaining push costs what the push so far cost per metre.
+    auto log_increment = [&](const unsigned int inc, const IncrementRecord &r) {
+      if (rank_ != 0)
+        return;
+      const double elapsed = r.wall_time - stepping_start;
+      const std::string eta =
+        inc < L.n_increments ?
+          "  ETA " + log::format_duration(elapsed * (L.delta_max - r.delta) / r.delta) :
+          "";
+      char buf[320];
+      std::snprintf(buf, sizeof(buf),
+                    "fe_stage: increment %u/%u  delta %.4g um  F %.6g N  contact its %u  "
+                    "linear its %u  active %u (slip %u)  %s%s",
+                    inc, L.n_increments, r.delta * 1e6, r.force, r.contact_iterations,
+                    r.linear_iterations, r.n_active, r.n_slip,
+                    log::format_duration(r.wall_time).c_str(), eta.c_str());
+      log::info(buf);
+    };
     double delta_done = 0.0, delta_previous = 0.0;
     bool have_previous = false;
     TrilinosWrappers::MPI::Vector solution_previous(owned_, comm_);
@@ -106,6 +124,11 @@ namespace clearjoint::fe::detail
                       log::error("fe_stage: " + result.message);
                     result.wall_time = seconds();
                     result.field_files = field_files_;
+                    if (!result.increments.empty())
+                      {
+                        result.yield_check = check_yield(nullptr);
+                        log_yield_check(result.yield_check);
+                      }
                     return result;
                   }
                 ++cuts;
@@ -124,10 +147,11 @@ namespace clearjoint::fe::detail
           options_.on_increment(rec);
         if (fields)
           write_fields(inc, target);
-        if (progress)
-          progress->update(target * 1e6);
+        log_increment(inc, rec);
       }
     result.complete = true;
+    result.yield_check = check_yield(nullptr);
+    log_yield_check(result.yield_check);
     result.wall_time = seconds();
     if (rank_ == 0)
       log::info("fe_stage: time in contact assembly " + log::format_duration(t_assemble_) +

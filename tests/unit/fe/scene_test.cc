@@ -2,6 +2,7 @@
 // item 10 — each names the field and its valid range; fe_stage exits 1 and writes nothing.
 #include "common/error.h"
 #include "common/strict_reader.h"
+#include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
 
 #include <gtest/gtest.h>
@@ -171,4 +172,51 @@ TEST(FeScene, MisalignmentStudy)
                {"misalignment.theta_deg", "no root"});
   // θ sweep only for the misalignment study; one swept parameter per scene
   expect_error("schema: clearjoint.fe/1\nsweep: {theta_deg: [1.0]}\n", {"sweep.theta_deg"});
+}
+
+// fe_stage --preset (issue 15 item 7): the FE keys of pipeline.yaml's presets, read from the
+// file run_pipeline reads, set on the scene before it is validated; a name the file does not
+// have is an input error that lists the presets.
+TEST(FePreset, ThePipelinePresetsSetTheSceneMesh)
+{
+  const std::string file = std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml";
+  const PresetOverrides fast = read_fe_preset(file, "fast");
+  ASSERT_FALSE(fast.empty());
+  nlohmann::json doc = parse_yaml_string("schema: clearjoint.fe/1\nmesh: {global_refinements: 3}\n",
+                                         "test.yaml");
+  apply_preset(doc, fast, file);
+  const FeScene s = scene_from_json(doc, "test.yaml");
+  const nlohmann::json pipeline = read_structured_file(file);
+  const nlohmann::json &expected = pipeline["presets"]["fast"]["fe"];
+  EXPECT_EQ(s.mesh.global_refinements, expected["mesh.global_refinements"].get<unsigned int>());
+  EXPECT_EQ(s.mesh.n_circumferential, expected["mesh.n_circumferential"].get<unsigned int>());
+  EXPECT_EQ(s.mesh.contact_refinements, expected["mesh.contact_refinements"].get<unsigned int>());
+  // the three presets are nested mesh levels: standard one global refinement above fast
+  const FeScene standard = [&] {
+    nlohmann::json d = parse_yaml_string("schema: clearjoint.fe/1\n", "test.yaml");
+    apply_preset(d, read_fe_preset(file, "standard"), file);
+    return scene_from_json(d, "test.yaml");
+  }();
+  EXPECT_EQ(standard.mesh.global_refinements, s.mesh.global_refinements + 1);
+
+  try
+    {
+      read_fe_preset(file, "fastest");
+      FAIL() << "no error for an unknown preset";
+    }
+  catch (const InputError &e)
+    {
+      const std::string msg = e.what();
+      for (const std::string part : {"--preset", "fastest", "fast", "standard", "accurate"})
+        EXPECT_NE(msg.find(part), std::string::npos) << "'" << part << "' missing in: " << msg;
+    }
+}
+
+TEST(FeScene, YieldStressDefaultsToTheHardeningTablesFirstPoint)
+{
+  EXPECT_DOUBLE_EQ(parse("schema: clearjoint.fe/1\n").material.yield_stress, 168.2e6);
+  EXPECT_DOUBLE_EQ(parse("schema: clearjoint.fe/1\nmaterial: {yield_stress: 3.0e8}\n")
+                     .material.yield_stress, 3.0e8);
+  expect_error("schema: clearjoint.fe/1\nmaterial: {yield_stress: -1}\n",
+               {"material.yield_stress", "-1"});
 }

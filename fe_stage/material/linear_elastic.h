@@ -1,0 +1,35 @@
+// The material law of the FE model today: isotropic linear elasticity (small strain), and the
+// von Mises equivalent stress the yield check and the fields use. An elastoplastic law with
+// quadrature-point history comes beside it (the rolling study).
+#pragma once
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <cmath>
+
+namespace clearjoint::fe::detail
+{
+  struct LinearElastic
+  {
+    double lambda = 0.0;  // [Pa] Lamé's first parameter
+    double mu = 0.0;      // [Pa] shear modulus
+
+    static LinearElastic from_young_poisson(const double E, const double nu)
+    {
+      return {E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))};
+    }
+
+    /// σ = λ tr(ε) I + 2μ ε
+    dealii::SymmetricTensor<2, 3> stress(const dealii::SymmetricTensor<2, 3> &eps) const
+    {
+      return lambda * dealii::trace(eps) * dealii::unit_symmetric_tensor<3>() + 2.0 * mu * eps;
+    }
+  };
+
+  /// σ_vm = √(3/2 s:s), s the deviator of σ.
+  inline double von_mises(const dealii::SymmetricTensor<2, 3> &sigma)
+  {
+    const dealii::SymmetricTensor<2, 3> s = dealii::deviator(sigma);
+    return std::sqrt(1.5 * (s * s));
+  }
+} // namespace clearjoint::fe::detail

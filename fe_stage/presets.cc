@@ -1,0 +1,43 @@
+#include "fe_stage/presets.h"
+
+#include "common/error.h"
+#include "common/key_path.h"
+#include "common/strict_reader.h"
+
+namespace clearjoint::fe
+{
+  std::string default_presets_file() { return std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml"; }
+
+  PresetOverrides read_fe_preset(const std::string &pipeline_file, const std::string &name)
+  {
+    const nlohmann::json doc = read_structured_file(pipeline_file);
+    const nlohmann::json *presets = find_key_path(doc, "presets");
+    if (!presets || !presets->is_object() || presets->empty())
+      throw InputError(pipeline_file, "presets", "(missing)",
+                       "a mapping of presets (fast, standard, accurate)");
+    if (!presets->contains(name))
+      {
+        std::string names;
+        for (const auto &item : presets->items())
+          names += (names.empty() ? "" : " | ") + item.key();
+        throw InputError("", "--preset", name, names + " (the presets of " + pipeline_file + ")");
+      }
+    const nlohmann::json fe = presets->at(name).value("fe", nlohmann::json());
+    PresetOverrides out;
+    if (fe.is_null())
+      return out;  // the preset leaves the FE scene as it is
+    if (!fe.is_object())
+      throw InputError(pipeline_file, "presets." + name + ".fe", fe.dump(),
+                       "a mapping of scene key paths to values, or null");
+    for (const auto &[k, v] : fe.items())
+      out.emplace_back(k, v);
+    return out;
+  }
+
+  void apply_preset(nlohmann::json &scene, const PresetOverrides &overrides,
+                    const std::string &pipeline_file)
+  {
+    for (const auto &[key, value] : overrides)
+      set_key_path(scene, key, value, pipeline_file);
+  }
+} // namespace clearjoint::fe

@@ -1,0 +1,49 @@
+// What each study sets up — which mesh and bodies, what the other body is (a rigid obstacle
+// placed where it first touches, or a deformable body), how contact is paired, and what a
+// converged increment must satisfy — decided once from the scene. The model reads the plan
+// instead of asking which study it runs; a new study is a new file here. No deal.II.
+#pragma once
+
+#include "fe_stage/contact/rigid_obstacle.h"
+#include "fe_stage/scene.h"
+
+#include <array>
+#include <string>
+
+namespace clearjoint::fe
+{
+  struct StudyPlan
+  {
+    std::string name;
+    /// joint: the bearing ring (generated or Gmsh) and the journal; block: the verification
+    /// block [0,W]×[−H,0]×[0,W] and its indenter.
+    enum class Mesh { joint, block } mesh = Mesh::joint;
+    unsigned int degree = 2;  // FE_Q degree
+    /// The other body (journal or indenter) is meshed and pushed at its loaded set (two-body
+    /// contact); otherwise it is `obstacle`.
+    bool deformable_partner = false;
+    /// The rigid journal, sphere or plane at δ = 0 (first touch) — for a deformable partner,
+    /// where its surface lies (the candidate search and the refinement toward the contact).
+    RigidObstacle obstacle;
+    enum class Pairing { obstacle, common_rays, mortar } pairing = Pairing::obstacle;
+    /// Joint: the journal tilted by obstacle.tilt (the whole length is modelled, an axial
+    /// slice goes through the first touch point, the contact refinement follows the gap).
+    bool tilted = false;
+    /// Block: the deformable indenter's bottom is Hertz's profile; the refinement is graded
+    /// toward the contact point (patch: uniform).
+    bool hertz = false;
+    /// Every converged increment must have a contact point (a pushed joint touches
+    /// somewhere; zero active nodes means the mesh is too coarse for the contact patch).
+    bool must_touch = true;
+    std::array<std::string, 2> body_names;  // material ids 0 and 1
+    std::string records;  // what the CSV's force means in this study (for the log and docs)
+  };
+
+  StudyPlan radial_study(const FeScene &scene);
+  StudyPlan misalignment_study(const FeScene &scene);
+  StudyPlan hertz_study(const FeScene &scene);
+  StudyPlan patch_study(const FeScene &scene);
+
+  /// The plan of scene.study.
+  StudyPlan plan_study(const FeScene &scene);
+} // namespace clearjoint::fe

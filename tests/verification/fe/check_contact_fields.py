@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""The VTU contact fields mean what an Abaqus user reads into CPRESS/CSTATUS/CSHEAR/CSLIP
+(issue 15): runs fe_stage on a small radial case without and with friction, reads the last
+increment's fields back with VTK and checks them node by node.
+
+usage: check_contact_fields.py FE_STAGE WORKDIR
+"""
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import numpy as np
+from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+MU = 0.1
+SCENE = """schema: clearjoint.fe/1
+study: radial
+geometry: {{t_B: 0.004}}
+contact: {{mu: {mu}}}
+loading: {{delta_max: 5.0e-5, n_increments: 2}}
+mesh: {{n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 1, global_refinements: 0}}
+"""
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def last_fields(out):
+    pvd = ET.parse(os.path.join(out, "fields", "solution.pvd")).getroot()
+    files = [d.get("file") for d in pvd.iter("DataSet")]
+    reader = vtkXMLPUnstructuredGridReader()
+    reader.SetFileName(os.path.join(out, "fields", files[-1]))
+    reader.Update()
+    grid = reader.GetOutput()
+    pd, cd = grid.GetPointData(), grid.GetCellData()
+    xyz = vtk_to_numpy(grid.GetPoints().GetData())
+    point = {pd.GetArrayName(i): vtk_to_numpy(pd.GetArray(i)) for i in range(pd.GetNumberOfArrays())}
+    cell = {cd.GetArrayName(i): vtk_to_numpy(cd.GetArray(i)) for i in range(cd.GetNumberOfArrays())}
+    point["xyz"] = xyz
+    return point, cell
+
+
+def run(fe_stage, work, mu):
+    name = "frictionless" if mu == 0 else "mu_%g" % mu
+    scene = os.path.join(work, name + ".yaml")
+    with open(scene, "w") as f:
+        f.write(SCENE.format(mu=mu))
+    out = os.path.join(work, name)
+    subprocess.run([fe_stage, scene, "--output", out, "--no-plots", "-q"], check=True)
+    with open(os.path.join(out, "manifest.json")) as f:
+        manifest = json.load(f)
+    return last_fields(out), manifest
+
+
+def main():
+    fe_stage, work = sys.argv[1], sys.argv[2]
+    os.makedirs(work, exist_ok=True)
+    for mu in (0.0, MU):
+        (p, c), manifest = run(fe_stage, work, mu)
+        tag = "mu = %g: " % mu
+        active = p["contact_active"] > 0.5
+        status, shear, slip, pressure = (p["contact_status"], p["contact_shear"],
+                                          p["contact_slip"], p["contact_pressure"])
+        check(active.sum() > 0, tag + "some nodes are in contact (%d points)" % active.sum())
+        check(set(np.unique(status)) <= {0.0, 1.0, 2.0}, tag + "status takes 0, 1, 2 only")
+        check(np.array_equal(status > 0, active), tag + "status > 0 exactly where in contact")
+        check(np.all(shear[~active] == 0) and np.all(slip[~active] == 0),
+              tag + "no shear and no slip off contact")
+        if mu == 0:
+            check(np.all(shear == 0), tag + "frictionless: zero shear everywhere")
+            check(np.all(status[active] == 1), tag + "frictionless: every contact point slips (1)")
+        else:
+            # Coulomb's cone |t_T| <= mu*p at every contact point, equality where slipping.
+            # 1e-4 relative: the active-set loop ends when no slip direction changes by more
+            # than 1e-5 and the linear solves are converged to 1e-10; the nodal values are
+            # exact at the VTU points (Q2 patches subdivided twice = the support points).
+            ratio = shear[active] / (MU * pressure[active])
+            check(np.all(ratio <= 1 + 1e-4), tag + "|t_T| <= mu p at every contact point "
+                  "(max ratio %.6f)" % ratio.max())
+            # Equality where slipping, off the symmetry planes x = 0 and z = 0: on a plane the
+            # component of the friction force normal to it is the plane's reaction and is
+            # left out of contact_shear, and today's stick/slip iteration takes the slip
+            # direction from K u including that reaction (docs/fe.md, known limitations).
+            xyz = p["xyz"][active]
+            off_planes = (np.abs(xyz[:, 0]) > 1e-9) & (np.abs(xyz[:, 2]) > 1e-9)
+            slipping = (status[active] == 1) & off_planes
+            check(slipping.any(), tag + "slipping contact points off the symmetry planes")
+            if slipping.any():
+                check(np.all(np.abs(ratio[slipping] - 1) <= 1e-4),
+                      tag + "|t_T| = mu p where slipping (%d points, ratio %.8f..%.8f)"
+                      % (slipping.sum(), ratio[slipping].min(), ratio[slipping].max()))
+        # deal.II 9.4 writes cell data as point data (constant over each cell's patch)
+        zone = p["plastic_zone"] if "plastic_zone" in p else c["plastic_zone"]
+        check(np.all((zone >= 0) & (zone <= 1)), tag + "plastic_zone is a volume fraction")
+        y = manifest["extra"].get("yield_check")
+        check(y is not None and y["yield_stress"]["unit"] == "Pa"
+              and y["exceeded"] == bool((zone > 0).any()),
+              tag + "manifest yield_check agrees with the plastic_zone field")
+    if failures:
+        print("%d check(s) failed" % len(failures))
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
