@@ -207,7 +207,8 @@ TEST(CoulombSsn, DerivativeMatchesCentralDifferences)
   std::uniform_real_distribution<double> u(-1, 1);
   for (const CoulombNcpForm form : {CoulombNcpForm::projection, CoulombNcpForm::hsw})
     {
-      int counts[3] = {0, 0, 0};
+      int    counts[3] = {0, 0, 0};
+      double worst     = 0.0;
       for (int sample = 0; sample < 3000; ++sample)
         {
           CoulombParameters p;
@@ -238,13 +239,16 @@ TEST(CoulombSsn, DerivativeMatchesCentralDifferences)
               ASSERT_EQ(sp, st);
               ASSERT_EQ(sm, st);
             }
-          // 1e-7 absolute on entries of size ≤ ~30: truncation h²·R''' with R''' ≲ 1/|w|² ≲
-          // 1e6 gives ≤ 1e-6·… only near |w| → 0, which the 1e-3 margin excludes; rounding
-          // 1e-16/h = 1e-10.
-          EXPECT_LE((fd - n.jacobian).cwiseAbs().maxCoeff(), 1e-7 * (1 + n.jacobian.cwiseAbs().maxCoeff()))
-            << "sample " << sample << " state " << static_cast<int>(st);
+          // 1e-7 relative to (1 + max|J|): rounding contributes ~1e-16/h = 1e-10; the
+          // truncation error h^2/6 times the third derivative grows where |w| is small (the slip
+          // direction's curvature ~ 1/|w|), which the 1e-3 margin keeps bounded; observed worst
+          // 1.6e-9 (projection form), 1.7e-10 (hsw form). A wrong term is O(mu) >= 1e-2 mostly.
+          const double err = (fd - n.jacobian).cwiseAbs().maxCoeff() / (1 + n.jacobian.cwiseAbs().maxCoeff());
+          worst = std::max(worst, err);
+          EXPECT_LE(err, 1e-7) << "sample " << sample << " state " << static_cast<int>(st);
           counts[static_cast<int>(st)]++;
         }
+      std::cout << "worst relative derivative error: " << worst << "\n";
       for (int c = 0; c < 3; ++c)
         EXPECT_GE(counts[c], 100) << "class " << c;
     }
