@@ -27,6 +27,12 @@ namespace clearjoint::fe
     }
   } // namespace
 
+  double von_mises_stress(const Eigen::Matrix3d &sigma)
+  {
+    const Eigen::Matrix3d s = deviator(sigma);
+    return sqrt_3_2 * std::sqrt(s.cwiseProduct(s).sum());
+  }
+
   Vector6 strain_to_voigt(const Eigen::Matrix3d &eps)
   {
     Vector6 e;

@@ -39,6 +39,17 @@ namespace clearjoint::fe
   /// Index pairs of the Voigt layout above: voigt_index[I] = {i, j}.
   constexpr int voigt_index[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
 
+  /// Voigt index of the tensor pair (i, j) (either order): C_ijkl = C(voigt_of(i, j),
+  /// voigt_of(k, l)) converts the 6×6 tangent to a 4th-order tensor (deal.II's
+  /// SymmetricTensor<4, 3>) with no factors.
+  constexpr int voigt_of(int i, int j)
+  {
+    return i == j ? i : 6 - i - j; // (1,2) → 3, (0,2) → 4, (0,1) → 5
+  }
+
+  /// von Mises equivalent stress √(3/2 s:s) [Pa] of a symmetric stress tensor.
+  double von_mises_stress(const Eigen::Matrix3d &sigma);
+
   /// Symmetric strain tensor → Voigt strain (engineering shear); the inverse below.
   Vector6         strain_to_voigt(const Eigen::Matrix3d &eps);
   Eigen::Matrix3d voigt_to_strain(const Vector6 &e);

@@ -389,3 +389,38 @@ TEST(J2Plasticity, BadInput)
   eps(0, 0)              = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(m.evaluate(eps, h).status.converged);
 }
+
+TEST(J2Plasticity, VoigtConventionAndVonMises)
+{
+  // C_ijkl = C(voigt_of(i,j), voigt_of(k,l)) with no factors: σ_ij = Σ_kl C_ijkl ε_kl over all
+  // nine (k, l) must equal the Voigt product, at a plastic state (non-trivial C).
+  const J2Plasticity m(E, nu, HardeningTable::spec_default());
+  J2History          h;
+  const Vector6      e = (Vector6() << 0.01, -0.003, 0.002, 0.004, -0.001, 0.006).finished();
+  const J2Response   r = m.evaluate(voigt_to_strain(e), h);
+  ASSERT_TRUE(r.plastic);
+  const Eigen::Matrix3d eps = voigt_to_strain(e);
+  const Vector6         s_voigt = r.tangent * e;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      {
+        double s = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l)
+            s += r.tangent(voigt_of(i, j), voigt_of(k, l)) * eps(k, l);
+        // 1e-6 of |σ| ~ 1e9: the two sums round differently.
+        EXPECT_NEAR(s, s_voigt(voigt_of(i, j)), 1e-6 * s_voigt.norm()) << i << j;
+      }
+  for (int I = 0; I < 6; ++I)
+    EXPECT_EQ(voigt_of(voigt_index[I][0], voigt_index[I][1]), I);
+  // von Mises: uniaxial σ → σ; pure shear τ → √3 τ; a pressure adds nothing.
+  Eigen::Matrix3d u = Eigen::Matrix3d::Zero();
+  u(0, 0)           = 250e6;
+  EXPECT_NEAR(von_mises_stress(u), 250e6, 1e-6);
+  Eigen::Matrix3d t = Eigen::Matrix3d::Zero();
+  t(0, 1) = t(1, 0) = 100e6;
+  EXPECT_NEAR(von_mises_stress(t + 5e8 * Eigen::Matrix3d::Identity()), std::sqrt(3.0) * 100e6, 1e-6);
+  // On the yield surface after a plastic step: q = σ_y(α).
+  EXPECT_NEAR(von_mises_stress(r.stress), m.hardening().yield_stress(h.trial.alpha),
+              1e-9 * m.hardening().yield_stress(h.trial.alpha));
+}
