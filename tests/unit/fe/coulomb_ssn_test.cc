@@ -459,7 +459,7 @@ TEST(CoulombSsn, ProjectionFormConvergesForAllConstants)
 TEST(CoulombSsn, HswFormConvergesForModerateConstants)
 {
   // HSW's unscaled form has the same zeros but a derivative that grows with |w|: with full
-  // steps it converges here for c ≤ 1 × K's diagonal (8–23 iterations), more slowly than the
+  // steps it converges here for c ≤ 1 × K's diagonal (5–22 Newton steps), more slowly than the
   // projection form, and (measured once, not asserted) did not converge within 60 steps for
   // c = 10 and 100 on most of these cases — the reason the projection form is the default.
   for (const int N : {8, 40})
