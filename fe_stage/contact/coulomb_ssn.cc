@@ -14,9 +14,9 @@ namespace clearjoint::fe
       throw InputError(file, key_path + ".mu", format_value(p.mu), ">= 0 (finite)",
                        "Coulomb friction coefficient");
     if (!(std::isfinite(p.c_n) && p.c_n > 0.0))
-      throw InputError(file, key_path + ".c_n", format_value(p.c_n), "> 0 N/m (finite)");
+      throw InputError(file, key_path + ".c_n", format_value(p.c_n), "> 0 (finite)");
     if (!(std::isfinite(p.c_t) && p.c_t > 0.0))
-      throw InputError(file, key_path + ".c_t", format_value(p.c_t), "> 0 N/m (finite)");
+      throw InputError(file, key_path + ".c_t", format_value(p.c_t), "> 0 (finite)");
   }
 
   NodeNcp evaluate_coulomb_ncp(const double lambda_n, const Eigen::Vector2d &lambda_t,

@@ -10,10 +10,14 @@
 // ComputeFrictionalForceLMMechanicalContact follows them).
 //
 // Per slave node, in its (n, t1, t2) basis:
-//   λ_n ≥ 0   normal multiplier (contact pressure × nodal weight), compressive positive [N];
-//   λ_T ∈ R²  tangential multiplier: the friction force on the slave body [N];
-//   g         weighted normal gap, > 0 open [m];
-//   s_T ∈ R²  tangential slip increment of the slave relative to the master over the step [m].
+//   λ_n ≥ 0   normal multiplier, compressive positive;
+//   λ_T ∈ R²  tangential multiplier: the friction traction on the slave body;
+//   g         (weighted) normal gap, > 0 open;
+//   s_T ∈ R²  (weighted) tangential slip increment of the slave relative to the master over
+//             the step.
+// Units are the caller's, consistently: with dual mortar, λ a pressure [Pa] and g, s_T
+// weighted by the nodal D [m³] (or λ a nodal force [N] and g, s_T in m); c_n and c_t convert
+// gap units into multiplier units ([Pa/m³] or [N/m]). The residual R then carries λ's unit.
 // Coulomb: λ_n ≥ 0, g ≥ 0, λ_n g = 0; |λ_T| ≤ μλ_n; s_T = 0 if |λ_T| < μλ_n; otherwise
 // λ_T = −μλ_n s_T/|s_T| (friction opposes the slip). With ξ = λ_n − c_n g and
 // w = λ_T − c_t s_T these hold iff
@@ -53,12 +57,14 @@ namespace clearjoint::fe
   struct CoulombParameters
   {
     double         mu  = 0.1; ///< friction coefficient [-], ≥ 0
-    double         c_n = 1.0; ///< normal complementarity constant [N/m], > 0
-    double         c_t = 1.0; ///< tangential complementarity constant [N/m], > 0
+    double         c_n = 1.0; ///< normal complementarity constant [λ unit / g unit], > 0
+    double         c_t = 1.0; ///< tangential complementarity constant [λ unit / s unit], > 0
     CoulombNcpForm form = CoulombNcpForm::projection;
   };
 
   /// InputError naming key_path.mu (≥ 0, finite) or key_path.c_n / .c_t (> 0, finite).
+  /// c is a numerical constant with no effect on the solution; a good choice is of the order
+  /// of the stiffness seen by a contact node (the diagonal of K, in the multiplier's units).
   void check_coulomb_parameters(const CoulombParameters &p, const std::string &key_path,
                                 const std::string &file = "");
 
@@ -76,8 +82,8 @@ namespace clearjoint::fe
   struct NodeNcp
   {
     FrictionState   state;
-    double          r_n;   ///< R_n [N]
-    Eigen::Vector2d r_t;   ///< R_T [N] (projection form) or [N²] (hsw form)
+    double          r_n;   ///< R_n [λ unit]
+    Eigen::Vector2d r_t;   ///< R_T [λ unit] (projection form) or [λ unit²] (hsw form)
     /// ∂(R_n, R_T1, R_T2)/∂(λ_n, λ_T1, λ_T2, g, s_T1, s_T2), columns as NcpColumn.
     Eigen::Matrix<double, 3, 6> jacobian;
   };
