@@ -80,8 +80,13 @@ namespace
     int                 worst_iterations = 0;
     for (double eps11 = deps; eps11 <= eps_max + 1e-15; eps11 += deps)
       {
-        const J2Response r = uniaxial(m, h, eps11, e, res);
-        worst_iterations   = std::max(worst_iterations, static_cast<int>(res.size()) - 1);
+        const double     alpha_n = h.committed.alpha;
+        const J2Response r       = uniaxial(m, h, eps11, e, res);
+        worst_iterations         = std::max(worst_iterations, static_cast<int>(res.size()) - 1);
+        // The return's local Newton: one step per table segment entered, plus one.
+        if (r.plastic)
+          EXPECT_LE(r.status.iterations,
+                    static_cast<int>(table.segment(h.trial.alpha) - table.segment(alpha_n)) + 1);
         // Closed form: ε11 = σ_y(α)/E + α on the plastic branch (α = ε_p11), else σ = E ε11.
         const double sy0   = table.yield_stress(0.0);
         double       alpha = 0.0, sigma = E * eps11;
@@ -120,6 +125,16 @@ TEST(J2Plasticity, UniaxialStressAcrossUnevenTableInBigSteps)
   uniaxial_along_table(uneven_table(), 0.07, 0.7);
   // And in small steps through the plateau (H = 0).
   uniaxial_along_table(uneven_table(), 0.002, 0.08);
+}
+
+TEST(J2Plasticity, UniaxialStressPerfectPlasticAndHeldTail)
+{
+  // One point: perfectly plastic (σ = σ_y, α = ε11 − σ_y/E).
+  uniaxial_along_table(HardeningTable({{0.0, 250e6}}, "material.hardening"), 0.01, 0.1);
+  // Abaqus's convention beyond the last point: σ_y held, H = 0 past ε_p = 0.1.
+  uniaxial_along_table(HardeningTable({{0.0, 200e6}, {0.1, 300e6}}, "material.hardening", "",
+                                      HardeningTable::Beyond::hold_last),
+                       0.03, 0.3);
 }
 
 TEST(J2Plasticity, MixedNewtonConvergesQuadratically)
