@@ -4,6 +4,7 @@
 #include "common/log.h"
 
 #include <cmath>
+#include <limits>
 
 namespace clearjoint::mbd
 {
@@ -343,6 +344,35 @@ namespace clearjoint::mbd
       out.push_back(o.contacts[0].F_n);
     }
     return out;
+  }
+
+  void MultibodySystem::observe_accepted(const double *y) const
+  {
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    for (const auto &c : clearance_)
+      c->observe_accepted(k);
+  }
+
+  double MultibodySystem::guard_step(const double *y, const double fraction,
+                                     const double *accel) const
+  {
+    if (clearance_.empty() || !(fraction > 0.0))
+      return std::numeric_limits<double>::infinity();
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    const auto compliance = [&](const int body, const Vector3 &P, const Vector3 &n) {
+      if (body == ground_index)
+        return 0.0;
+      const BodyProperties &b = bodies_[body];
+      const Vector3 rn = kin[body].A.transpose() * (P - kin[body].r).cross(n);
+      return 1.0 / b.mass + rn.dot(b.inertia.cwiseInverse().cwiseProduct(rn));
+    };
+    double h = std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < clearance_.size(); ++c)
+      h = std::min(h, clearance_[c]->guard_step(k, fraction * clearance_[c]->geometry().c_r(),
+                                                compliance, accel ? accel + 3 * c : nullptr));
+    return h;
   }
 
   std::vector<double> MultibodySystem::contact_rates(const double *y) const

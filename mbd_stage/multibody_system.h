@@ -99,6 +99,13 @@ namespace clearjoint::mbd
     void gaps(const double *y, double *g) const;
     /// Radial normal force [N] of every clearance joint (cheap: no constraint solve).
     std::vector<double> radial_forces(const double *y) const;
+    /// An accepted state y: law-range counters of every clearance joint (see
+    /// ClearanceJoint::observe_accepted).
+    void observe_accepted(const double *y) const;
+    /// The depth guard's step bound [s] at an accepted state y, with allowance D = fraction·c_r
+    /// per clearance joint (ClearanceJoint::guard_step); ∞ if nothing bounds the step.
+    /// `accel`: optional δ̈ estimates, one per contact (n_gaps()).
+    double guard_step(const double *y, double fraction, const double *accel = nullptr) const;
     /// δ̇_k of every contact [m/s].
     std::vector<double> contact_rates(const double *y) const;
     /// Unpacks y into per-body kinematics.
