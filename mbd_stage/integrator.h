@@ -37,9 +37,10 @@ namespace clearjoint::mbd
   struct IntegratorSettings
   {
     IntegratorMethod method = IntegratorMethod::dopri5;
-    double rtol = 1e-8;           ///< [1] relative tolerance
-    double atol_position = 1e-10; ///< [m] absolute tolerance of positions (and [1] of e)
-    double atol_velocity = 1e-7;  ///< [m/s] absolute tolerance of velocities (rad/s alike)
+    // The shipped scenes' values (docs/mbd.md §5 says why).
+    double rtol = 1e-11;          ///< [1] relative tolerance
+    double atol_position = 1e-13; ///< [m] absolute tolerance of positions (and [1] of e)
+    double atol_velocity = 1e-10; ///< [m/s] absolute tolerance of velocities (rad/s alike)
     double atol_work = 1e-8;      ///< [J] absolute tolerance of the work states
     double max_step = 0.0;        ///< [s] 0: no limit
     long max_num_steps = 50000000;
@@ -47,6 +48,7 @@ namespace clearjoint::mbd
     /// at most to max(guard·c_r, δ_accepted + guard·c_r/2) deep (see Integrator::run).
     double depth_guard = 0.1;
     int n_step_samples = 8;       ///< samples per step while in contact (peak tracking)
+    int interpolant_degree = 3;   ///< Hermite dense output of the explicit methods (integrator.cc)
   };
 
   struct ContactEvent
