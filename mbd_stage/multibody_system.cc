@@ -152,8 +152,8 @@ namespace clearjoint::mbd
       if (n_redundant_ > 0)
         log::warning(std::to_string(n_redundant_) + " of " + std::to_string(n_rows_) +
                      " constraint equations are redundant (e.g. a planar mechanism built from "
-                     "spatial joints): the motion is unique, joint reactions are the "
-                     "minimum-norm ones");
+                     "spatial joints): the motion is unique; the redundant rows are dropped "
+                     "and the joint reactions are those of the independent rows");
       // Minimum-kinetic-energy velocity correction onto D·u = −Φ_t:
       //   u = u0 − M⁻¹Dᵀ(D M⁻¹ Dᵀ)⁺(D·u0 + Φ_t).
       const Eigen::MatrixXd S = D * m_inv.asDiagonal() * D.transpose();

@@ -5,9 +5,10 @@
 //     [ D   0  ] [ −λ] = [ γ − 2α·Φ̇ − β²·Φ        ]      Q = [f_G ; n' − ω'×J'ω']
 // are solved through the Schur complement D·M⁻¹·Dᵀ each time the right-hand side is evaluated
 // (Baumgarte stabilisation with α, β in 1/s). Redundant constraints (e.g. the planar
-// slider–crank with four ideal joints in 3D) are detected at set-up and handled with a
-// rank-revealing solve: the motion is unique, the reactions are the minimum-norm ones (as Adams
-// does after removing redundant constraints), and a warning says so.
+// slider–crank with four ideal joints in 3D) are detected at set-up (pivoted QR) and dropped:
+// the accelerations are solved on the independent rows, the motion is unique, the reactions
+// are those of the independent rows (as Adams does after removing redundant constraints), and
+// a warning says so.
 // Extra states integrate the work of friction, of damping (per clearance joint) and of each
 // driver, so the energy balance E_kin + E_pot + E_el − W = E(0) can be checked.
 #pragma once

@@ -168,7 +168,7 @@ TEST(SliderCrankVerification, GroundReactionsBalanceTheMomentumOfTheMechanism)
   // Σ m_i·a_i = Σ m_i·g + Σ (forces of the ground joints on their bodies): the joint forces
   // between moving bodies and the clearance-joint contact forces are internal and cancel. Checked
   // at every output of the clearance scene (with impacts) and of the ideal scene (redundant
-  // joints: minimum-norm multipliers must still carry the right resultant).
+  // joints: the multipliers of the independent rows must still carry the right resultant).
   for (const char *name : {"slider_crank_fe_law_damped", "slider_crank_ideal"})
   {
     nlohmann::json d = load_scene(name);
