@@ -3,6 +3,7 @@
 #include "common/error.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -166,10 +167,19 @@ namespace clearjoint
     if (values.size() != n_columns_)
       throw std::logic_error("CsvWriter: row has " + std::to_string(values.size()) +
                              " values, header has " + std::to_string(n_columns_));
+    // std::to_chars writes the shortest text that reads back to the same double (exact round
+    // trip, like precision 17 but shorter) and is ~10x faster than ostream formatting, which
+    // dominated the cost of writing a 10 000-row MBD time series.
     auto &o = file_->stream();
+    char buf[64];
     for (std::size_t j = 0; j < values.size(); ++j)
-      o << (j ? "," : "") << values[j];
-    o << '\n';
+    {
+      if (j)
+        o.put(',');
+      const auto res = std::to_chars(buf, buf + sizeof buf, values[j]);
+      o.write(buf, res.ptr - buf);
+    }
+    o.put('\n');
     ++n_rows_;
   }
 

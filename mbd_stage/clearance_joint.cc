@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace clearjoint::mbd
 {
@@ -35,7 +36,12 @@ namespace clearjoint::mbd
     // Start in contact if the initial configuration already penetrates (δ̇⁻ = the floor).
     const auto g = gaps(k0);
     for (int c = 0; c < n_contacts; ++c)
+    {
       states_[c].active = g[c] > 0.0;
+      const ContactForceModel &model = c == 0 ? radial_ : axial_;
+      if (states_[c].active && model.chi() != 0.0)
+        ++states_[c].n_impact_velocity_floored;
+    }
   }
 
   ClearanceJoint::Placement ClearanceJoint::place(const KinematicsView &k) const
@@ -167,6 +173,57 @@ namespace clearjoint::mbd
     return r;
   }
 
+  void ClearanceJoint::observe_accepted(const KinematicsView &k) const
+  {
+    const Placement p = place(k);
+    for (int c = 0; c < n_contacts; ++c)
+      if (states_[c].active)
+        (c == 0 ? radial_ : axial_).observe_accepted(p.delta[c], c == 0 ? p.theta : 0.0);
+  }
+
+  double ClearanceJoint::guard_step(
+    const KinematicsView &k, const double D,
+    const std::function<double(int, const Vector3 &, const Vector3 &)> &compliance,
+    const double *accel) const
+  {
+    const Placement p = place(k);
+    double h = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < n_contacts; ++c)
+    {
+      const double delta = p.delta[c];
+      double rate = 0.0, inv_m = 0.0;
+      for (int i = 0; i < 2; ++i)
+      {
+        const double w = p.weight[c][i];
+        if (w <= 0.0)
+          continue;
+        const Vector3 &P = p.point[c][i], &n = p.normal[c][i];
+        rate += w * (k[journal_].point_velocity(P) - k[bearing_].point_velocity(P)).dot(n);
+        inv_m = std::max(inv_m, compliance(journal_, P, n) + compliance(bearing_, P, n));
+      }
+      const double allowance = std::max(D, delta + 0.5 * D), room = allowance - delta;
+      const double a = accel ? std::max(accel[c], 0.0) : 0.0;
+      if (a > 0.0)  // positive root of δ̈h²/2 + δ̇h − room = 0
+        h = std::min(h, 2.0 * room / (rate + std::sqrt(rate * rate + 2.0 * a * room)));
+      else if (rate > 0.0)
+        h = std::min(h, room / rate);
+      if (states_[c].active)
+      {
+        const ContactForceModel &model = c == 0 ? radial_ : axial_;
+        const double theta = c == 0 ? p.theta : 0.0;
+        const double d1 = std::max(D, delta), F1 = model.elastic_force(d1, theta);
+        const double F2 = model.elastic_force(0.5 * d1, theta);
+        // Secant stiffness F(d1)/d1 times the local exponent log2(F(d1)/F(d1/2)) when > 1
+        // (a power law's tangent stiffness at d1 is n·F/d1).
+        const double n_loc = F2 > 0.0 ? std::log2(F1 / F2) : 1.0;
+        const double stiffness = F1 / d1 * std::max(1.0, n_loc);
+        if (stiffness > 0.0 && inv_m > 0.0)
+          h = std::min(h, 2.0 / std::sqrt(stiffness * inv_m));
+      }
+    }
+    return h;
+  }
+
   ContactResult ClearanceJoint::evaluate_contact(const KinematicsView &k, const int c,
                                                  const Placement &p, Eigen::VectorXd &Q) const
   {
@@ -228,7 +285,10 @@ namespace clearjoint::mbd
     const Placement p = place(k);
     std::array<ContactResult, 3> results;
     for (int c = 0; c < n_contacts; ++c)
+    {
       results[c] = evaluate_contact(k, c, p, Q);
+      max_delta_any_[c] = std::max(max_delta_any_[c], p.delta[c]);
+    }
     if (out)
     {
       out->contacts = results;

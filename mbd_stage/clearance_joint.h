@@ -31,6 +31,7 @@
 #include "mbd_stage/kinematics.h"
 
 #include <array>
+#include <functional>
 #include <string>
 
 namespace clearjoint::mbd
@@ -74,6 +75,9 @@ namespace clearjoint::mbd
     bool active = false;
     double delta_dot_impact = 0.0;  ///< [m/s] δ̇⁻ recorded at onset
     unsigned long n_impacts = 0;
+    /// Onsets whose recorded δ̇⁻ was below the model's floor (min_impact_velocity), so that the
+    /// damping of that contact period used the floor instead.
+    unsigned long n_impact_velocity_floored = 0;
   };
 
   class ClearanceJoint
@@ -106,6 +110,28 @@ namespace clearjoint::mbd
     double release_offset() const { return 1e-6 * geometry_.c_r(); }  ///< [m]
     /// Contact rates δ̇_k [m/s] (for onset and release decisions).
     std::array<double, 3> rates(const KinematicsView &k) const;
+    /// An accepted state: the law-range counters and checks of the active contacts
+    /// (ContactForceModel::observe_accepted; throws laws::LawRangeError under "error").
+    void observe_accepted(const KinematicsView &k) const;
+    /// The depth guard (docs/mbd.md §5) as a step bound [s] at an accepted state: (a) a
+    /// contact approaching at δ̇ > 0 may not, at that rate, pass its allowance
+    /// max(D, δ + D/2) within the step; (b) an active contact bounds the step by 1/ω, ω² =
+    /// k/m_eff, with k the law's secant stiffness up to max(D, δ) (times its local exponent)
+    /// and 1/m_eff the compliance of the two bodies at the contact point along n taken as free
+    /// bodies — an upper bound of the constrained one, so ω is not underestimated. Without (b)
+    /// the first explicit step after an onset (the natural period of the contact is ~0.1 ms
+    /// here) produced trial stages several tenths of a millimetre deep.
+    /// `compliance(body, P, n)` [1/kg] is 1/m + (r×n)ᵀJ⁻¹(r×n) of a body (0 for ground).
+    /// Returns ∞ when nothing bounds the step.
+    /// `accel` [m/s²] (optional): an estimate of δ̈ per contact (from the last accepted steps);
+    /// a positive one turns (a) into δ + δ̇h + δ̈h²/2 ≤ allowance.
+    double guard_step(const KinematicsView &k, double D,
+                      const std::function<double(int, const Vector3 &, const Vector3 &)>
+                        &compliance,
+                      const double *accel = nullptr) const;
+    /// [m] deepest radial and axial penetration of any evaluation, trial stages included
+    /// (the depth guard keeps it below a fraction of the clearance; reported in the summary).
+    double max_delta_any_stage(int contact) const { return max_delta_any_[contact]; }
 
     ContactState &state(int contact) { return states_[contact]; }
     const ContactState &state(int contact) const { return states_[contact]; }
@@ -138,5 +164,6 @@ namespace clearjoint::mbd
     ContactForceModel radial_, axial_;
     CoulombFriction friction_;
     std::array<ContactState, 3> states_;
+    mutable std::array<double, 3> max_delta_any_{0.0, 0.0, 0.0};
   };
 } // namespace clearjoint::mbd

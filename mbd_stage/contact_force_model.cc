@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace clearjoint::mbd
 {
@@ -24,7 +25,7 @@ namespace clearjoint::mbd
     m.name_ = std::move(name);
     m.kind_ = ElasticLawKind::law_file;
     m.power_ = law.law;
-    m.bounded_ = law.bounded(policy);
+    m.bounded_ = law.bounded(evaluation_policy(policy));
     m.policy_ = policy;
     return m;
   }
@@ -78,25 +79,11 @@ namespace clearjoint::mbd
       case ElasticLawKind::law_family:
       {
         const auto [lo, hi] = family_.valid_range_at(theta);
-        const laws::BoundedPowerLaw b(family_.at(theta), lo, hi, policy_);
-        const double F = b.force(delta);  // throws under "error"
-        counter_.n_above += b.counter().n_above;
-        counter_.n_below += b.counter().n_below;
-        counter_.max_delta_seen = std::max(counter_.max_delta_seen, delta);
-        return F;
+        return laws::BoundedPowerLaw(family_.at(theta), lo, hi, evaluation_policy(policy_))
+          .force(delta);
       }
       case ElasticLawKind::johnson:
-      {
-        bool beyond = false;
-        const double F = johnson_.force(delta, &beyond);
-        if (beyond)
-        {
-          ++n_beyond_johnson_peak_;
-          if (policy_ == laws::RangePolicy::error)
-            throw laws::LawRangeError(delta, 0.0, johnson_.peak_delta());
-        }
-        return F;
-      }
+        return johnson_.force(delta);  // held at the peak force beyond δ_peak
     }
     return 0.0;
   }
@@ -136,17 +123,40 @@ namespace clearjoint::mbd
     return f;
   }
 
-  std::uint64_t ContactForceModel::n_out_of_range() const
+  void ContactForceModel::observe_accepted(const double delta, const double theta) const
   {
-    if (kind_ == ElasticLawKind::law_file)
-      return bounded_.counter().n_above + bounded_.counter().n_below;
-    if (kind_ == ElasticLawKind::johnson)
-      return n_beyond_johnson_peak_;
-    return counter_.n_above + counter_.n_below;
+    if (delta <= 0.0)
+      return;
+    counter_.max_delta_seen = std::max(counter_.max_delta_seen, delta);
+    double lo = 0.0, hi = 0.0;
+    switch (kind_)
+    {
+      case ElasticLawKind::power_law:
+        return;  // analytic law: no range
+      case ElasticLawKind::law_file:
+        lo = bounded_.delta_min();
+        hi = bounded_.delta_max();
+        break;
+      case ElasticLawKind::law_family:
+        std::tie(lo, hi) = family_.valid_range_at(theta);
+        break;
+      case ElasticLawKind::johnson:
+        hi = johnson_.peak_delta();
+        break;
+    }
+    const bool below = delta < lo, above = delta > hi;
+    if (!below && !above)
+      return;
+    ++(below ? counter_.n_below : counter_.n_above);
+    if (policy_ == laws::RangePolicy::error)
+      throw laws::LawRangeError(delta, lo, hi);
   }
 
   nlohmann::json ContactForceModel::describe() const
   {
+    const char *accepted_note =
+      "counted at the ends of accepted integration steps in contact; trial stages of rejected "
+      "or accepted steps do not count";
     nlohmann::json j;
     j["name"] = name_;
     j["damping"] = laws::to_string(damping_);
@@ -161,25 +171,27 @@ namespace clearjoint::mbd
         break;
       case ElasticLawKind::law_file:
       {
-        const auto &c = bounded_.counter();
+        const auto &c = counter_;
         j["law"] = {{"form", "F = K*delta^n (law file)"}, {"K", power_.K}, {"n", power_.n},
                     {"units", {{"K", "N/m^n"}, {"n", "1"}}}};
         j["valid_range"] = {{"delta_min", bounded_.delta_min()},
                             {"delta_max", bounded_.delta_max()}, {"unit", "m"}};
         j["out_of_range"] = {{"policy", laws::to_string(policy_)},
-                             {"n_evaluations_below", c.n_below},
-                             {"n_evaluations_above", c.n_above},
-                             {"max_delta_seen", c.max_delta_seen}, {"unit", "m"}};
+                             {"n_accepted_steps_below", c.n_below},
+                             {"n_accepted_steps_above", c.n_above},
+                             {"max_delta_accepted", c.max_delta_seen}, {"unit", "m"},
+                             {"note", accepted_note}};
         break;
       }
       case ElasticLawKind::law_family:
         j["law"] = {{"form", "law family over " + family_.parameter()},
                     {"n_members", family_.members().size()}};
         j["out_of_range"] = {{"policy", laws::to_string(policy_)},
-                             {"n_evaluations_below", counter_.n_below},
-                             {"n_evaluations_above", counter_.n_above},
+                             {"n_accepted_steps_below", counter_.n_below},
+                             {"n_accepted_steps_above", counter_.n_above},
                              {"n_parameter_out_of_range", family_.n_parameter_out_of_range()},
-                             {"max_delta_seen", counter_.max_delta_seen}};
+                             {"max_delta_accepted", counter_.max_delta_seen}, {"unit", "m"},
+                             {"note", accepted_note}};
         break;
       case ElasticLawKind::johnson:
         j["law"] = {{"form", "Johnson: delta = F/(pi L E*) [ln(4 pi L E* dR / F) - 1]"},
@@ -187,7 +199,9 @@ namespace clearjoint::mbd
                     {"peak_delta", johnson_.peak_delta()},
                     {"units", {{"peak_force", "N"}, {"peak_delta", "m"}}}};
         j["out_of_range"] = {{"policy", laws::to_string(policy_)},
-                             {"n_evaluations_beyond_peak", n_beyond_johnson_peak_}};
+                             {"n_accepted_steps_beyond_peak", counter_.n_above},
+                             {"max_delta_accepted", counter_.max_delta_seen}, {"unit", "m"},
+                             {"note", accepted_note}};
         break;
     }
     return j;

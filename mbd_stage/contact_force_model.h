@@ -1,8 +1,11 @@
 // A normal contact-force model: an elastic law F_el(δ) — Hertz, Johnson, Pereira, a power law
 // from a law file, or a law family evaluated at the current misalignment θ — times the damping
 // bracket of laws/damping.h:  F = F_el(δ)·[1 + χ(c_e)·δ̇/δ̇⁻]  (SPEC §4). The scene names both.
-// Outside a law's valid range the scene's policy (error | clamp | extend) applies, and every
-// such evaluation is counted for the summary.
+// Outside a law's valid range the scene's policy (error | clamp | extend) applies. Only accepted
+// states count (observe_accepted, called by the integrator after every accepted step): the
+// force evaluations inside a step are trial stages, which the error test may reject, so they
+// neither count nor stop the run — under "error" a trial stage beyond the range is evaluated
+// on the extrapolated law, and the run stops only if an accepted state leaves the range.
 #pragma once
 
 #include "laws/damping.h"
@@ -57,6 +60,12 @@ namespace clearjoint::mbd
     /// δ̇⁻ actually used: max(recorded, floor) (a grazing impact has δ̇⁻ → 0 and would make
     /// the damping ratio δ̇/δ̇⁻ unbounded).
     double impact_velocity(double recorded) const;
+    double min_impact_velocity() const { return min_impact_velocity_; }  ///< [m/s] the floor
+
+    /// An accepted state with penetration δ [m] at tilt θ [rad] in an active contact: updates
+    /// the range counters and the largest δ seen; under "error" throws laws::LawRangeError if δ
+    /// is outside the law's valid range (Johnson: beyond its peak).
+    void observe_accepted(double delta, double theta = 0.0) const;
 
     const std::string &name() const { return name_; }
     ElasticLawKind kind() const { return kind_; }
@@ -64,7 +73,9 @@ namespace clearjoint::mbd
     double chi() const { return chi_; }
     /// Summary: kind, parameters, range policy and how often the range was left.
     nlohmann::json describe() const;
-    std::uint64_t n_out_of_range() const;
+    /// Accepted steps that ended outside the valid range.
+    std::uint64_t n_out_of_range() const { return counter_.n_below + counter_.n_above; }
+    double max_delta_accepted() const { return counter_.max_delta_seen; }  ///< [m]
 
   private:
     std::string name_;
@@ -73,10 +84,15 @@ namespace clearjoint::mbd
     laws::BoundedPowerLaw bounded_;
     laws::LawFamily family_;
     JohnsonLaw johnson_;
-    laws::RangePolicy policy_ = laws::RangePolicy::extend;
+    laws::RangePolicy policy_ = laws::RangePolicy::extend;  // the scene's policy
+    // What a force evaluation does outside the range: "error" evaluates the extrapolated law
+    // (a trial stage must not stop the run; observe_accepted enforces "error").
+    static laws::RangePolicy evaluation_policy(laws::RangePolicy p)
+    {
+      return p == laws::RangePolicy::error ? laws::RangePolicy::extend : p;
+    }
     laws::DampingModel damping_ = laws::DampingModel::none;
     double restitution_ = 1.0, chi_ = 0.0, min_impact_velocity_ = 1e-4;
-    mutable laws::RangeCounter counter_;   // johnson and law families
-    mutable std::uint64_t n_beyond_johnson_peak_ = 0;
+    mutable laws::RangeCounter counter_;  // accepted states only (observe_accepted)
   };
 } // namespace clearjoint::mbd

@@ -1,5 +1,7 @@
 // Time integration with SUNDIALS, with root finding on the contact gap functions.
-//   dopri5: ARKODE ERKStep, Dormand–Prince 5(4) (MATLAB's ode45, as in the paper), optional max step
+//   dopri5:  ARKODE ERKStep, Dormand–Prince 5(4) (MATLAB's ode45, as in the paper), optional max step
+//   verner6: ARKODE ERKStep, Verner 6(5), 8 stages (ARKODE_VERNER_8_5_6)
+//   fehlberg8: ARKODE ERKStep, Fehlberg 8(7), 13 stages (ARKODE_FEHLBERG_13_7_8)
 //   bdf:    CVODE variable-order BDF with a dense direct linear solver (stiff contact)
 // Contact onset and release are located as roots of g = δ (SPEC §4): the contact force has a
 // kink at onset (δ^n, n ≈ 1), so the discrete contact mode is frozen within a step, switched
@@ -20,19 +22,33 @@ namespace clearjoint::mbd
   enum class IntegratorMethod
   {
     dopri5,
+    verner6,
+    fehlberg8,
     bdf,
   };
+  IntegratorMethod parse_integrator_method(const std::string &name);
+  /// Names accepted by parse_integrator_method (the scene's integrator.method).
+  inline const std::vector<std::string> &integrator_method_names()
+  {
+    static const std::vector<std::string> names{"dopri5", "verner6", "fehlberg8", "bdf"};
+    return names;
+  }
 
   struct IntegratorSettings
   {
     IntegratorMethod method = IntegratorMethod::dopri5;
-    double rtol = 1e-8;           ///< [1] relative tolerance
-    double atol_position = 1e-10; ///< [m] absolute tolerance of positions (and [1] of e)
-    double atol_velocity = 1e-7;  ///< [m/s] absolute tolerance of velocities (rad/s alike)
+    // The shipped scenes' values (docs/mbd.md §5 says why).
+    double rtol = 1e-11;          ///< [1] relative tolerance
+    double atol_position = 1e-13; ///< [m] absolute tolerance of positions (and [1] of e)
+    double atol_velocity = 1e-10; ///< [m/s] absolute tolerance of velocities (rad/s alike)
     double atol_work = 1e-8;      ///< [J] absolute tolerance of the work states
     double max_step = 0.0;        ///< [s] 0: no limit
     long max_num_steps = 50000000;
+    /// [1] depth guard, as a fraction of the radial clearance c_r: a step may take a contact
+    /// at most to max(guard·c_r, δ_accepted + guard·c_r/2) deep (see Integrator::run).
+    double depth_guard = 0.1;
     int n_step_samples = 8;       ///< samples per step while in contact (peak tracking)
+    int interpolant_degree = 3;   ///< Hermite dense output of the explicit methods (integrator.cc)
   };
 
   struct ContactEvent

@@ -90,13 +90,13 @@ namespace clearjoint::mbd
 
   namespace
   {
-    ConstraintRow to_row(const KinScalar &s)
+    ConstraintRow to_row(KinScalar &&s)
     {
       ConstraintRow r;
       r.phi = s.value;
       r.phi_t = 0.0;
       r.gamma = -s.quad;
-      r.D = s.row;
+      r.D = std::move(s.row);  // the row is a temporary: no copy
       return r;
     }
   } // namespace

@@ -3,7 +3,10 @@
 #include "common/error.h"
 #include "common/log.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <limits>
 
 namespace clearjoint::mbd
 {
@@ -64,10 +67,10 @@ namespace clearjoint::mbd
       d.evaluate(k, t, rows);
   }
 
-  std::vector<BodyKinematics> MultibodySystem::unpack(const double *y) const
+  void MultibodySystem::unpack_into(const double *y, std::vector<BodyKinematics> &k) const
   {
     const int nb = n_bodies();
-    std::vector<BodyKinematics> k(static_cast<std::size_t>(nb));
+    k.resize(static_cast<std::size_t>(nb));
     for (int b = 0; b < nb; ++b)
     {
       BodyKinematics &kb = k[b];
@@ -77,6 +80,12 @@ namespace clearjoint::mbd
       kb.v = Eigen::Map<const Vector3>(y + n_pos * nb + n_vel * b);
       kb.w_B = Eigen::Map<const Vector3>(y + n_pos * nb + n_vel * b + 3);
     }
+  }
+
+  std::vector<BodyKinematics> MultibodySystem::unpack(const double *y) const
+  {
+    std::vector<BodyKinematics> k;
+    unpack_into(y, k);
     return k;
   }
 
@@ -87,6 +96,29 @@ namespace clearjoint::mbd
     std::vector<ConstraintRow> rows;
     constraint_rows(k, t0, rows);
     n_rows_ = static_cast<int>(rows.size());
+    rows_of_body_.assign(static_cast<std::size_t>(nb), {});
+    {
+      int r = 0;
+      const auto add = [&](const int body, const int r0, const int n) {
+        if (body != ground_index)
+          for (int i = r0; i < r0 + n; ++i)
+            rows_of_body_[body].push_back(i);
+      };
+      for (const Joint &j : joints_)
+      {
+        add(j.body_i(), r, j.n_equations());
+        add(j.body_j(), r, j.n_equations());
+        r += j.n_equations();
+      }
+      for (const Driver &d : drivers_)
+      {
+        add(d.joint().body_i(), r, 1);
+        add(d.joint().body_j(), r, 1);
+        r += 1;
+      }
+      if (r != n_rows_)
+        throw std::logic_error("MultibodySystem: constraint row count mismatch");
+    }
 
     Eigen::VectorXd u0(nu), m_inv(nu);
     for (int b = 0; b < nb; ++b)
@@ -113,11 +145,15 @@ namespace clearjoint::mbd
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(D.transpose());
       qr.setThreshold(1e-10);
       n_redundant_ = n_rows_ - static_cast<int>(qr.rank());
+      independent_rows_.clear();
+      for (Eigen::Index i = 0; i < qr.rank(); ++i)
+        independent_rows_.push_back(static_cast<int>(qr.colsPermutation().indices()[i]));
+      std::sort(independent_rows_.begin(), independent_rows_.end());
       if (n_redundant_ > 0)
         log::warning(std::to_string(n_redundant_) + " of " + std::to_string(n_rows_) +
                      " constraint equations are redundant (e.g. a planar mechanism built from "
-                     "spatial joints): the motion is unique, joint reactions are the "
-                     "minimum-norm ones");
+                     "spatial joints): the motion is unique; the redundant rows are dropped "
+                     "and the joint reactions are those of the independent rows");
       // Minimum-kinetic-energy velocity correction onto D·u = −Φ_t:
       //   u = u0 − M⁻¹Dᵀ(D M⁻¹ Dᵀ)⁺(D·u0 + Φ_t).
       const Eigen::MatrixXd S = D * m_inv.asDiagonal() * D.transpose();
@@ -171,11 +207,16 @@ namespace clearjoint::mbd
                             SystemEvaluation *eval) const
   {
     const int nb = n_bodies(), nu = n_vel * nb;
-    std::vector<BodyKinematics> kin = unpack(y);
+    Workspace &W = *ws_;
+    std::vector<BodyKinematics> &kin = W.kin;
+    unpack_into(y, kin);
     const KinematicsView k(&kin);
 
     // Applied forces: gravity, gyroscopic terms, clearance joints.
-    Eigen::VectorXd Q = Eigen::VectorXd::Zero(nu), m_inv(nu), u(nu);
+    Eigen::VectorXd &Q = W.Q, &m_inv = W.m_inv, &u = W.u;
+    Q.setZero(nu);
+    m_inv.resize(nu);
+    u.resize(nu);
     for (int b = 0; b < nb; ++b)
     {
       const BodyProperties &p = bodies_[b];
@@ -190,7 +231,9 @@ namespace clearjoint::mbd
     }
     if (eval)
       eval->clearance.resize(clearance_.size());
-    std::vector<double> P_fric(clearance_.size()), P_damp(clearance_.size());
+    std::vector<double> &P_fric = W.P_fric, &P_damp = W.P_damp;  // [W] per clearance joint
+    P_fric.assign(clearance_.size(), 0.0);
+    P_damp.assign(clearance_.size(), 0.0);
     for (std::size_t c = 0; c < clearance_.size(); ++c)
     {
       ClearanceOutput out;
@@ -205,16 +248,20 @@ namespace clearjoint::mbd
     }
 
     // Constraints.
-    std::vector<ConstraintRow> rows;
-    rows.reserve(static_cast<std::size_t>(n_rows_));
+    std::vector<ConstraintRow> &rows = W.rows;
     constraint_rows(k, t, rows);
     const int nc = static_cast<int>(rows.size());
-    Eigen::VectorXd u_dot = m_inv.cwiseProduct(Q), lambda = Eigen::VectorXd::Zero(nc);
-    Eigen::MatrixXd D(nc, nu);
-    Eigen::VectorXd phi(nc), phi_dot(nc);
+    Eigen::VectorXd &u_dot = W.u_dot, &lambda = W.lambda, &phi = W.phi, &phi_dot = W.phi_dot;
+    Eigen::MatrixXd &D = W.D;
+    u_dot = m_inv.cwiseProduct(Q);
+    lambda.setZero(nc);
+    D.resize(nc, nu);
+    phi.resize(nc);
+    phi_dot.resize(nc);
     if (nc > 0)
     {
-      Eigen::VectorXd rhs_c(nc);
+      Eigen::VectorXd &rhs_c = W.rhs_c;
+      rhs_c.resize(nc);
       for (int r = 0; r < nc; ++r)
       {
         D.row(r) = rows[r].D;
@@ -223,24 +270,60 @@ namespace clearjoint::mbd
         rhs_c[r] = rows[r].gamma - 2.0 * stab_.alpha * phi_dot[r] -
                    stab_.beta * stab_.beta * phi[r];
       }
-      const Eigen::MatrixXd DM = D * m_inv.asDiagonal();
-      const Eigen::MatrixXd S = DM * D.transpose();
-      const Eigen::VectorXd b = rhs_c - D * u_dot;
-      if (n_redundant_ == 0)
+      W.b.noalias() = rhs_c - D * u_dot;
+      // With redundant constraints the accelerations are solved on the independent rows
+      // (the motion is the same for any consistent λ: Dᵀλ is unique); the others get λ = 0.
+      const bool subset = n_redundant_ > 0;
+      if (subset)
       {
-        const Eigen::LLT<Eigen::MatrixXd> llt(S);
-        if (llt.info() != Eigen::Success)
-          throw NumericalError("constraint Jacobian lost rank at t = " + format_value(t) +
-                               " s (a singular configuration?)");
-        lambda = llt.solve(b);
+        const int ni = static_cast<int>(independent_rows_.size());
+        W.D_sub.resize(ni, nu);
+        W.lambda_sub.resize(ni);
+        for (int i = 0; i < ni; ++i)
+        {
+          W.D_sub.row(i) = D.row(independent_rows_[i]);
+          W.lambda_sub[i] = W.b[independent_rows_[i]];
+        }
+      }
+      const Eigen::MatrixXd &Dk = subset ? W.D_sub : D;
+      W.DM.noalias() = Dk * m_inv.asDiagonal();
+      // S = D M⁻¹ Dᵀ (lower triangle, which is what LLT reads), body block by body block:
+      // a row involves at most two bodies, so most of the dense product is zeros.
+      W.S_full.setZero(nc, nc);
+      for (int b = 0; b < nb; ++b)
+      {
+        const auto &rb = rows_of_body_[b];
+        const Eigen::Matrix<double, 6, 1> mb = m_inv.segment<6>(n_vel * b);
+        for (std::size_t i = 0; i < rb.size(); ++i)
+        {
+          const Eigen::Matrix<double, 1, 6> di = D.row(rb[i]).segment<6>(n_vel * b).cwiseProduct(mb.transpose());
+          for (std::size_t j = 0; j <= i; ++j)
+            W.S_full(rb[i], rb[j]) += di.dot(D.row(rb[j]).segment<6>(n_vel * b));
+        }
+      }
+      if (subset)
+      {
+        const int ni = static_cast<int>(independent_rows_.size());
+        W.S.resize(ni, ni);
+        for (int i = 0; i < ni; ++i)
+          for (int j = 0; j <= i; ++j)
+            W.S(i, j) = W.S_full(independent_rows_[i], independent_rows_[j]);
+        W.llt.compute(W.S);
       }
       else
+        W.llt.compute(W.S_full);
+      if (W.llt.info() != Eigen::Success)
+        throw NumericalError("constraint Jacobian lost rank at t = " + format_value(t) +
+                             " s (a singular configuration?)");
+      if (subset)
       {
-        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(S);
-        cod.setThreshold(1e-10);
-        lambda = cod.solve(b);
+        W.llt.solveInPlace(W.lambda_sub);
+        for (std::size_t i = 0; i < independent_rows_.size(); ++i)
+          lambda[independent_rows_[i]] = W.lambda_sub[static_cast<Eigen::Index>(i)];
       }
-      u_dot += DM.transpose() * lambda;
+      else
+        lambda = W.llt.solve(W.b);
+      u_dot.noalias() += W.DM.transpose() * (subset ? W.lambda_sub : lambda);
     }
 
     // ẏ
@@ -316,7 +399,7 @@ namespace clearjoint::mbd
             -(D.block(r0, n_vel * J.body_i(), ne, 3).transpose() * lambda.segment(r0, ne));
         r0 += ne;
       }
-      eval->bodies = std::move(kin);
+      eval->bodies = kin;
     }
   }
 
@@ -343,6 +426,35 @@ namespace clearjoint::mbd
       out.push_back(o.contacts[0].F_n);
     }
     return out;
+  }
+
+  void MultibodySystem::observe_accepted(const double *y) const
+  {
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    for (const auto &c : clearance_)
+      c->observe_accepted(k);
+  }
+
+  double MultibodySystem::guard_step(const double *y, const double fraction,
+                                     const double *accel) const
+  {
+    if (clearance_.empty() || !(fraction > 0.0))
+      return std::numeric_limits<double>::infinity();
+    std::vector<BodyKinematics> kin = unpack(y);
+    const KinematicsView k(&kin);
+    const auto compliance = [&](const int body, const Vector3 &P, const Vector3 &n) {
+      if (body == ground_index)
+        return 0.0;
+      const BodyProperties &b = bodies_[body];
+      const Vector3 rn = kin[body].A.transpose() * (P - kin[body].r).cross(n);
+      return 1.0 / b.mass + rn.dot(b.inertia.cwiseInverse().cwiseProduct(rn));
+    };
+    double h = std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < clearance_.size(); ++c)
+      h = std::min(h, clearance_[c]->guard_step(k, fraction * clearance_[c]->geometry().c_r(),
+                                                compliance, accel ? accel + 3 * c : nullptr));
+    return h;
   }
 
   std::vector<double> MultibodySystem::contact_rates(const double *y) const

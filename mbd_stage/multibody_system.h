@@ -5,15 +5,18 @@
 //     [ D   0  ] [ −λ] = [ γ − 2α·Φ̇ − β²·Φ        ]      Q = [f_G ; n' − ω'×J'ω']
 // are solved through the Schur complement D·M⁻¹·Dᵀ each time the right-hand side is evaluated
 // (Baumgarte stabilisation with α, β in 1/s). Redundant constraints (e.g. the planar
-// slider–crank with four ideal joints in 3D) are detected at set-up and handled with a
-// rank-revealing solve: the motion is unique, the reactions are the minimum-norm ones (as Adams
-// does after removing redundant constraints), and a warning says so.
+// slider–crank with four ideal joints in 3D) are detected at set-up (pivoted QR) and dropped:
+// the accelerations are solved on the independent rows, the motion is unique, the reactions
+// are those of the independent rows (as Adams does after removing redundant constraints), and
+// a warning says so.
 // Extra states integrate the work of friction, of damping (per clearance joint) and of each
 // driver, so the energy balance E_kin + E_pot + E_el − W = E(0) can be checked.
 #pragma once
 
 #include "mbd_stage/clearance_joint.h"
 #include "mbd_stage/joint.h"
+
+#include <Eigen/Cholesky>
 
 #include <deque>
 #include <memory>
@@ -99,6 +102,13 @@ namespace clearjoint::mbd
     void gaps(const double *y, double *g) const;
     /// Radial normal force [N] of every clearance joint (cheap: no constraint solve).
     std::vector<double> radial_forces(const double *y) const;
+    /// An accepted state y: law-range counters of every clearance joint (see
+    /// ClearanceJoint::observe_accepted).
+    void observe_accepted(const double *y) const;
+    /// The depth guard's step bound [s] at an accepted state y, with allowance D = fraction·c_r
+    /// per clearance joint (ClearanceJoint::guard_step); ∞ if nothing bounds the step.
+    /// `accel`: optional δ̈ estimates, one per contact (n_gaps()).
+    double guard_step(const double *y, double fraction, const double *accel = nullptr) const;
     /// δ̇_k of every contact [m/s].
     std::vector<double> contact_rates(const double *y) const;
     /// Unpacks y into per-body kinematics.
@@ -106,6 +116,28 @@ namespace clearjoint::mbd
 
   private:
     void constraint_rows(const KinematicsView &k, double t, std::vector<ConstraintRow> &rows) const;
+    void unpack_into(const double *y, std::vector<BodyKinematics> &k) const;
+
+    /// Buffers rhs() reuses between calls (one system is never evaluated from two threads):
+    /// allocating them per call cost ~10 % of a run.
+    struct Workspace
+    {
+      std::vector<BodyKinematics> kin;
+      std::vector<ConstraintRow> rows;
+      std::vector<double> P_fric, P_damp;
+      Eigen::VectorXd Q, m_inv, u, u_dot, lambda, phi, phi_dot, rhs_c, b, lambda_sub;
+      Eigen::MatrixXd D, DM, S, S_full, D_sub;
+      Eigen::LLT<Eigen::MatrixXd> llt;
+    };
+    mutable std::shared_ptr<Workspace> ws_ = std::make_shared<Workspace>();
+    /// Rows of D kept when constraints are redundant (chosen at finalize by a pivoted QR of
+    /// Dᵀ): the accelerations are solved on this independent subset (Cholesky), as Adams
+    /// does after removing redundant constraints.
+    std::vector<int> independent_rows_;
+    /// Per moving body, the constraint rows that involve it (set at finalize from the joints'
+    /// bodies): S = D M⁻¹ Dᵀ is assembled body by body from these 6-column blocks, ~4× fewer
+    /// operations than the dense product for the slider–crank.
+    std::vector<std::vector<int>> rows_of_body_;
 
     std::vector<BodyProperties> bodies_;
     std::vector<BodyKinematics> initial_;

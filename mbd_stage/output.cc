@@ -7,6 +7,7 @@
 #include "common/manifest.h"
 #include "common/plot_script.h"
 #include "common/strict_reader.h"
+#include "mbd_stage/run_summary.h"
 
 #include <Eigen/Core>
 #include <sundials/sundials_config.h>
@@ -113,14 +114,16 @@ namespace clearjoint::mbd
     manifest.extra()["summary"] = {{"status", r.summary["status"]},
                                    {"energy", r.summary["energy"]},
                                    {"peaks", r.summary["peaks"]}};
+    manifest.write(r.complete ? "complete" : "failed", r.complete ? "" : r.failure);
+    // The end-of-run summary (issue 14, item 5).
+    const RunSummaryLines lines =
+      make_run_summary(r.summary, dir_, make_plots && fs::exists(dir_ + "/plots"));
+    for (const auto &l : lines.info)
+      log::info(l);
+    for (const auto &l : lines.warnings)
+      log::warning(l);
     if (r.complete)
-    {
-      manifest.write("complete");
-      log::info("mbd_stage: wrote " + dir_ + " (" + std::to_string(r.rows.size()) +
-                " rows, wall time " + log::format_duration(r.wall_time) + ")");
       return exit_success;
-    }
-    manifest.write("failed", r.failure);
     log::error("mbd_stage: simulation failed: " + r.failure + " (partial outputs in " + dir_ + ")");
     return exit_numerical_error;
   }

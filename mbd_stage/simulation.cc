@@ -325,8 +325,28 @@ namespace clearjoint::mbd
                         {"axial_pos", cj.state(1).n_impacts},
                         {"axial_neg", cj.state(2).n_impacts}};
       j["peak_normal_force"] = {{"value", peak_F[c]}, {"unit", "N"}};
-      j["law_out_of_range_evaluations"] =
+      // Counted at accepted states only (trial stages never count, docs/mbd.md §5).
+      j["law_out_of_range_accepted_steps"] =
         cj.radial_model().n_out_of_range() + cj.axial_model().n_out_of_range();
+      j["impact_velocity_floor"] = {
+        {"radial", cj.radial_model().min_impact_velocity()},
+        {"axial", cj.axial_model().min_impact_velocity()},
+        {"unit", "m/s"},
+        {"n_onsets_floored", {{"radial", cj.state(0).n_impact_velocity_floored},
+                              {"axial_pos", cj.state(1).n_impact_velocity_floored},
+                              {"axial_neg", cj.state(2).n_impact_velocity_floored}}},
+        {"note", "onsets whose recorded impact velocity was below the floor: the damping "
+                 "term of that contact period used the floor"}};
+      const double guard = scene.integrator.depth_guard * cj.geometry().c_r();
+      j["depth_guard"] = {{"fraction_of_c_r", scene.integrator.depth_guard},
+                          {"allowance", guard},
+                          {"max_delta_any_stage", {{"radial", cj.max_delta_any_stage(0)},
+                                                   {"axial_pos", cj.max_delta_any_stage(1)},
+                                                   {"axial_neg", cj.max_delta_any_stage(2)}}},
+                          {"units", {{"allowance", "m"}, {"max_delta_any_stage", "m"}}},
+                          {"note", "max_delta_any_stage includes the trial stages of every "
+                                   "step; a step may reach max(allowance, accepted delta + "
+                                   "allowance/2)"}};
       cjs.push_back(j);
     }
     s["clearance_joints"] = cjs;

@@ -56,7 +56,7 @@ TEST(ContactForceModel, ImpactVelocityFloorBoundsTheDampingRatio)
   EXPECT_NEAR(m.force(d, 1e-3, 1e-9).total, F_el * (1 + m.chi()), 1e-9 * F_el);
 }
 
-TEST(ContactForceModel, LawFileRangePolicyIsAppliedAndCounted)
+TEST(ContactForceModel, LawFileRangePolicyIsAppliedAndAcceptedStatesAreCounted)
 {
   laws::LawFile lf;
   lf.law = {3.6595e8, 1.0114};
@@ -65,23 +65,37 @@ TEST(ContactForceModel, LawFileRangePolicyIsAppliedAndCounted)
   lf.delta_ref = 5e-5;
   const ContactForceModel extend = ContactForceModel::law_file("fe", lf, laws::RangePolicy::extend);
   EXPECT_NEAR(extend.elastic_force(1e-4), lf.law.force(1e-4), 1e-6);
+  // A force evaluation is a trial stage: it never counts; an accepted state does.
+  EXPECT_EQ(extend.n_out_of_range(), 0u);
+  extend.observe_accepted(4e-5);
+  EXPECT_EQ(extend.n_out_of_range(), 0u);
+  extend.observe_accepted(1e-4);
   EXPECT_EQ(extend.n_out_of_range(), 1u);
+  EXPECT_DOUBLE_EQ(extend.max_delta_accepted(), 1e-4);
   const ContactForceModel clamp = ContactForceModel::law_file("fe", lf, laws::RangePolicy::clamp);
   EXPECT_NEAR(clamp.elastic_force(1e-4), lf.law.force(5e-5), 1e-6);
+  clamp.observe_accepted(1e-4);
   EXPECT_EQ(clamp.n_out_of_range(), 1u);
+  // "error": a trial stage beyond the range is evaluated on the extrapolated law (the step
+  // may still be rejected); an accepted state beyond it stops the run.
   const ContactForceModel error = ContactForceModel::law_file("fe", lf, laws::RangePolicy::error);
-  EXPECT_NO_THROW(error.elastic_force(4e-5));
-  EXPECT_THROW(error.elastic_force(1e-4), laws::LawRangeError);
+  EXPECT_NEAR(error.elastic_force(1e-4), lf.law.force(1e-4), 1e-6);
+  EXPECT_NO_THROW(error.observe_accepted(4e-5));
+  EXPECT_THROW(error.observe_accepted(1e-4), laws::LawRangeError);
 }
 
-TEST(ContactForceModel, JohnsonBeyondPeakIsCountedAndErrorPolicyThrows)
+TEST(ContactForceModel, JohnsonBeyondPeakIsHeldAndAcceptedStatesAreCounted)
 {
   const JohnsonLaw j(5e-4, 0.018, 1.137e11);
   const ContactForceModel clamp = ContactForceModel::johnson("j", j, laws::RangePolicy::clamp);
   EXPECT_DOUBLE_EQ(clamp.elastic_force(2 * j.peak_delta()), j.peak_force());
+  EXPECT_EQ(clamp.n_out_of_range(), 0u);
+  clamp.observe_accepted(2 * j.peak_delta());
   EXPECT_EQ(clamp.n_out_of_range(), 1u);
   const ContactForceModel err = ContactForceModel::johnson("j", j, laws::RangePolicy::error);
-  EXPECT_THROW(err.elastic_force(2 * j.peak_delta()), laws::LawRangeError);
+  EXPECT_DOUBLE_EQ(err.elastic_force(2 * j.peak_delta()), j.peak_force());
+  EXPECT_NO_THROW(err.observe_accepted(0.5 * j.peak_delta()));
+  EXPECT_THROW(err.observe_accepted(2 * j.peak_delta()), laws::LawRangeError);
 }
 
 TEST(ContactForceModel, LawFamilyIsEvaluatedAtTheCurrentTilt)
@@ -109,7 +123,9 @@ TEST(ContactForceModel, LawFamilyIsEvaluatedAtTheCurrentTilt)
   const double n_mid = 0.5 * (1.0114 + 1.05), F_mid = std::sqrt(F0 * F2);
   EXPECT_NEAR(m.elastic_force(d_ref, 0.5 * t2), F_mid, 1e-9 * F_mid);
   EXPECT_NEAR(m.elastic_force(1e-5, 0.5 * t2), F_mid * std::pow(1e-5 / d_ref, n_mid), 1e-9 * F_mid);
-  // Beyond δ_max under "extend": evaluated and counted.
+  // Beyond δ_max under "extend": evaluated; counted once an accepted state is there.
   m.elastic_force(1e-4, 0.5 * t2);
+  EXPECT_EQ(m.n_out_of_range(), 0u);
+  m.observe_accepted(1e-4, 0.5 * t2);
   EXPECT_EQ(m.n_out_of_range(), 1u);
 }
