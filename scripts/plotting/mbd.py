@@ -13,6 +13,7 @@ import sys
 import matplotlib.pyplot as plt
 
 from plotting._common import read_table
+from plotting._report_common import readable_log_axis
 
 
 def _load(d):
@@ -167,6 +168,7 @@ def bench(d):
     for a in ax:
         a.legend(fontsize=8)
         a.grid(True, which="both", lw=0.3)
+        readable_log_axis(a.xaxis)
     fig.suptitle("MBD: wall time against error (FE law with dissipation), reference DP5 rtol 1e-12")
     _save(fig, os.path.join(d, "mbd_tolerance.png"))
     return 0
