@@ -63,7 +63,10 @@ def run_case(args, journal, level, ranks):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--fe-stage", required=True)
+    ap.add_argument("--fe-stage", help="the fe_stage executable (not needed with --from-table)")
+    ap.add_argument("--from-table", metavar="FILE",
+                    help="redraw --plot from the markdown table this script printed (rows "
+                         "'| journal | ranks | level | ... | est. error |' in FILE), run nothing")
     ap.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2])
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--journals", nargs="+", default=["end_faces", "rigid"])
@@ -73,6 +76,10 @@ def main():
     ap.add_argument("--theta", type=float, default=1.0, help="[deg] misalignment angle")
     ap.add_argument("--plot", help="PNG: DoFs and wall time against the estimated error")
     args = ap.parse_args()
+    if args.from_table:
+        return replot(args)
+    if not args.fe_stage:
+        ap.error("--fe-stage is required (or --from-table FILE)")
     if args.study == "misalignment":
         args.journals = ["rigid"]  # the tilted journal is rigid (SPEC §2)
     os.makedirs(args.work, exist_ok=True)
@@ -107,6 +114,28 @@ def main():
                 print(f"| {journal} | {ranks} | Richardson | | | | {F_inf:.1f} | p = {p:.2f} |")
     if args.plot:
         plot(args, results)
+    return 0
+
+
+def replot(args):
+    """--plot from a table printed earlier: the measured rows are not re-run."""
+    row = re.compile(r"^\|\s*(\w+)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*([\d.]+)\s*\|"
+                     r"\s*([\d.]+)\s*\|\s*([\d.]+)\s*\|\s*([\d.]+)\s*%\s*\|")
+    results = []
+    with open(args.from_table) as f:
+        for line in f:
+            m = row.match(line.strip())
+            if m:
+                results.append({"journal": m.group(1), "ranks": int(m.group(2)),
+                                "level": int(m.group(3)), "dofs": int(m.group(4)),
+                                "wall": float(m.group(5)), "force": float(m.group(7)),
+                                "error": float(m.group(8)) / 100})
+    if not results or not args.plot:
+        print("--from-table needs a table with measured rows and --plot", file=sys.stderr)
+        return 1
+    args.journals = sorted({r["journal"] for r in results}, key=lambda j: j != "end_faces")
+    args.ranks = sorted({r["ranks"] for r in results})
+    plot(args, results)
     return 0
 
 
