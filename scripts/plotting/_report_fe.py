@@ -240,6 +240,29 @@ def fref_figure(fs):
                             f"plotted: its unit N/m^n differs from law to law.")
 
 
+def trend_finding(fs):
+    """One sentence for the summary: our trend of F_ref over the parameter beside the paper's
+    claim, or None with fewer than two cases."""
+    claim = _paper.CLAIMS.get(fs.study["parameter"])
+    dref = fs.delta_ref()
+    Fs = [f_ref_interval(l, dref)[0] for _, l, _ in fs.cases]
+    if len(Fs) < 2:
+        return None
+    sign, words = trend_words(Fs)
+    xs = fs.values_shown()
+    text = (f"<a href='#{esc(fs.anchor)}'>{esc(fs.study['name'])}</a>: F at δ = {dref * 1e3:.3g} mm "
+            f"{words} over {esc(param_axis_label(fs.study))} = {xs[0]:.4g} … {xs[-1]:.4g} "
+            f"({Fs[0]:.0f} → {Fs[-1]:.0f} N, {100 * (Fs[-1] - Fs[0]) / Fs[0]:+.1f} %)")
+    if claim:
+        expected, _ = claim
+        if sign == expected:
+            text += " — as the paper says"
+        else:
+            text += (" — <strong>the paper says it " + ("grows" if expected > 0 else "falls") +
+                     "</strong>; our reading of why in the study's section")
+    return text
+
+
 def claim_table(fs):
     study = fs.study
     claim = _paper.CLAIMS.get(study["parameter"])
@@ -405,8 +428,17 @@ def pictures_and_checks(fs, run_dir, warnings):
     sym = value_of(get(man, "extra", "symmetry_factor"), 1.0)
     mu = get(man, "extra", "scene", "contact", "mu")
     stats = None
+    # fe_stage may name its status codes (manifest extra.contact_fields.status_codes, either
+    # {"stick": 1, ...} or {"1": "stick", ...}); fe_stage's present codes: 0 open, 1 stick, 2 slip
+    codes = get(man, "extra", "contact_fields", "status_codes", default={}) or {}
+    stick_code = 1
+    for k, v in codes.items():
+        if k == "stick" and isinstance(v, (int, float)):
+            stick_code = int(v)
+        elif v == "stick" and str(k).lstrip("-").isdigit():
+            stick_code = int(k)
     try:
-        stats = fields.field_stats(case["fe_dir"], _paper.YIELD_STRESS, sym, mu)
+        stats = fields.field_stats(case["fe_dir"], _paper.YIELD_STRESS, sym, mu, stick_code)
     except Exception as e:  # a broken VTU must not take the report down: say so instead
         warnings.add(f"FE fields, {label}", f"could not be read ({esc(str(e))})", fs.anchor)
     out = []

@@ -61,13 +61,15 @@ def _arrays(grid):
     return {pd.GetArrayName(i): vtk_to_numpy(pd.GetArray(i)) for i in range(pd.GetNumberOfArrays())}
 
 
-def field_stats(fe_dir, yield_stress=DEFAULT_YIELD_STRESS, symmetry_factor=1.0, mu=None):
+def field_stats(fe_dir, yield_stress=DEFAULT_YIELD_STRESS, symmetry_factor=1.0, mu=None,
+                stick_code=1):
     """Numbers from the last increment's fields, for the report's warnings:
     max_von_mises [Pa]; volume_above_yield [m³] of the FULL body (modelled part × symmetry
     factor) with the cell value taken as the mean of its points; contact checks: for a
     frictionless run (mu == 0) the largest contact_shear [Pa] and its ratio to the pressure, the
-    number of active points whose status says stick, and the number of points with slip where
-    not in contact. None if there are no fields."""
+    number of active points whose status says stick (code `stick_code`: 1 in fe_stage's
+    open/stick/slip = 0/1/2, or what the manifest's contact_fields.status_codes says), and the
+    number of points with slip where not in contact. None if there are no fields."""
     path = last_field_file(fe_dir)
     if path is None:
         return None
@@ -114,8 +116,7 @@ def field_stats(fe_dir, yield_stress=DEFAULT_YIELD_STRESS, symmetry_factor=1.0, 
             out["max_shear_over_pressure"] = float(np.max(ratio)) if ratio.size else 0.0
         if "contact_status" in a:
             st = a["contact_status"]
-            out["n_stick_points"] = int(np.sum(active & (np.rint(st) == 1)))
-            out["n_slip_status_points"] = int(np.sum(active & (np.rint(st) == 2)))
+            out["n_stick_points"] = int(np.sum(active & (np.rint(st) == stick_code)))
         if "contact_slip" in a:
             slip = a["contact_slip"] > 0
             out["n_slip_points"] = int(np.sum(slip))

@@ -17,7 +17,7 @@ import os
 
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
-from plotting._report_fe import f_ref_interval, mesh_error, study_section
+from plotting._report_fe import f_ref_interval, mesh_error, study_section, trend_finding
 from plotting._report_mbd import headline_table, mbd_section
 
 
@@ -165,6 +165,10 @@ def summary_section(summary, studies, runs, warnings):
                      f"contact models; joint friction μ ∈ {{{', '.join(f'{m:g}' for m in mus)}}}.</p>")
     parts.append("<h3>Headline law beside the paper's</h3>")
     parts.append(headline_laws(studies))
+    findings = [t for t in (trend_finding(fs) for fs in studies if fs.cases) if t]
+    if findings:
+        parts.append("<h3>Trends beside the paper's claims</h3><ul>" +
+                     "".join(f"<li>{t}</li>" for t in findings) + "</ul>")
     if runs:
         parts.append("<h3>Multibody headline numbers</h3>")
         parts.append(headline_table(runs))
