@@ -373,6 +373,7 @@ def yield_check(case, man, picture_stats):
         return {"yield_stress": value_of(y.get("yield_stress")),
                 "max_von_mises": value_of(y.get("max_von_mises")),
                 "volume_above_yield": value_of(y.get("volume_above_yield")),
+                "volume_above_yield_bearing": value_of(y.get("volume_above_yield_bearing")),
                 "volume_fraction_above_yield": value_of(y.get("volume_fraction_above_yield")),
                 "where": y.get("location") or y.get("where")}, "fe_stage manifest"
     if picture_stats and "max_von_mises" in picture_stats:
@@ -385,6 +386,7 @@ def yield_check(case, man, picture_stats):
                      f"{lo[1] * 1e3:.3g}…{hi[1] * 1e3:.3g}, z {lo[2] * 1e3:.3g}…{hi[2] * 1e3:.3g} mm")
         return {"yield_stress": s["yield_stress"], "max_von_mises": s["max_von_mises"],
                 "volume_above_yield": s["volume_above_yield"],
+                "volume_above_yield_bearing": s.get("volume_above_yield_bearing"),
                 "volume_fraction_above_yield": frac, "where": where}, \
             "computed by the report from the last increment's VTU"
     return None, None
@@ -418,6 +420,72 @@ def contact_field_notes(stats, mu, label, warnings, anchor):
         ". These fields do not yet mean what CSHEAR/CSTATUS/CSLIP mean in Abaqus.</p>"
 
 
+_FIELD_STATS = {}
+
+
+def cached_field_stats(case, man, warnings, anchor, stick_code=1):
+    """fields.field_stats of a case's last increment, read once per report (None without
+    fields or when they cannot be read — then a warning says so)."""
+    key = (case["fe_dir"], stick_code)
+    if key not in _FIELD_STATS:
+        from plotting import fields
+        sym = value_of(get(man, "extra", "symmetry_factor"), 1.0)
+        mu = get(man, "extra", "scene", "contact", "mu")
+        R_B = get(man, "extra", "scene", "geometry", "R_B")
+        try:
+            _FIELD_STATS[key] = fields.field_stats(case["fe_dir"], _paper.YIELD_STRESS, sym, mu,
+                                                   stick_code, R_B)
+        except Exception as e:  # a broken VTU must not take the report down: say so instead
+            warnings.add(f"FE fields, {case['fe_dir']}", f"could not be read ({esc(str(e))})", anchor)
+            _FIELD_STATS[key] = None
+    return _FIELD_STATS[key]
+
+
+def yield_section(fs, warnings):
+    """Every case's largest von Mises stress and volume above the yield stress (fe_stage's
+    manifest block when present, else the report's own from the VTU), and one warning for the
+    study when any case exceeds it."""
+    rows, above = [], []
+    for case, law, man in fs.cases:
+        stats = None if isinstance(get(man, "extra", "yield_check"), dict) else \
+            cached_field_stats(case, man, warnings, fs.anchor)
+        y, source = yield_check(case, man, stats)
+        if not y or y.get("max_von_mises") is None:
+            rows.append(f"<tr><td>{esc(case_label(fs.study, case))}</td><td colspan='5'>no fields, "
+                        f"no yield check in the manifest</td></tr>")
+            continue
+        ys = y["yield_stress"] or _paper.YIELD_STRESS
+        vm, vol, frac = y["max_von_mises"], y.get("volume_above_yield"), y.get("volume_fraction_above_yield")
+        vb = y.get("volume_above_yield_bearing")
+        if vm > ys:
+            above.append((case, vm, vol, frac))
+        rows.append(f"<tr><td>{esc(case_label(fs.study, case))}</td><td>{vm / 1e6:.0f}</td>"
+                    f"<td>{f'{vol * 1e9:.4g}' if vol is not None else '–'}</td>"
+                    f"<td>{f'{vb * 1e9:.4g}' if vb is not None else '–'}</td>"
+                    f"<td>{f'{100 * frac:.3g} %' if frac is not None else '–'}</td>"
+                    f"<td>{esc(source)}</td></tr>")
+    if not rows:
+        return ""
+    if above:
+        vms = [a[1] for a in above]
+        vols = [a[2] for a in above if a[2] is not None]
+        warnings.add(f"FE {fs.study['name']}",
+                     f"stress above the yield stress {_paper.YIELD_STRESS / 1e6:.4g} MPa in "
+                     f"{len(above)} of {len(fs.cases)} cases: largest von Mises "
+                     f"{min(vms) / 1e6:.0f} … {max(vms) / 1e6:.0f} MPa"
+                     + (f", up to {max(vols) * 1e9:.4g} mm³ of the joint above it" if vols else "")
+                     + "; the model is linear elastic, so the force there is an upper bound",
+                     fs.anchor)
+    return ("<h4>Yield check</h4><p>The FE model is linear elastic; the paper's steel yields at "
+            f"{_paper.YIELD_STRESS / 1e6:.4g} MPa (SPEC §2, first point of the hardening table). "
+            "Where von Mises exceeds it the real joint would yield and carry less force: the laws "
+            "hold only while that zone stays small.</p>"
+            "<table><tr><th>case</th><th>largest von Mises [MPa]</th><th>volume above yield, "
+            "full joint [mm³]</th><th>of which in the bearing [mm³]</th><th>share of the "
+            "modelled volume</th><th>from</th></tr>" +
+            "".join(rows) + "</table>")
+
+
 def pictures_and_checks(fs, run_dir, warnings):
     pick = picture_case(fs)
     if not pick:
@@ -437,10 +505,7 @@ def pictures_and_checks(fs, run_dir, warnings):
             stick_code = int(v)
         elif v == "stick" and str(k).lstrip("-").isdigit():
             stick_code = int(k)
-    try:
-        stats = fields.field_stats(case["fe_dir"], _paper.YIELD_STRESS, sym, mu, stick_code)
-    except Exception as e:  # a broken VTU must not take the report down: say so instead
-        warnings.add(f"FE fields, {label}", f"could not be read ({esc(str(e))})", fs.anchor)
+    stats = cached_field_stats(case, man, warnings, fs.anchor, stick_code)
     out = []
     R_B = get(man, "extra", "scene", "geometry", "R_B")
     png = os.path.join(run_dir, "pictures", f"{fs.study['name']}_fields.png")
@@ -488,9 +553,6 @@ def pictures_and_checks(fs, run_dir, warnings):
                        f"{text}{extra}. The model is linear elastic: where the stress exceeds the "
                        f"yield stress the real steel would yield and the force would be lower; the "
                        f"law is valid only as far as that zone stays small.</p>")
-            if source != "fe_stage manifest":  # those are listed per case by fe_case_warnings
-                warnings.add(f"FE {fs.study['name']}, {label}",
-                             f"stress above yield: {text}{extra} ({esc(source)})", fs.anchor)
         else:
             out.append(f"<p>Yield check ({esc(label)}, {esc(source)}): {text}: elastic everywhere.</p>")
     out.append(contact_field_notes(stats, mu, label, warnings, fs.anchor))
@@ -537,15 +599,6 @@ def fe_case_warnings(fs, warnings):
         if r2 is not None and r2 < 0.999:
             warnings.add(label, f"R² = {r2:.5f} < 0.999 (the paper's criterion): the data do "
                                 f"not follow one power law well", fs.anchor)
-        y = get(man, "extra", "yield_check")
-        if isinstance(y, dict):  # fe_stage's own check, every case
-            vm, ys = value_of(y.get("max_von_mises")), value_of(y.get("yield_stress"))
-            if vm and ys and vm > ys:
-                vol = value_of(y.get("volume_above_yield"))
-                warnings.add(label, f"stress above yield: von Mises up to {vm / 1e6:.0f} MPa > "
-                                    f"{ys / 1e6:.4g} MPa"
-                                    + (f", {vol * 1e9:.4g} mm³" if vol is not None else ""),
-                             fs.anchor)
 
 
 def study_section(study, base, warnings):
@@ -558,6 +611,7 @@ def study_section(study, base, warnings):
     fe_case_warnings(fs, warnings)
     pictures, _ = pictures_and_checks(fs, base, warnings)
     parts = [head, modelled_paragraph(fs), force_figure(fs), fref_figure(fs), claim_table(fs),
-             "<h4>Fields</h4>", pictures, "<h4>Laws</h4>", law_table(fs, base),
+             "<h4>Fields</h4>", pictures, yield_section(fs, warnings), "<h4>Laws</h4>",
+             law_table(fs, base),
              "<h4>Every case</h4>", per_case_details(fs, base)]
     return "".join(parts), fs

@@ -62,14 +62,16 @@ def _arrays(grid):
 
 
 def field_stats(fe_dir, yield_stress=DEFAULT_YIELD_STRESS, symmetry_factor=1.0, mu=None,
-                stick_code=1):
+                stick_code=1, R_B=None):
     """Numbers from the last increment's fields, for the report's warnings:
     max_von_mises [Pa]; volume_above_yield [m³] of the FULL body (modelled part × symmetry
     factor) with the cell value taken as the mean of its points; contact checks: for a
     frictionless run (mu == 0) the largest contact_shear [Pa] and its ratio to the pressure, the
     number of active points whose status says stick (code `stick_code`: 1 in fe_stage's
     open/stick/slip = 0/1/2, or what the manifest's contact_fields.status_codes says), and the
-    number of points with slip where not in contact. None if there are no fields."""
+    number of points with slip where not in contact. With R_B [m], volume_above_yield_bearing
+    is the part in cells whose centre lies outside the bore (the bearing; the journal's cells
+    lie inside). None if there are no fields."""
     path = last_field_file(fe_dir)
     if path is None:
         return None
@@ -99,11 +101,15 @@ def field_stats(fe_dir, yield_stress=DEFAULT_YIELD_STRESS, symmetry_factor=1.0, 
         out["volume_above_yield"] = float(np.sum(vol[above])) * symmetry_factor
         out["volume_total"] = float(np.sum(vol)) * symmetry_factor
         out["n_cells_above_yield"] = int(np.sum(above))
+        centres = vtk.vtkCellCenters()
+        centres.SetInputData(g)
+        centres.Update()
+        call = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())
+        if R_B is not None:
+            in_bearing = np.hypot(call[:, 0], call[:, 1]) >= R_B
+            out["volume_above_yield_bearing"] = float(np.sum(vol[above & in_bearing])) * symmetry_factor
         if np.any(above):
-            centres = vtk.vtkCellCenters()
-            centres.SetInputData(g)
-            centres.Update()
-            c = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())[above]
+            c = call[above]
             out["above_yield_box"] = [c.min(axis=0).tolist(), c.max(axis=0).tolist()]
     if "contact_pressure" in a and "contact_active" in a:
         p, active = a["contact_pressure"], a["contact_active"] > 0.5

@@ -82,6 +82,14 @@ def main():
             if s[key] != expected:
                 print(f"FAIL: {key} = {s[key]}, expected {expected}")
                 bad += 1
+        # the body split by the cell centre's distance from the z axis: the hot cell's centre
+        # is at r = 0.71 mm, the cold one's at 1.58 mm
+        inside = fields.field_stats(d, 168.2e6, 4.0, 0.0, R_B=1e-3)["volume_above_yield_bearing"]
+        outside = fields.field_stats(d, 168.2e6, 4.0, 0.0, R_B=0.5e-3)["volume_above_yield_bearing"]
+        if inside != 0.0:
+            print("FAIL: the hot cell lies in the bore (journal), bearing volume", inside)
+            bad += 1
+        near(outside, 4e-9, "bearing volume above yield with the hot cell outside the bore")
         if not s["file"].endswith("solution_0001.vtu"):
             print("FAIL: the last increment of the .pvd was not the one read:", s["file"])
             bad += 1
