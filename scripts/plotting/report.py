@@ -118,7 +118,7 @@ def what_ran(summary, studies):
             f" FE studies:</p><ul>{''.join(items)}</ul>")
 
 
-def headline_laws(studies):
+def headline_laws(studies, has_band):
     """Our t_B = 4 mm law beside the paper's, in mm/N and SI, and F at 0.05 mm."""
     rows = ["<table><tr><th>law</th><th>δ in mm, F in N</th><th>SI: K [N/m^n]</th><th>n</th>"
             "<th>F(0.05 mm) [N]</th><th>uncertainty of F(0.05 mm)</th></tr>"]
@@ -146,8 +146,9 @@ def headline_laws(studies):
                 dom = "the mesh (discretisation) error" if e > hw / f else "the regression interval"
                 verdict = (f"<p>Uncertainty of our t_B = 4 mm law at 0.05 mm: the fit's 95 % "
                            f"interval is ±{100 * hw / f:.2g} %, the preset's measured mesh error "
-                           f"±{100 * e:.3g} %: <strong>{dom} dominates</strong>. The MBD band "
-                           f"moves the law by both (<a href='#band'>response band</a>).</p>")
+                           f"±{100 * e:.3g} %: <strong>{dom} dominates</strong>." +
+                           (" The MBD band moves the law by both (<a href='#band'>response "
+                            "band</a>)." if has_band else "") + "</p>")
             elif hw and not e:
                 verdict = ("<p>The preset's mesh error is not measured: the law's uncertainty "
                            "shown is the regression's only and narrower than the truth.</p>")
@@ -155,16 +156,17 @@ def headline_laws(studies):
     return "".join(rows) + verdict
 
 
-def summary_section(summary, studies, runs, warnings):
+def summary_section(summary, studies, runs, warnings, has_band):
     parts = ["<section class='summary'><h2 id='summary'>Summary</h2>",
              "<h3>What ran</h3>", what_ran(summary, studies)]
     mus = sorted({get(r.joint, "friction", "mu") for r in runs if r.joint} - {None})
     if runs:
         parts.append(f"<p>Multibody: the paper's slider–crank over "
-                     f"{value_of(get(runs[0].summary, 'duration'), 0):.3g} s with {len(runs)} "
-                     f"contact models; joint friction μ ∈ {{{', '.join(f'{m:g}' for m in mus)}}}.</p>")
+                     f"{value_of(get(runs[0].summary, 'duration'), 0):.3g} s, {len(runs)} runs "
+                     f"(contact models, the ideal joint, the tilted crank); joint friction μ ∈ "
+                     f"{{{', '.join(f'{m:g}' for m in mus)}}}.</p>")
     parts.append("<h3>Headline law beside the paper's</h3>")
-    parts.append(headline_laws(studies))
+    parts.append(headline_laws(studies, has_band))
     findings = [t for t in (trend_finding(fs) for fs in studies if fs.cases) if t]
     if findings:
         parts.append("<h3>Trends beside the paper's claims</h3><ul>" +
@@ -178,13 +180,14 @@ def summary_section(summary, studies, runs, warnings):
     return "".join(parts)
 
 
-def toc(studies, has_mbd):
+def toc(studies, has_mbd, has_band):
     items = ["<li><a href='#summary'>Summary</a> (<a href='#warnings'>warnings</a>)</li>"]
     for fs in studies:
         items.append(f"<li><a href='#{esc(fs.anchor)}'>FE study “{esc(fs.study['name'])}”</a></li>")
     if has_mbd:
-        items.append("<li><a href='#mbd'>Multibody simulations</a> (<a href='#band'>uncertainty "
-                     "of the response</a>)</li>")
+        items.append("<li><a href='#mbd'>Multibody simulations</a>" +
+                     (" (<a href='#band'>uncertainty of the response</a>)" if has_band else "") +
+                     "</li>")
     items.append("<li><a href='#presets'>Presets: measured cost and error</a></li>")
     items.append("<li><a href='#timing'>Wall time of each stage</a></li>")
     return f"<nav><h2>Contents</h2><ol>{''.join(items)}</ol></nav>"
@@ -207,6 +210,7 @@ def main(argv):
     a = p.parse_args(argv)
     summary = load(a.summary)
     base = os.path.dirname(os.path.abspath(a.output))
+    os.makedirs(base, exist_ok=True)
     warnings = Warnings()
     study_html, studies = [], []
     for st in summary["studies"]:
@@ -222,8 +226,8 @@ def main(argv):
              f"{esc(summary['preset'])}</h1>",
              f"<p>Pipeline file: {esc(summary['pipeline_file'])}. Laws are shown in SI "
              f"(δ in m, F in N) and in the paper's units (δ in mm, F in N).</p>",
-             summary_section(summary, studies, runs, warnings),
-             toc(studies, bool(runs))]
+             summary_section(summary, studies, runs, warnings, "id='band'" in mbd_html),
+             toc(studies, bool(runs), "id='band'" in mbd_html)]
     parts += study_html
     parts.append(mbd_html)
     parts.append(preset_section(summary))
