@@ -460,7 +460,7 @@ def yield_section(fs, warnings):
         vm, vol, frac = y["max_von_mises"], y.get("volume_above_yield"), y.get("volume_fraction_above_yield")
         vb = y.get("volume_above_yield_bearing")
         if vm > ys:
-            above.append((case, vm, vol, frac))
+            above.append((case, vm, vol, frac, ys))
         rows.append(f"<tr><td>{esc(case_label(fs.study, case))}</td><td>{vm / 1e6:.0f}</td>"
                     f"<td>{f'{vol * 1e9:.4g}' if vol is not None else '–'}</td>"
                     f"<td>{f'{vb * 1e9:.4g}' if vb is not None else '–'}</td>"
@@ -471,8 +471,10 @@ def yield_section(fs, warnings):
     if above:
         vms = [a[1] for a in above]
         vols = [a[2] for a in above if a[2] is not None]
+        yss = sorted({a[4] for a in above})  # the scene may name its own yield stress
+        ys_txt = " / ".join(f"{y / 1e6:.4g}" for y in yss)
         warnings.add(f"FE {fs.study['name']}",
-                     f"stress above the yield stress {_paper.YIELD_STRESS / 1e6:.4g} MPa in "
+                     f"stress above the yield stress {ys_txt} MPa in "
                      f"{len(above)} of {len(fs.cases)} cases: largest von Mises "
                      f"{min(vms) / 1e6:.0f} … {max(vms) / 1e6:.0f} MPa"
                      + (f", up to {max(vols) * 1e9:.4g} mm³ of the joint above it" if vols else "")
