@@ -63,7 +63,10 @@ def run_case(args, journal, level, ranks):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--fe-stage", required=True)
+    ap.add_argument("--fe-stage", help="the fe_stage executable (not needed with --from-table)")
+    ap.add_argument("--from-table", metavar="FILE",
+                    help="redraw --plot from the markdown table this script printed (rows "
+                         "'| journal | ranks | level | ... | est. error |' in FILE), run nothing")
     ap.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2])
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--journals", nargs="+", default=["end_faces", "rigid"])
@@ -73,6 +76,10 @@ def main():
     ap.add_argument("--theta", type=float, default=1.0, help="[deg] misalignment angle")
     ap.add_argument("--plot", help="PNG: DoFs and wall time against the estimated error")
     args = ap.parse_args()
+    if args.from_table:
+        return replot(args)
+    if not args.fe_stage:
+        ap.error("--fe-stage is required (or --from-table FILE)")
     if args.study == "misalignment":
         args.journals = ["rigid"]  # the tilted journal is rigid (SPEC §2)
     os.makedirs(args.work, exist_ok=True)
@@ -110,10 +117,33 @@ def main():
     return 0
 
 
+def replot(args):
+    """--plot from a table printed earlier: the measured rows are not re-run."""
+    row = re.compile(r"^\|\s*(\w+)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*([\d.]+)\s*\|"
+                     r"\s*([\d.]+)\s*\|\s*([\d.]+)\s*\|\s*([\d.]+)\s*%\s*\|")
+    results = []
+    with open(args.from_table) as f:
+        for line in f:
+            m = row.match(line.strip())
+            if m:
+                results.append({"journal": m.group(1), "ranks": int(m.group(2)),
+                                "level": int(m.group(3)), "dofs": int(m.group(4)),
+                                "wall": float(m.group(5)), "force": float(m.group(7)),
+                                "error": float(m.group(8)) / 100})
+    if not results or not args.plot:
+        print("--from-table needs a table with measured rows and --plot", file=sys.stderr)
+        return 1
+    args.journals = sorted({r["journal"] for r in results}, key=lambda j: j != "end_faces")
+    args.ranks = sorted({r["ranks"] for r in results})
+    plot(args, results)
+    return 0
+
+
 def plot(args, results):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
     for journal in args.journals:
         for ranks in args.ranks:
@@ -123,13 +153,17 @@ def plot(args, results):
                 continue
             label = f"{journal}, {ranks} rank{'s' if ranks > 1 else ''}"
             e = [r["error"] * 100 for r in rs]
-            ax1.loglog(e, [r["dofs"] for r in rs], "o-", label=label)
-            ax2.loglog(e, [r["wall"] for r in rs], "o-", label=label)
+            # cost on x, error on y, both growing away from the origin: no reversed axis
+            ax1.loglog([r["dofs"] for r in rs], e, "o-", label=label)
+            ax2.loglog([r["wall"] for r in rs], e, "o-", label=label)
     title = args.study + (f", θ = {args.theta}°" if args.study == "misalignment" else ", t_B = 4 mm")
-    for ax, y in ((ax1, "DoFs [1]"), (ax2, "wall time [s]")):
-        ax.set_xlabel("estimated error of F(δ_max) [%] (Richardson)")
-        ax.set_ylabel(y)
-        ax.invert_xaxis()
+    for ax, x in ((ax1, "DoFs [1]"), (ax2, "wall time [s]")):
+        ax.set_xlabel(x)
+        ax.set_ylabel("estimated error of F(δ_max) [%] (Richardson)")
+        for axis in (ax.xaxis, ax.yaxis):
+            axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+            axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            axis.set_minor_formatter(NullFormatter())
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
         ax.set_title(title)

@@ -91,6 +91,15 @@ namespace clearjoint::fit
                     d.weighting == "relative" ? "(relative)" : "N",
                     100.0 * d.max_relative_residual, d.correlation_K_n, d.condition_number);
       log::info(buf);
+      if (l.discretisation_error)
+      {
+        // Side by side: the fit's own 95 % half-width of F_ref against the mesh's error.
+        std::snprintf(buf, sizeof(buf),
+                      "  discretisation error of F (mesh, measured): %.3g %% (%s)",
+                      100.0 * l.discretisation_error->F_relative,
+                      l.discretisation_error->description.c_str());
+        log::info(buf);
+      }
       if (d.r_squared < 0.999)
         log::warning(name + ": R^2 = " + format_value(d.r_squared) +
                      " < 0.999: the data do not follow a single power law well over this range "
@@ -167,12 +176,16 @@ namespace clearjoint::fit
           throw InputError("", "DATA.csv", std::to_string(c.inputs.size()) + " files",
                            "exactly one CSV file (or --family PARAM FILE=VALUE ...)");
         manifest.add_input(c.inputs[0]);
-        const laws::LawFile law = fit_csv_file(c.inputs[0], c.options, scene, c.delta_ref);
+        laws::LawFile law = fit_csv_file(c.inputs[0], c.options, scene, c.delta_ref);
+        law.discretisation_error = c.discretisation_error;
         print_law(c.inputs[0], law);
         laws::write_law_file(c.output, law);
         manifest.extra()["K"] = {{"value", law.law.K}, {"unit", "N/m^n"}};
         manifest.extra()["n"] = law.law.n;
         manifest.extra()["r_squared"] = law.diagnostics->r_squared;
+        if (law.discretisation_error)
+          manifest.extra()["discretisation_error_F_relative"] =
+            law.discretisation_error->F_relative;
       }
       else
       {
@@ -190,6 +203,7 @@ namespace clearjoint::fit
           const double value = parse_member_value(arg.substr(eq + 1), arg);
           manifest.add_input(file);
           laws::LawFile law = fit_csv_file(file, c.options, scene, c.delta_ref);
+          law.discretisation_error = c.discretisation_error;
           print_law(file + " (" + *c.family_parameter + " = " + format_value(value) + " " +
                       c.family_unit + ")",
                     law);

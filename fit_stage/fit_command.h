@@ -3,6 +3,7 @@
 #pragma once
 
 #include "fit_stage/power_law_fitter.h"
+#include "laws/law_file.h"
 
 #include <optional>
 #include <string>
@@ -19,6 +20,9 @@ namespace clearjoint::fit
     std::string family_policy = "error";
     std::optional<std::string> scene_file;  ///< scene parameters to embed (YAML/JSON)
     std::optional<double> delta_ref;  ///< [m] reference penetration; default: top of range
+    /// The FE data's measured error of F (--discretisation-error), recorded in every law
+    /// written; the fit cannot see it (laws/law_file.h).
+    std::optional<laws::DiscretisationError> discretisation_error;
     FitOptions options;
     bool plots = true;
   };

@@ -17,6 +17,7 @@ int main(int argc, char **argv)
     "\n"
     "  fit_stage DATA.csv --output LAW.json [--range A:B] [--weighting absolute|relative]\n"
     "            [--start K,n] [--delta-ref D] [--scene SCENE.yaml] [--no-plots]\n"
+    "            [--discretisation-error PERCENT [--discretisation-error-source TEXT]]\n"
     "  fit_stage --family PARAM FILE1.csv=VALUE1 FILE2.csv=VALUE2 ... --output FAMILY.json\n"
     "            [--parameter-unit UNIT] [--family-out-of-range error|clamp|extend]\n"
     "\n"
@@ -41,6 +42,14 @@ int main(int argc, char **argv)
   auto *ref = app.add_option("--delta-ref", delta_ref,
                              "reference penetration for F_ref, m (default: top of fit range)");
   app.add_option("--scene", command.scene_file, "scene parameters to record in the law");
+  double discretisation_percent = 0;
+  std::string discretisation_source;
+  auto *disc = app.add_option(
+    "--discretisation-error", discretisation_percent,
+    "measured relative error of the FE force on this mesh, % in [0, 100) (run_pipeline passes "
+    "the preset's); recorded in the law, widens the MBD band");
+  app.add_option("--discretisation-error-source", discretisation_source,
+                 "where that error was measured (recorded beside it)");
   app.add_option("--family", family, "write a law family over parameter PARAM (e.g. theta)");
   app.add_option("--parameter-unit", command.family_unit,
                  "unit of the family parameter (default: rad for theta, m for t_B)");
@@ -73,6 +82,18 @@ int main(int argc, char **argv)
         throw InputError("", "--delta-ref", format_value(delta_ref), "(0, inf) m");
       command.delta_ref = delta_ref;
     }
+    if (disc->count() > 0)
+    {
+      if (!(discretisation_percent >= 0.0 && discretisation_percent < 100.0))
+        throw InputError("", "--discretisation-error", format_value(discretisation_percent),
+                         "[0, 100) %");
+      command.discretisation_error = laws::DiscretisationError{
+        discretisation_percent / 100.0,
+        discretisation_source.empty() ? "given with --discretisation-error" : discretisation_source};
+    }
+    else if (!discretisation_source.empty())
+      throw InputError("", "--discretisation-error-source", discretisation_source,
+                       "only together with --discretisation-error");
     if (!family.empty())
     {
       command.family_parameter = family;

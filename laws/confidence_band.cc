@@ -21,14 +21,21 @@ namespace clearjoint::laws
     const double dn = t * sn;
     const double K_ridge = rho * sK / sn * dn;
     const double dK_across = t * sK * std::sqrt(std::max(0.0, 1.0 - rho * rho));
-    const struct
+    struct Variant
     {
-      const char *name;
+      const char *name, *source;
       double K, n;
-    } variants[] = {{"n_low", K - K_ridge, n - dn},
-                    {"n_high", K + K_ridge, n + dn},
-                    {"K_low", K - dK_across, n},
-                    {"K_high", K + dK_across, n}};
+    };
+    std::vector<Variant> variants = {{"n_low", "regression", K - K_ridge, n - dn},
+                                     {"n_high", "regression", K + K_ridge, n + dn},
+                                     {"K_low", "regression", K - dK_across, n},
+                                     {"K_high", "regression", K + dK_across, n}};
+    if (law.discretisation_error && law.discretisation_error->F_relative > 0.0)
+    {
+      const double e = law.discretisation_error->F_relative;
+      variants.push_back({"mesh_low", "discretisation", K * (1.0 - e), n});
+      variants.push_back({"mesh_high", "discretisation", K * (1.0 + e), n});
+    }
     std::vector<BandLaw> out;
     for (const auto &v : variants)
     {
@@ -39,10 +46,12 @@ namespace clearjoint::laws
       LawFile b = law;
       b.law = {v.K, v.n};
       b.source_kind = "confidence_band";
-      b.source_description = std::string("95 % confidence-band variant '") + v.name + "' of " +
-                             source + " (see laws/confidence_band.h)";
+      b.source_description =
+        std::string(v.source == std::string("regression") ? "95 % confidence-band variant '" :
+                                                            "discretisation-error variant '") +
+        v.name + "' of " + source + " (see laws/confidence_band.h)";
       b.diagnostics.reset();
-      out.push_back({v.name, b});
+      out.push_back({v.name, v.source, b});
     }
     return out;
   }

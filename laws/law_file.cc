@@ -100,6 +100,12 @@ namespace clearjoint::laws
                    {"data_sha256", optional_string(l.data_sha256)}};
     j["scene"] = l.scene.is_null() ? nlohmann::json(nullptr) : l.scene;
     j["diagnostics"] = l.diagnostics ? to_json(*l.diagnostics) : nlohmann::json(nullptr);
+    j["discretisation_error"] =
+      l.discretisation_error ?
+        nlohmann::json{{"F_relative", l.discretisation_error->F_relative},
+                       {"unit", "1"},
+                       {"description", l.discretisation_error->description}} :
+        nlohmann::json(nullptr);
     return j;
   }
 
@@ -166,6 +172,19 @@ namespace clearjoint::laws
       l.diagnostics = diagnostics_from_json(top.object("diagnostics"));
     else
       top.raw("diagnostics");
+    // Optional: law files written before the key existed have no such key.
+    if (top.has("discretisation_error"))
+    {
+      auto e = top.object("discretisation_error");
+      DiscretisationError de;
+      de.F_relative = e.number("F_relative", Range{.lo = 0.0, .hi = 1.0, .hi_open = true, .unit = "1"});
+      e.string("unit", {"1"});
+      de.description = e.string("description");
+      e.finish();
+      l.discretisation_error = de;
+    }
+    else
+      top.allow("discretisation_error");  // null: not known
     top.finish();
     return l;
   }

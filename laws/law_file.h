@@ -10,8 +10,14 @@
 //   "source":      {"kind": "paper" | "fit" | "confidence_band", "description": "...",
 //                   "data_file": "..." | null, "data_sha256": "..." | null},
 //   "scene":       { ...free-form parameters of the FE scene it came from... } | null,
-//   "diagnostics": { ...FitDiagnostics, see below... } | null
+//   "diagnostics": { ...FitDiagnostics, see below... } | null,
+//   "discretisation_error": {"F_relative": 0.02, "unit": "1", "description": "..."} | null
 // }
+// discretisation_error is the measured relative error of the FE force on the mesh the data came
+// from (the pipeline preset's Richardson estimate of F(δ_max)); the regression intervals in
+// diagnostics do not contain it (they only see the scatter about the fit), so a band built
+// from them alone is narrower than the truth (laws/confidence_band.h uses both). Optional
+// when reading (files written before it existed); written always, null when not known.
 // K and n are correlated (K carries units of N/m^n), so comparisons and interpolation use
 // F_ref = F(δ_ref), not K.
 #pragma once
@@ -51,6 +57,13 @@ namespace clearjoint::laws
     std::vector<double> residual;   ///< [N] F_data − F_fit
   };
 
+  /// The FE data's own error, measured by mesh refinement (not by the fit).
+  struct DiscretisationError
+  {
+    double F_relative = 0.0;  ///< [1] estimated |F_h − F_exact| / F_exact, e.g. 0.02 for 2 %
+    std::string description;  ///< where and how it was measured
+  };
+
   struct LawFile
   {
     PowerLaw law;
@@ -62,6 +75,7 @@ namespace clearjoint::laws
     std::optional<std::string> data_file, data_sha256;
     nlohmann::json scene;     ///< null or the FE scene parameters
     std::optional<FitDiagnostics> diagnostics;
+    std::optional<DiscretisationError> discretisation_error;
 
     double F_ref() const { return law.force(delta_ref); }  ///< [N]
     BoundedPowerLaw bounded(RangePolicy policy) const

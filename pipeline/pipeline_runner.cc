@@ -9,6 +9,7 @@
 #include "pipeline/scene_builder.h"
 #include "pipeline/study_values.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -73,7 +74,9 @@ namespace clearjoint::pipeline
       *geo, {{"R_B", g.R_B}, {"t_B", g.t_B}, {"L_B", g.L_B}, {"c_r", g.c_r}, {"c_a", g.c_a}},
       study.mesh_parameters, run_dir(), options_.build_dir);
     const std::string msh = mesh.output_dir + "/mesh.msh";
-    if (!dry_run)
+    if (dry_run)
+      planned_meshes_.insert(mesh.output_dir);
+    else
     {
       auto it = meshes_.find(mesh.output_dir);
       if (it == meshes_.end())  // cases that need the same mesh share one task
@@ -84,9 +87,70 @@ namespace clearjoint::pipeline
     return scene;
   }
 
+  static void repoint_stage_log(const std::string &dir)
+  {
+    // The stage ran in "<dir>.partial" and its log names the files it wrote there; after the
+    // rename those files are in "<dir>", and a reader of the log should find them where it
+    // says (command.txt keeps the exact command line, .partial included).
+    const std::string log_path = dir + "/stage.log", partial = dir + ".partial";
+    if (!fs::is_regular_file(log_path))
+      return;
+    std::string text = read_file(log_path);
+    std::size_t n = 0;
+    for (std::size_t p = 0; (p = text.find(partial, p)) != std::string::npos; p += dir.size(), ++n)
+      text.replace(p, partial.size(), dir);
+    if (n > 0)
+      write_file_atomically(log_path, text + "[run_pipeline] paths above name the final folder " +
+                                        dir + " (the stage wrote into " + partial +
+                                        ", renamed when it succeeded)\n");
+  }
+
+  std::map<std::string, int> PipelineRunner::planned_tasks() const
+  {
+    std::map<std::string, int> n = {{"make_mesh", int(planned_meshes_.size())}};
+    for (const auto &study : config_.fe_studies)
+    {
+      const int values = int(study.values.size());
+      n["fe_stage"] += values;
+      n["fit_stage"] += values + (values >= 2 ? 1 : 0);  // one law per value, and the family
+    }
+    for (const auto &m : config_.mbd_runs)
+    {
+      n["mbd_stage"] += 1;
+      // laws/confidence_band.h: 4 regression variants, 2 more with a measured mesh error
+      if (m.band && !m.laws.empty() && m.laws.front().study)
+        n["mbd_stage"] += 4 + (discretisation_error_args(*m.laws.front().study).empty() ? 0 : 2);
+    }
+    return n;
+  }
+
+  std::optional<double> PipelineRunner::preset_time(const std::string &which) const
+  {
+    const auto m = config_.preset_measured.find(config_.preset);
+    if (m == config_.preset_measured.end())
+      return std::nullopt;
+    return which == "fe_case_time" ? m->second.fe_case_time : m->second.pipeline_time;
+  }
+
+  std::vector<std::string> PipelineRunner::discretisation_error_args(const std::string &study) const
+  {
+    const auto m = config_.preset_measured.find(config_.preset);
+    if (m == config_.preset_measured.end())
+      return {};
+    const auto e = m->second.error_F_max.find(study);
+    if (e == m->second.error_F_max.end() || !e->second.percent)
+      return {};  // not measured: the law says null, the report says "not measured"
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.17g", *e->second.percent);
+    return {"--discretisation-error", buf, "--discretisation-error-source",
+            "preset " + config_.preset + ": " + e->second.where};
+  }
+
   TaskResult PipelineRunner::execute(const Task &task, const std::string &group)
   {
     TaskResult r;
+    if (eta_)
+      log::info(eta_->describe_next() + ": " + task.name);
     if (options_.only && *options_.only != group)
     {
       // Outside the --only stage a task must already be complete and current.
@@ -99,6 +163,10 @@ namespace clearjoint::pipeline
     }
     else
       r = run_task(task, options_.force);
+    if (eta_)
+      eta_->finished(task.stage, r.outcome == TaskOutcome::ran, r.wall_time_s);
+    if (r.outcome == TaskOutcome::ran)
+      repoint_stage_log(task.output_dir);
     summary_["tasks"].push_back({{"name", task.name},
                                  {"stage", task.stage},
                                  {"group", group},
@@ -130,6 +198,8 @@ namespace clearjoint::pipeline
         fe_case_scene(study, value, true, unused);
       }
     fs::create_directories(run);
+    eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
+                                    preset_time("pipeline_time"));
 
     std::map<std::string, std::map<std::string, Done>> laws;  // study → value label → law
     std::map<std::string, Done> families;
@@ -149,6 +219,9 @@ namespace clearjoint::pipeline
                           {"family_unit", family_unit},
                           {"cases", nlohmann::json::array()}};
       std::vector<std::string> family_args = {"--family", study.parameter};
+      // The preset's measured error of F for this study goes into every law fitted here, so
+      // the MBD band and the report can set it beside the regression interval.
+      const std::vector<std::string> mesh_error_args = discretisation_error_args(study.name);
       std::vector<std::string> family_inputs, family_deps;
       for (std::size_t i = 0; i < study.values.size(); ++i)
       {
@@ -179,6 +252,7 @@ namespace clearjoint::pipeline
         fit.stage = "fit_stage";
         fit.executable = stage_executable("fit_stage");
         fit.args = {csv, "--output", "{out}/law.json", "--weighting", config_.fit_weighting};
+        fit.args.insert(fit.args.end(), mesh_error_args.begin(), mesh_error_args.end());
         if (!options_.plots)
           fit.args.push_back("--no-plots");
         fit.input_files = {csv};
@@ -211,6 +285,7 @@ namespace clearjoint::pipeline
                config_.family_out_of_range, "--output", "{out}/family.json", "--weighting",
                config_.fit_weighting})
           fam.args.push_back(a);
+        fam.args.insert(fam.args.end(), mesh_error_args.begin(), mesh_error_args.end());
         if (!options_.plots)
           fam.args.push_back("--no-plots");
         fam.input_files = family_inputs;
@@ -286,7 +361,8 @@ namespace clearjoint::pipeline
           band.depends_on.clear();
           band.output_dir = run + "/mbd/" + m.name + "_band/" + variant.name;
           execute(band, "mbd");
-          entry["band"].push_back({{"variant", variant.name}, {"dir", band.output_dir}});
+          entry["band"].push_back(
+            {{"variant", variant.name}, {"source", variant.source}, {"dir", band.output_dir}});
         }
       }
       summary_["mbd_runs"].push_back(entry);

@@ -3,12 +3,15 @@
 #pragma once
 
 #include "pipeline/pipeline_config.h"
+#include "pipeline/run_eta.h"
 #include "pipeline/task_runner.h"
 
 #include <nlohmann/json.hpp>
 
 #include <map>
+#include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace clearjoint::pipeline
@@ -44,11 +47,20 @@ namespace clearjoint::pipeline
     std::string write_scene(const nlohmann::json &scene, const std::string &base,
                             const std::string &name);
     TaskResult execute(const Task &task, const std::string &stage_group);
+    /// fit_stage's --discretisation-error arguments from the chosen preset's measured error
+    /// of F for this study; none when it is not measured.
+    std::vector<std::string> discretisation_error_args(const std::string &study) const;
+    /// Tasks per stage this run will execute or reuse (for "task k of N").
+    std::map<std::string, int> planned_tasks() const;
+    /// The chosen preset's measured fe_case_time or pipeline_time [s], if measured.
+    std::optional<double> preset_time(const std::string &which) const;
     std::string stage_executable(const std::string &stage) const;
 
     PipelineConfig config_;
     RunOptions options_;
     nlohmann::json summary_;
     std::map<std::string, Done> meshes_;  ///< mesh task output folder → its .msh
+    std::set<std::string> planned_meshes_;  ///< mesh task folders found by the dry run
+    std::unique_ptr<RunEta> eta_;
   };
 } // namespace clearjoint::pipeline

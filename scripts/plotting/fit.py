@@ -4,6 +4,7 @@
 """
 import argparse
 import json
+import os
 
 import matplotlib.pyplot as plt
 
@@ -31,7 +32,12 @@ def main(argv):
     ax.plot([x * 1e3 for x in xs], [K * x ** n for x in xs], "-",
             label=f"fit F = {K_mm:.6g}·δ^{n:.4f}  (δ in mm, F in N)")
     ax.set_ylabel("contact force F [N]")
-    ax.set_title(f"{a.law.split('/')[-1]}:  R² = {d['r_squared']:.6f},  "
+    # run_pipeline's law sits in fit/<study>/<p>=<v>(.partial)/law.json: name the case
+    from plotting.fe import folder_label
+    name = folder_label(os.path.dirname(os.path.abspath(a.law)))
+    if os.path.basename(a.law) != "law.json" or "=" not in os.path.basename(os.path.dirname(a.law)):
+        name = os.path.basename(a.law)
+    ax.set_title(f"{name}:  R² = {d['r_squared']:.6f},  "
                  f"n = {n:.4f} ± {d['n_std_error']:.2g}")
     ax.grid(True, alpha=0.3)
     ax.legend()

@@ -13,6 +13,7 @@ import sys
 import matplotlib.pyplot as plt
 
 from plotting._common import read_table
+from plotting._report_common import readable_log_axis
 
 
 def _load(d):
@@ -172,6 +173,7 @@ def bench(d):
         a.set_xlabel("wall time [s] (0.1 s scene, in-process)")
         a.legend(fontsize=7)
         a.grid(True, which="both", lw=0.3)
+        readable_log_axis(a.xaxis)
     fig.suptitle("MBD: wall time against error, reference DP5 rtol 1e-12 (dashed: 1e-4 m/s target)")
     _save(fig, os.path.join(d, "mbd_tolerance.png"))
     return 0

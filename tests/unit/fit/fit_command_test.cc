@@ -105,3 +105,31 @@ TEST(FitStageCommand, FamilyOverTheta)
   EXPECT_EQ(f.members()[0].value, 0.0) << "members sorted by value";
   EXPECT_DOUBLE_EQ(f.delta_ref(), 4e-5) << "common reference inside every member's range";
 }
+
+// Issue 15 item 6: the FE mesh's measured error of F goes into the law (and every member of a
+// family); an impossible value is an input error naming the option, with no law written.
+TEST(FitStageCommand, DiscretisationErrorIsRecordedAndChecked)
+{
+  test_support::ScratchDir dir("fit_cli_disc");
+  test_support::write_text(dir.file("data.csv"), good_csv());
+  const std::string base = dir.file("data.csv") + " --output " + dir.file("law.json");
+  const CommandRun ok = fit(dir, base + " --discretisation-error 2.5 --discretisation-error-source 'level 1'");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  const auto law = laws::read_law_file(dir.file("law.json"));
+  ASSERT_TRUE(law.discretisation_error.has_value());
+  EXPECT_EQ(law.discretisation_error->F_relative, 0.025);
+  EXPECT_EQ(law.discretisation_error->description, "level 1");
+  fs::remove(dir.file("law.json"));
+  const CommandRun bad = fit(dir, base + " --discretisation-error 100");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("--discretisation-error"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir.file("law.json")));
+  EXPECT_EQ(fit(dir, base + " --discretisation-error-source x").exit_code, 1)
+    << "a source without a value";
+  const CommandRun fam = fit(dir, "--family t_B " + dir.file("data.csv") + "=0.004 " +
+                                    dir.file("data.csv") + "=0.006 --discretisation-error 4.8 --output " +
+                                    dir.file("family.json"));
+  ASSERT_EQ(fam.exit_code, 0) << fam.output;
+  for (const auto &m : laws::read_law_family(dir.file("family.json")).members())
+    EXPECT_EQ(m.law.discretisation_error->F_relative, 0.048);
+}

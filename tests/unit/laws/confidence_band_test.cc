@@ -53,3 +53,28 @@ TEST(ConfidenceBand, NeedsAFittedLaw)
   paper.diagnostics.reset();
   EXPECT_THROW(confidence_band_laws(paper, "paper.json"), InputError);
 }
+
+TEST(ConfidenceBand, NoMeshVariantsWithoutAMeasuredDiscretisationError)
+{
+  for (const auto &b : confidence_band_laws(fitted(), "law.json"))
+    EXPECT_EQ(b.source, "regression") << b.name;
+}
+
+TEST(ConfidenceBand, MeshVariantsScaleTheLawByTheMeasuredError)
+{
+  LawFile l = fitted();
+  l.discretisation_error = DiscretisationError{0.02, "preset standard"};
+  const auto band = confidence_band_laws(l, "law.json");
+  ASSERT_EQ(band.size(), 6u);
+  EXPECT_EQ(band[4].name, "mesh_low");
+  EXPECT_EQ(band[5].name, "mesh_high");
+  for (int i : {4, 5})
+  {
+    EXPECT_EQ(band[i].source, "discretisation");
+    EXPECT_EQ(band[i].law.law.n, 1.02);  // the measured error is of F only: n is kept
+    EXPECT_EQ(band[i].law.source_kind, "confidence_band");
+  }
+  // F(δ_ref) moves by exactly ∓2 % (1e-12: round-off of one multiplication).
+  EXPECT_NEAR(band[4].law.F_ref() / l.F_ref(), 0.98, 1e-12);
+  EXPECT_NEAR(band[5].law.F_ref() / l.F_ref(), 1.02, 1e-12);
+}

@@ -137,3 +137,36 @@ TEST(LawFile, ReaderRejectsInconsistentCopies)
   j["mm_N"]["K"] = 338240.0;
   EXPECT_NE(error_of(j).find("mm_N.K"), std::string::npos);
 }
+
+TEST(LawFile, DiscretisationErrorRoundTripsAndIsOptional)
+{
+  test_support::ScratchDir dir("law_discretisation");
+  LawFile a = fitted_law();
+  a.discretisation_error = DiscretisationError{0.02, "preset standard: Richardson"};
+  write_law_file(dir.file("law.json"), a);
+  const LawFile b = read_law_file(dir.file("law.json"));
+  ASSERT_TRUE(b.discretisation_error.has_value());
+  EXPECT_EQ(b.discretisation_error->F_relative, 0.02);
+  EXPECT_EQ(b.discretisation_error->description, "preset standard: Richardson");
+  // Written as null when unknown, and a file from before the key existed still reads.
+  auto j = to_json(fitted_law());
+  EXPECT_TRUE(j.at("discretisation_error").is_null());
+  EXPECT_FALSE(law_from_json(j, "law.json").discretisation_error.has_value());
+  j.erase("discretisation_error");
+  EXPECT_FALSE(law_from_json(j, "law.json").discretisation_error.has_value());
+}
+
+TEST(LawFile, ReaderRejectsABadDiscretisationError)
+{
+  LawFile a = fitted_law();
+  a.discretisation_error = DiscretisationError{0.02, "x"};
+  auto j = to_json(a);
+  j["discretisation_error"]["F_relative"] = 1.5;  // 150 %: outside [0, 1)
+  EXPECT_NE(error_of(j).find("discretisation_error.F_relative"), std::string::npos) << error_of(j);
+  j = to_json(a);
+  j["discretisation_error"]["unit"] = "%";
+  EXPECT_NE(error_of(j).find("discretisation_error.unit"), std::string::npos) << error_of(j);
+  j = to_json(a);
+  j["discretisation_error"]["extra"] = 1;
+  EXPECT_NE(error_of(j).find("discretisation_error.extra"), std::string::npos) << error_of(j);
+}

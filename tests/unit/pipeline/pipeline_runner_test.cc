@@ -458,3 +458,39 @@ TEST(RunPipeline, AMissingMeshFileNamesTheKey)
   EXPECT_NE(o.log.find("fe.yaml"), std::string::npos) << o.log;
   EXPECT_FALSE(fs::exists(dir.file("out/r/fe"))) << "nothing ran";
 }
+
+// Issue 15 items 6, 7, 8: the preset's measured error of F reaches the law file and moves the
+// band; run_pipeline counts its tasks; stage logs name the final folders.
+TEST(RunPipeline, PresetErrorReachesTheLawAndTheBandTasksAreCountedLogsNameFinalFolders)
+{
+  test_support::ScratchDir dir("pipeline_mesh_error");
+  FakeBuild build(dir);
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
+  const std::string plain = "presets: {fast: {fe: null, mbd: null}, ";
+  yaml.replace(yaml.find(plain), plain.size(),
+               "presets: {fast: {fe: null, mbd: null, measured: {note: test, fe_dofs: null, "
+               "fe_case_time: 1.0, pipeline_time: 10.0, error_F_max: {thickness: {percent: 3.0, "
+               "where: made up for the test}}}}, ");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome o = run(dir, build);
+  ASSERT_EQ(o.exit_code, 0) << o.log;
+  const auto law = laws::read_law_file(dir.file("out/r/fit/thickness/t_B=0.002/law.json"));
+  ASSERT_TRUE(law.discretisation_error.has_value());
+  EXPECT_EQ(law.discretisation_error->F_relative, 0.03);
+  EXPECT_NE(law.discretisation_error->description.find("made up for the test"), std::string::npos);
+  // 2 FE, 2 fits, 1 family, 3 MBD, 4 regression + 2 mesh band variants
+  EXPECT_EQ(with(o, "ran").size(), 14u) << o.log;
+  EXPECT_EQ(with(o, "ran").count("mbd/fitted/band/mesh_high"), 1u);
+  EXPECT_NE(o.log.find("task 1 of 14, about "), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("task 14 of 14"), std::string::npos) << o.log;
+  const auto mesh_high = laws::read_law_file(
+    read_json_file(dir.file("out/r/mbd/fitted_band/mesh_high/scene_used.json"))["joint"]["law_file"]);
+  EXPECT_NEAR(mesh_high.F_ref() / law.F_ref(), 1.03, 1e-12);  // one multiplication's round-off
+  for (const auto &entry : fs::recursive_directory_iterator(dir.file("out/r")))
+    if (entry.path().filename() == "stage.log")
+    {
+      const std::string text = test_support::read_text(entry.path().string());
+      const auto note = text.find("[run_pipeline]");
+      EXPECT_EQ(text.substr(0, note).find(".partial"), std::string::npos) << entry.path();
+    }
+}

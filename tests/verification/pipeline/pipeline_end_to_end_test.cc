@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <sstream>
+
 using namespace clearjoint;
 namespace fs = std::filesystem;
 
@@ -46,6 +49,56 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
 
   for (const auto &name : {"fe_law", "johnson", "ideal", "tilted_1deg", "fe_law_damped_paper"})
     EXPECT_TRUE(fs::exists(run / "mbd" / name / "timeseries.csv")) << name;
+
+  // Issue 15 item 6: every law carries the preset's measured error of F for its study, and the
+  // MBD band moves the law by it as well as across the regression interval.
+  const auto first_summary = read_json_file((run / "pipeline_summary.json").string());
+  double fast_error = -1;
+  for (const auto &p : first_summary["presets"])
+    if (p["name"] == "fast")
+      fast_error = p["measured"]["error_F_max"]["thickness"]["percent"].get<double>() / 100.0;
+  ASSERT_GT(fast_error, 0.0);
+  const auto law4 = read_json_file((run / "fit/thickness/t_B=0.004/law.json").string());
+  EXPECT_EQ(law4["discretisation_error"]["F_relative"].get<double>(), fast_error);
+  std::set<std::string> sources;
+  for (const auto &r : first_summary["mbd_runs"])
+    if (r["name"] == "fe_law")
+      for (const auto &b : r["band"])
+        sources.insert(b["variant"].get<std::string>() + ":" + b["source"].get<std::string>());
+  EXPECT_TRUE(sources.count("mesh_low:discretisation") && sources.count("mesh_high:discretisation") &&
+              sources.count("n_low:regression"))
+    << sources.size() << " band variants";
+
+  // Item 7: run_pipeline counts its tasks; item 8: stage logs name the final folders (the only
+  // mention of ".partial" is run_pipeline's note saying so).
+  const std::string log1 = test_support::read_text(dir.file("log1.txt"));
+  const std::string n_tasks = std::to_string(first_summary["tasks"].size());
+  EXPECT_NE(log1.find("task 1 of " + n_tasks), std::string::npos) << log1.substr(0, 2000);
+  EXPECT_NE(log1.find("task " + n_tasks + " of " + n_tasks), std::string::npos);
+  for (const auto &entry : fs::recursive_directory_iterator(run))
+    if (entry.path().filename() == "stage.log")
+    {
+      std::istringstream lines(test_support::read_text(entry.path()));
+      for (std::string line; std::getline(lines, line);)
+        EXPECT_TRUE(line.find(".partial") == std::string::npos || line.rfind("[run_pipeline]", 0) == 0)
+          << entry.path() << ": " << line;
+    }
+
+  // Items 1 and 9: the report leads with a summary and its warnings, folds the per-run plots
+  // away, and in headless Chromium every image loads and nothing refers to the network.
+  const std::string report = test_support::read_text(run / "report.html");
+  for (const char *part : {"id='summary'", "id='warnings'", "<nav>", "<details>",
+                           "Headline law beside the paper", "id='band'",
+                           // item 3: the VTK pictures were rendered (else a warning says why)
+                           "rendered off-screen with VTK"})
+    EXPECT_NE(report.find(part), std::string::npos) << part;
+  EXPECT_EQ(report.find(".partial"), std::string::npos);
+  EXPECT_EQ(test_support::run_command(std::string("/usr/bin/python3 ") + CLEARJOINT_SOURCE_DIR +
+                                        "/tests/unit/report/check_report_html.py " +
+                                        (run / "report.html").string(),
+                                      dir.file("browser.txt")),
+            0)
+    << test_support::read_text(dir.file("browser.txt"));
 
   // Second run: nothing changed, so no task runs.
   ASSERT_EQ(test_support::run_command(cmd, dir.file("log2.txt")), 0);

@@ -1,0 +1,95 @@
+#include "pipeline/run_eta.h"
+
+#include "common/log.h"
+
+#include <algorithm>
+
+namespace clearjoint::pipeline
+{
+  RunEta::RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
+                 std::optional<double> pipeline_time)
+    : fe_case_time_(fe_case_time)
+    , pipeline_time_(pipeline_time)
+  {
+    for (const auto &[stage, n] : planned)
+      stages_[stage].planned = n;
+  }
+
+  void RunEta::finished(const std::string &stage, const bool ran, const double wall_time_s)
+  {
+    Stage &s = stages_[stage];
+    if (ran)
+    {
+      ++s.ran;
+      s.ran_seconds += wall_time_s;
+    }
+    else
+      ++s.reused;
+    ++n_done_;
+  }
+
+  int RunEta::n_total() const
+  {
+    int total = 0;
+    for (const auto &[name, s] : stages_)
+      total += std::max(s.planned, s.ran + s.reused);
+    return total;
+  }
+
+  std::optional<double> RunEta::prior_seconds(const std::string &stage) const
+  {
+    if (!fe_case_time_)
+      return std::nullopt;
+    if (stage == "fe_stage")
+      return *fe_case_time_;
+    if (!pipeline_time_)
+      return std::nullopt;
+    int n_fe = 0, n_other = 0;
+    for (const auto &[name, s] : stages_)
+      (name == "fe_stage" ? n_fe : n_other) += s.planned;
+    if (n_other == 0)
+      return std::nullopt;
+    // A preset measured on a bigger pipeline than this one may leave nothing for the rest:
+    // never below zero.
+    return std::max(0.0, (*pipeline_time_ - n_fe * *fe_case_time_) / n_other);
+  }
+
+  std::optional<RunEta::Left> RunEta::time_left() const
+  {
+    Left left;
+    bool any_known = false;
+    for (const auto &[name, s] : stages_)
+    {
+      const int remaining = std::max(0, s.planned - s.ran - s.reused);
+      if (remaining == 0)
+        continue;
+      double per_task = 0.0;
+      if (s.ran > 0)
+        per_task = s.ran_seconds / s.ran;
+      else if (const auto prior = prior_seconds(name))
+        per_task = *prior;
+      else if (s.reused == 0)
+      {
+        left.lower_bound = true;
+        continue;
+      }
+      const int done = s.ran + s.reused;
+      const double ran_fraction = done > 0 ? double(s.ran) / done : 1.0;
+      left.seconds += remaining * per_task * ran_fraction;
+      any_known = true;
+    }
+    if (!any_known && left.lower_bound)
+      return std::nullopt;
+    return left;
+  }
+
+  std::string RunEta::describe_next() const
+  {
+    std::string out = "task " + std::to_string(std::min(n_done_ + 1, n_total())) + " of " +
+                      std::to_string(n_total());
+    if (const auto left = time_left())
+      out += (left->lower_bound ? ", at least " : ", about ") + log::format_duration(left->seconds) +
+             " left";
+    return out;
+  }
+} // namespace clearjoint::pipeline

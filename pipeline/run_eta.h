@@ -1,0 +1,55 @@
+// "task k of N" and the time left for a pipeline run, from the chosen preset's measured times
+// (pipeline.yaml presets.<name>.measured) corrected by what this run has measured so far.
+//
+// Before a task of a stage has finished, a task of that stage is expected to take:
+//   fe_stage  — the preset's fe_case_time (one reference FE curve);
+//   the rest  — (pipeline_time − n_fe·fe_case_time) / n_other, the measured whole pipeline
+//               minus its FE share, spread over the other tasks (fits, MBD runs, meshes).
+// Once tasks of a stage have finished, their mean wall time replaces that guess, and the
+// fraction of them that were reused (cost ~0) scales the stage's remaining tasks: a second run
+// with nothing changed shows a few seconds, not the first run's minutes.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace clearjoint::pipeline
+{
+  class RunEta
+  {
+  public:
+    /// planned: number of tasks per stage ("fe_stage", "fit_stage", "mbd_stage", "mesh").
+    /// fe_case_time, pipeline_time: the preset's measured times [s], when measured.
+    RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
+           std::optional<double> pipeline_time);
+
+    /// Records a finished task; `ran` false for a reused one (its wall_time is then ignored).
+    void finished(const std::string &stage, bool ran, double wall_time_s);
+
+    int n_done() const { return n_done_; }
+    /// The planned total, raised if more tasks finished than planned.
+    int n_total() const;
+    struct Left
+    {
+      double seconds = 0.0;      ///< [s] expected time of the tasks not yet finished
+      bool lower_bound = false;  ///< some remaining stage's cost is not known yet (not counted)
+    };
+    /// nullopt when nothing is known (no measured preset times and no task run yet).
+    std::optional<Left> time_left() const;
+    /// "task 3 of 35" and, when known, ", about 2 min 10 s left" (or "at least ...").
+    std::string describe_next() const;
+
+  private:
+    struct Stage
+    {
+      int planned = 0, ran = 0, reused = 0;
+      double ran_seconds = 0.0;
+    };
+    std::optional<double> prior_seconds(const std::string &stage) const;
+
+    std::map<std::string, Stage> stages_;
+    std::optional<double> fe_case_time_, pipeline_time_;
+    int n_done_ = 0;
+  };
+} // namespace clearjoint::pipeline

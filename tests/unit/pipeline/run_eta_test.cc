@@ -1,0 +1,62 @@
+// run_pipeline's "task k of N" and time left: from the preset's measured times, then from what
+// the run measures, with reused tasks costing nothing.
+#include "pipeline/run_eta.h"
+
+#include <gtest/gtest.h>
+
+using namespace clearjoint::pipeline;
+
+TEST(RunEta, StartsFromThePresetsMeasuredTimes)
+{
+  // 10 FE curves of 12.5 s each; the measured pipeline (185 s) leaves 60 s for 20 other tasks
+  // (numbers exact in binary, so the printed duration is not at the mercy of round-off).
+  const RunEta eta({{"fe_stage", 10}, {"fit_stage", 12}, {"mbd_stage", 8}}, 12.5, 185.0);
+  EXPECT_EQ(eta.n_total(), 30);
+  ASSERT_TRUE(eta.time_left().has_value());
+  EXPECT_FALSE(eta.time_left()->lower_bound);
+  EXPECT_NEAR(eta.time_left()->seconds, 185.0, 1e-9);  // the whole measured pipeline
+  EXPECT_EQ(eta.describe_next(), "task 1 of 30, about 3 min 05 s left");
+}
+
+TEST(RunEta, WhatTheRunMeasuresReplacesThePreset)
+{
+  RunEta eta({{"fe_stage", 3}, {"fit_stage", 3}}, 10.0, 36.0);  // others: (36 − 30)/3 = 2 s
+  eta.finished("fe_stage", true, 40.0);                       // this machine is 4× slower
+  ASSERT_TRUE(eta.time_left().has_value());
+  EXPECT_NEAR(eta.time_left()->seconds, 2 * 40.0 + 3 * 2.0, 1e-9);
+  EXPECT_EQ(eta.n_done(), 1);
+  EXPECT_EQ(eta.describe_next().substr(0, 11), "task 2 of 6");
+}
+
+TEST(RunEta, ReusedTasksCostNothing)
+{
+  RunEta eta({{"fe_stage", 4}}, 10.0, std::nullopt);
+  eta.finished("fe_stage", false, 123.0);  // reused: its recorded wall time is not this run's
+  eta.finished("fe_stage", false, 123.0);
+  ASSERT_TRUE(eta.time_left().has_value());
+  EXPECT_EQ(eta.time_left()->seconds, 0.0);
+  eta.finished("fe_stage", true, 8.0);  // 1 of 3 ran: the last one is expected at 1/3 of 8 s
+  EXPECT_NEAR(eta.time_left()->seconds, 8.0 / 3.0, 1e-9);
+}
+
+TEST(RunEta, UnknownCostsGiveALowerBoundOrNothing)
+{
+  // No preset measurements: nothing is known before the first task.
+  RunEta none({{"fe_stage", 2}, {"mbd_stage", 2}}, std::nullopt, std::nullopt);
+  EXPECT_FALSE(none.time_left().has_value());
+  EXPECT_EQ(none.describe_next(), "task 1 of 4");
+  // FE measured, the rest not (the accurate preset has no pipeline time): a lower bound.
+  RunEta fe_only({{"fe_stage", 2}, {"mbd_stage", 2}}, 100.0, std::nullopt);
+  ASSERT_TRUE(fe_only.time_left().has_value());
+  EXPECT_TRUE(fe_only.time_left()->lower_bound);
+  EXPECT_EQ(fe_only.time_left()->seconds, 200.0);
+}
+
+TEST(RunEta, MoreTasksThanPlannedRaiseTheTotal)
+{
+  RunEta eta({{"mbd_stage", 1}}, std::nullopt, std::nullopt);
+  eta.finished("mbd_stage", true, 1.0);
+  eta.finished("mbd_stage", true, 1.0);
+  EXPECT_EQ(eta.n_total(), 2);
+  EXPECT_EQ(eta.time_left()->seconds, 0.0);
+}
