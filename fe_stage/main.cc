@@ -169,6 +169,11 @@ namespace
         x["symmetry_factor"] = result.symmetry_factor;
         x["h_min"] = {{"value", result.h_min}, {"unit", "m"}};
         x["setup_time"] = {{"value", result.setup_time}, {"unit", "s"}};
+        // what the VTU's contact fields hold (docs/fe.md): Abaqus's CSTATUS codes
+        x["contact_fields"] = {
+          {"status_codes", {{"0", "open"}, {"1", "slip"}, {"2", "stick"}}},
+          {"note", "contact_shear is the friction traction (zero without friction); "
+                   "contact_slip is nonzero only at contact points"}};
         x["friction"] = {{"mu", scene.contact.mu}, {"model", scene.contact.mu > 0.0 ?
                                                               "Coulomb, stick/slip active set" :
                                                               "frictionless"}};

@@ -371,6 +371,27 @@ def yield_check(case, man, picture_stats):
     """The yield check of one case: the manifest's `yield_check` block when fe_stage writes one
     (keys below), else the report's own from the VTU. Returns (dict, where-it-came-from)."""
     y = get(man, "extra", "yield_check")
+    if isinstance(y, dict) and isinstance(y.get("bodies"), list) and y["bodies"]:
+        # fe_stage's block: per body (bearing, journal) its volume, volume above yield and
+        # largest von Mises with its place (full-body volumes)
+        bodies = y["bodies"]
+        worst = max(bodies, key=lambda b: value_of(b.get("max_von_mises"), 0.0))
+        above = sum(value_of(b.get("volume_above_yield"), 0.0) for b in bodies)
+        total = sum(value_of(b.get("volume"), 0.0) for b in bodies)
+        bearing = [b for b in bodies if b.get("body") == "bearing"]
+        loc = worst.get("max_location")
+        loc = loc.get("value") if isinstance(loc, dict) else loc
+        where = None
+        if isinstance(loc, list) and len(loc) == 3:
+            where = (f"largest in the {worst.get('body')} at ("
+                     + ", ".join(f"{c * 1e3:.3g}" for c in loc) + ") mm")
+        return {"yield_stress": value_of(y.get("yield_stress")),
+                "max_von_mises": value_of(worst.get("max_von_mises")),
+                "volume_above_yield": above,
+                "volume_above_yield_bearing":
+                    value_of(bearing[0].get("volume_above_yield")) if bearing else None,
+                "volume_fraction_above_yield": above / total if total > 0 else None,
+                "where": where}, "fe_stage manifest"
     if isinstance(y, dict):
         return {"yield_stress": value_of(y.get("yield_stress")),
                 "max_von_mises": value_of(y.get("max_von_mises")),
