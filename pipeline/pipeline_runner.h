@@ -29,6 +29,11 @@ namespace clearjoint::pipeline
     /// Runs everything; returns the summary written to <run dir>/pipeline_summary.json.
     nlohmann::json run();
     std::string run_dir() const;
+    /// Validates the whole run before anything is written (pipeline_check.cc): names and the
+    /// output root usable, and every generated FE and MBD scene accepted by its stage's own
+    /// reader (STAGE --check). Throws InputError naming the pipeline key; writes nothing
+    /// under the output root.
+    void check();
 
   private:
     struct Done
@@ -44,6 +49,7 @@ namespace clearjoint::pipeline
     std::string write_scene(const nlohmann::json &scene, const std::string &base,
                             const std::string &name);
     TaskResult execute(const Task &task, const std::string &stage_group);
+    void check_output_root() const;
     std::string stage_executable(const std::string &stage) const;
 
     PipelineConfig config_;
