@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -229,16 +230,21 @@ namespace clearjoint
     class YamlConverter
     {
     public:
-      explicit YamlConverter(const std::string &source)
+      /// Without aliases a document has fewer values than bytes; aliases may repeat parts, but
+      /// more than 4 values per byte (+ 10⁴) is an alias bomb, stopped long before
+      /// max_document_nodes would be reached (which takes seconds).
+      YamlConverter(const std::string &source, const std::size_t text_size)
         : source_(source)
+        , max_values_(std::min(max_document_nodes, 4 * text_size + 10'000))
       {}
 
       json convert(const YAML::Node &node, const std::string &path, const int depth)
       {
-        if (++n_values_ > max_document_nodes)
+        if (++n_values_ > max_values_)
           throw InputError(source_, path.empty() ? "(top level)" : path, "(too many values)",
-                           "at most " + std::to_string(max_document_nodes) +
-                             " values after YAML aliases are expanded");
+                           "at most " + std::to_string(max_values_) +
+                             " values after YAML aliases are expanded (4 per byte of the "
+                             "file, at most " + std::to_string(max_document_nodes) + ")");
         switch (node.Type())
         {
           case YAML::NodeType::Null:
@@ -327,6 +333,7 @@ namespace clearjoint
       }
 
       const std::string &source_;
+      std::size_t max_values_;
       std::size_t n_values_ = 0;
     };
   } // namespace
@@ -462,7 +469,7 @@ namespace clearjoint
       throw InputError(source_name, "(top level)",
                        std::to_string(documents.size()) + " documents", "one YAML document",
                        "'---' starts a second document, which would be ignored");
-    YamlConverter converter(source_name);
+    YamlConverter converter(source_name, text.size());
     try
     {
       return documents.empty() ? json() : converter.convert(documents.front(), "", 0);

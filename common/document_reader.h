@@ -6,8 +6,8 @@
 //   - it contains bytes that are not UTF-8 (also strings made of escapes such as "\xff");
 //   - it nests deeper than max_document_depth mappings/lists (deep nesting used to overflow
 //     the stack: recursive copies and dumps of nlohmann::json);
-//   - after YAML aliases are expanded it has more than max_document_nodes values (an alias
-//     bomb would otherwise exhaust memory);
+//   - after YAML aliases are expanded it has more than 4 values per byte of text (+ 10⁴) or
+//     more than max_document_nodes values (an alias bomb would otherwise exhaust memory);
 //   - a number overflows a double (1e400) — YAML's .inf/.nan and the words inf/nan are not
 //     numbers here, so a numeric key given one of them is rejected by its range check;
 //   - a mapping has the same key twice (the earlier value would be silently ignored);
