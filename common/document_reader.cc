@@ -3,6 +3,7 @@
 #include "common/error.h"
 
 #include <yaml-cpp/depthguard.h>  // YAML::DeepRecursion
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <vector>
 
 namespace clearjoint
@@ -226,6 +228,27 @@ namespace clearjoint
       }
       return i == s.size();
     }
+
+    /// Parser events are only counted (per document) — see parse_yaml_string.
+    class DocumentCounter : public YAML::EventHandler
+    {
+    public:
+      void OnDocumentStart(const YAML::Mark &) override {}
+      void OnDocumentEnd() override {}
+      void OnNull(const YAML::Mark &, YAML::anchor_t) override {}
+      void OnAlias(const YAML::Mark &, YAML::anchor_t) override {}
+      void OnScalar(const YAML::Mark &, const std::string &, YAML::anchor_t,
+                    const std::string &) override
+      {}
+      void OnSequenceStart(const YAML::Mark &, const std::string &, YAML::anchor_t,
+                           YAML::EmitterStyle::value) override
+      {}
+      void OnSequenceEnd() override {}
+      void OnMapStart(const YAML::Mark &, const std::string &, YAML::anchor_t,
+                      YAML::EmitterStyle::value) override
+      {}
+      void OnMapEnd() override {}
+    };
 
     class YamlConverter
     {
@@ -450,10 +473,22 @@ namespace clearjoint
   json parse_yaml_string(const std::string &text, const std::string &source_name)
   {
     check_utf8(text, source_name);
-    std::vector<YAML::Node> documents;
+    YAML::Node document;
     try
     {
-      documents = YAML::LoadAll(text);
+      // Count the documents first, at most two: yaml-cpp 0.7's LoadAll never ends on a stray
+      // ',' at block level (",x" makes empty documents forever — found by fuzz_document).
+      std::istringstream stream(text);
+      YAML::Parser parser(stream);
+      DocumentCounter counter;
+      int n_documents = 0;
+      while (n_documents < 2 && parser.HandleNextDocument(counter))
+        ++n_documents;
+      if (n_documents > 1)
+        throw InputError(source_name, "(top level)", "more than one document", "one YAML document",
+                         "a '---' starts a second document, which would be ignored (or a stray "
+                         "',' outside [ ] or { } ends the first one)");
+      document = YAML::Load(text);
     }
     catch (const YAML::DeepRecursion &e)
     {
@@ -465,14 +500,10 @@ namespace clearjoint
     {
       throw InputError("malformed YAML in '" + source_name + "': " + e.what());
     }
-    if (documents.size() > 1)
-      throw InputError(source_name, "(top level)",
-                       std::to_string(documents.size()) + " documents", "one YAML document",
-                       "'---' starts a second document, which would be ignored");
     YamlConverter converter(source_name, text.size());
     try
     {
-      return documents.empty() ? json() : converter.convert(documents.front(), "", 0);
+      return converter.convert(document, "", 0);
     }
     catch (const YAML::Exception &e)
     {
