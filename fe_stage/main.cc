@@ -27,6 +27,7 @@
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -201,7 +202,17 @@ namespace
         throw interrupt::Interrupted("after the increment to delta = " + format_value(r.delta) +
                                      " m");
     };
-    const fe::RunResult result = fe::run_scene(scene, options);
+    fe::RunResult result = fe::run_scene(scene, options);
+    // No run is "complete" with a NaN or Inf in its curve (issue 16): it is a numerical failure.
+    for (const auto &r : result.increments)
+      for (const double v : {r.delta, r.force, r.force_support, r.force_load, r.max_penetration,
+                             r.pressure_min, r.pressure_max})
+        if (result.complete && !std::isfinite(v))
+          {
+            result.complete = false;
+            result.message = "non-finite value (" + format_value(v) +
+                             ") in the increment to delta = " + format_value(r.delta) + " m";
+          }
     force_at_max = result.increments.empty() ? 0.0 : result.increments.back().force;
     if (root)
       {
