@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 
 using namespace clearjoint;
@@ -122,4 +126,46 @@ TEST(PipelineCheck, UnusableOutputRootsAndNamesAreInputErrors)
   EXPECT_EQ(run_pipeline(dir, b, "", log), 1) << log;
   EXPECT_NE(log.find("key 'mbd_runs[1].name'"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
+TEST(PipelineInterrupt, SigintDuringTheReportStopsPlotPyAndExits130)
+{
+  test_support::ScratchDir dir("pipeline_interrupt_report");
+  const Build b(dir);
+  std::string text = test_support::read_text(pipeline(dir));
+  text.replace(text.find("report: false"), 13, "report: true");
+  test_support::write_text(dir.file("p.yaml"), text);
+  // A stand-in plot.py: instant for the stages' plots, long for the report (records its pid).
+  test_support::write_text(dir.file("plot.py"),
+                           "import os, sys, time\n"
+                           "if sys.argv[1] == 'report':\n"
+                           "    open(os.environ['REPORT_PID'], 'w').write(str(os.getpid()))\n"
+                           "    time.sleep(60)\n");
+  const std::string pid_file = dir.file("report.pid");
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    const std::string cmd = "exec env CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py") +
+                            " REPORT_PID=" + pid_file + " " + RUN_PIPELINE_EXE + " " +
+                            dir.file("p.yaml") + " --build-dir " + b.root + " > " +
+                            dir.file("log.txt") + " 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), nullptr);
+    _exit(127);
+  }
+  for (int i = 0; i < 6000 && test_support::read_text(pid_file).empty(); ++i)
+    usleep(20000);
+  ASSERT_FALSE(test_support::read_text(pid_file).empty()) << test_support::read_text(dir.file("log.txt"));
+  const pid_t report = std::stoi(test_support::read_text(pid_file));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << test_support::read_text(dir.file("log.txt"));
+  const std::string manifest = test_support::read_text(dir.file("out/r/manifest.json"));
+  EXPECT_NE(manifest.find("\"status\": \"incomplete\""), std::string::npos) << manifest;
+  bool gone = false;
+  for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
+    gone = kill(report, 0) != 0;
+  EXPECT_TRUE(gone) << "the report's plot.py was stopped";
 }
