@@ -1,5 +1,6 @@
 #include "common/csv.h"
 
+#include "common/document_reader.h"
 #include "common/error.h"
 
 #include <cerrno>
@@ -51,7 +52,8 @@ namespace clearjoint
       char *end = nullptr;
       errno = 0;
       value = std::strtod(text.c_str(), &end);
-      return end == text.c_str() + text.size() && errno != ERANGE;
+      // nan, inf and overflowing values (1e400) are not data: they would flow into fits.
+      return end == text.c_str() + text.size() && errno != ERANGE && std::isfinite(value);
     }
   } // namespace
 
@@ -93,9 +95,14 @@ namespace clearjoint
 
   CsvTable read_csv(const std::string &path)
   {
-    std::ifstream in(path);
-    if (!in)
-      throw InputError("cannot read CSV file '" + path + "'");
+    return parse_csv(read_input_file(path, max_csv_bytes), path);
+  }
+
+  CsvTable parse_csv(const std::string &text, const std::string &path)
+  {
+    if (const std::size_t bad = first_invalid_utf8(text); bad != std::string::npos)
+      throw InputError(path, "byte " + std::to_string(bad), "(not UTF-8)", "UTF-8 text");
+    std::istringstream in(text);
     CsvTable t;
     t.source = path;
     std::string line;
@@ -120,6 +127,11 @@ namespace clearjoint
       auto fields = split_fields(s);
       if (t.columns.empty())
       {
+        for (std::size_t j = 0; j < fields.size(); ++j)
+          for (std::size_t k = 0; k < j; ++k)
+            if (fields[j] == fields[k])
+              throw InputError(path, "line " + std::to_string(line_no), fields[j],
+                               "distinct column names", "the column is named twice");
         t.columns = fields;
         continue;
       }
@@ -132,7 +144,7 @@ namespace clearjoint
         if (!parse_double(fields[j], row[j]))
           throw InputError(path, "line " + std::to_string(line_no) + ", column '" +
                                    t.columns[j] + "'",
-                           fields[j], "a number");
+                           fields[j], "a finite number");
       t.rows.push_back(std::move(row));
     }
     if (t.columns.empty())

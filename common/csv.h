@@ -37,8 +37,16 @@ namespace clearjoint
     std::string unit_of(const std::string &name) const;
   };
 
+  /// 1 GiB: a 10 s MBD time series at 10 µs output steps is ~100 MB; anything beyond is not a
+  /// table clearjoint wrote or can use.
+  inline constexpr std::size_t max_csv_bytes = std::size_t(1) << 30;
+
   /// Reads a CSV file (comma-separated; whitespace-separated also accepted for reference data).
+  /// Rejects (InputError naming file and line): bytes that are not UTF-8, a column named twice,
+  /// ragged rows, values that are not finite numbers (nan, inf, 1e400).
   CsvTable read_csv(const std::string &path);
+  /// The same from text already in memory; `source` names it in messages.
+  CsvTable parse_csv(const std::string &text, const std::string &source);
 
   /// Streams rows to a temporary file and renames it into place on commit(), so readers never
   /// see half a table. Rows are written with 17 significant digits (lossless for doubles).

@@ -112,7 +112,10 @@ namespace clearjoint
     j["wall_time"] = {{"value", elapsed_seconds()}, {"unit", "s"}};
     j["warnings"] = log::n_warnings();
     j["extra"] = extra_;
-    write_file_atomically(path_, j.dump(2) + "\n");
+    // replace: a path given on the command line need not be UTF-8 (a byte 0xFF in a folder
+    // name); the manifest must still be written rather than the process aborted.
+    const auto text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+    write_file_atomically(path_, text + "\n");
     written_ = true;
   }
 } // namespace clearjoint

@@ -1,6 +1,9 @@
 #include "common/plot_script.h"
 
+#include "common/interrupt.h"
 #include "common/log.h"
+
+#include <signal.h>
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -43,10 +46,24 @@ namespace clearjoint
       log::warning("plots skipped: cannot start " + words[0] + ": " + std::string(std::strerror(rc)));
       return false;
     }
+    if (interrupt::requested())  // the signal came before the child existed
+      ::kill(pid, SIGTERM);
     int status = 0;
     while (waitpid(pid, &status, 0) < 0)
+    {
       if (errno != EINTR)
         return false;
+      if (interrupt::requested())
+      {
+        // Stop the child first: an interrupted stage must not leave plot.py running.
+        ::kill(pid, SIGTERM);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        {
+        }
+        interrupt::throw_if_requested("while plotting (" + kind + ")");
+      }
+    }
+    interrupt::throw_if_requested("while plotting (" + kind + ")");
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     {
       log::warning("plots failed: '" + words[1] + " " + kind +

@@ -13,5 +13,7 @@ namespace clearjoint
   /// Runs `/usr/bin/python3 plot.py <kind> <args...>` (or $CLEARJOINT_PYTHON); returns true on exit status 0. A failure (no
   /// python3, no matplotlib, a bad file) is logged as a warning: plots are a convenience on top
   /// of the stage's data files, which are already written.
+  /// If an interrupt arrives (common/interrupt.h) the script is stopped (SIGTERM) and
+  /// interrupt::Interrupted is thrown.
   bool run_plot_script(const std::string &kind, const std::vector<std::string> &args);
 } // namespace clearjoint

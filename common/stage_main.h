@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 
 #include <exception>
@@ -10,8 +11,9 @@
 
 namespace clearjoint
 {
-  /// Returns body()'s exit code; InputError → 1, NumericalError → 2, anything else → 2 with
-  /// "unexpected failure" (a bug or a resource problem, reported as such).
+  /// Returns body()'s exit code; InputError → 1, NumericalError → 2, an interrupt (SIGINT,
+  /// SIGTERM; common/interrupt.h) → 130/143, anything else → 2 with "unexpected failure" (a
+  /// bug or a resource problem, reported as such).
   template <typename Body>
   int run_stage_main(Body &&body)
   {
@@ -28,6 +30,12 @@ namespace clearjoint
     {
       log::error(e.what());
       return exit_numerical_error;
+    }
+    catch (const interrupt::Interrupted &e)
+    {
+      log::error(std::string(e.what()) +
+                 "; temporary outputs removed, earlier outputs left as they were");
+      return interrupt::exit_code();
     }
     catch (const std::exception &e)
     {

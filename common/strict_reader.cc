@@ -3,10 +3,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
-#include <cstdlib>
 
 namespace clearjoint
 {
@@ -33,112 +30,13 @@ namespace clearjoint
     return s;
   }
 
-  nlohmann::json read_json_file(const std::string &path)
-  {
-    const std::string text = read_file(path);
-    try
-    {
-      return nlohmann::json::parse(text);
-    }
-    catch (const nlohmann::json::parse_error &e)
-    {
-      throw InputError("malformed JSON in '" + path + "': " + e.what());
-    }
-  }
-
-  namespace
-  {
-    nlohmann::json yaml_to_json(const YAML::Node &node)
-    {
-      switch (node.Type())
-      {
-        case YAML::NodeType::Null:
-        case YAML::NodeType::Undefined:
-          return nullptr;
-        case YAML::NodeType::Scalar:
-        {
-          const std::string &s = node.Scalar();
-          if (node.Tag() == "!")  // quoted: always a string
-            return s;
-          if (s == "true" || s == "True" || s == "TRUE")
-            return true;
-          if (s == "false" || s == "False" || s == "FALSE")
-            return false;
-          if (s == "~" || s == "null" || s == "Null" || s.empty())
-            return nullptr;
-          char *end = nullptr;
-          const long long i = std::strtoll(s.c_str(), &end, 10);
-          if (end == s.c_str() + s.size())
-            return i;
-          const double d = std::strtod(s.c_str(), &end);
-          if (end == s.c_str() + s.size())
-            return d;
-          return s;
-        }
-        case YAML::NodeType::Sequence:
-        {
-          nlohmann::json a = nlohmann::json::array();
-          for (const auto &e : node)
-            a.push_back(yaml_to_json(e));
-          return a;
-        }
-        case YAML::NodeType::Map:
-        {
-          nlohmann::json o = nlohmann::json::object();
-          for (const auto &kv : node)
-          {
-            const std::string key = kv.first.as<std::string>();
-            if (o.contains(key))
-              throw InputError("duplicate key '" + key + "' at line " +
-                               std::to_string(kv.first.Mark().line + 1));
-            o[key] = yaml_to_json(kv.second);
-          }
-          return o;
-        }
-      }
-      return nullptr;
-    }
-  } // namespace
-
-  nlohmann::json parse_yaml_string(const std::string &text, const std::string &source_name)
-  {
-    try
-    {
-      return yaml_to_json(YAML::Load(text));
-    }
-    catch (const YAML::Exception &e)
-    {
-      throw InputError("malformed YAML in '" + source_name + "': " + e.what());
-    }
-    catch (const InputError &e)
-    {
-      throw InputError(std::string(e.what()).substr(13) + " in '" + source_name + "'");
-    }
-  }
-
-  nlohmann::json read_yaml_file(const std::string &path)
-  {
-    return parse_yaml_string(read_file(path), path);
-  }
-
-  nlohmann::json read_structured_file(const std::string &path)
-  {
-    const auto ends_with = [&](const std::string &suffix) {
-      return path.size() >= suffix.size() &&
-             path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
-    };
-    if (ends_with(".json"))
-      return read_json_file(path);
-    return read_yaml_file(path);
-  }
-
   StrictObject::StrictObject(const nlohmann::json &value, std::string file, std::string prefix)
     : value_(&value)
     , file_(std::move(file))
     , prefix_(std::move(prefix))
   {
     if (!value.is_object())
-      throw InputError(file_, prefix_.empty() ? "(top level)" : prefix_, value.dump(),
+      throw InputError(file_, prefix_.empty() ? "(top level)" : prefix_, json_excerpt(value),
                        "a mapping of keys to values");
   }
 
@@ -172,7 +70,7 @@ namespace clearjoint
   {
     const auto &v = require(key);
     if (!v.is_number())
-      fail(key, v.dump(), "a number in " + range.describe());
+      fail(key, json_excerpt(v), "a number in " + range.describe());
     const double d = v.get<double>();
     if (!range.contains(d))
       fail(key, format_value(d), range.describe());
@@ -192,7 +90,7 @@ namespace clearjoint
     const std::string allowed = "an integer in [" + std::to_string(lo) + ", " +
                                 std::to_string(hi) + "]";
     if (!v.is_number_integer())
-      fail(key, v.dump(), allowed);
+      fail(key, json_excerpt(v), allowed);
     const long i = v.get<long>();
     if (i < lo || i > hi)
       fail(key, std::to_string(i), allowed);
@@ -210,7 +108,7 @@ namespace clearjoint
   {
     const auto &v = require(key);
     if (!v.is_boolean())
-      fail(key, v.dump(), "true or false");
+      fail(key, json_excerpt(v), "true or false");
     return v.get<bool>();
   }
 
@@ -227,7 +125,7 @@ namespace clearjoint
     for (const auto &a : allowed)
       choices += (choices.empty() ? "" : "|") + a;
     if (!v.is_string())
-      fail(key, v.dump(), allowed.empty() ? "a string" : "one of " + choices);
+      fail(key, json_excerpt(v), allowed.empty() ? "a string" : "one of " + choices);
     const std::string s = v.get<std::string>();
     if (!allowed.empty())
     {
@@ -252,13 +150,13 @@ namespace clearjoint
   {
     const auto &v = require(key);
     if (!v.is_array() || v.size() < min_size)
-      fail(key, v.dump(),
+      fail(key, json_excerpt(v),
            "a list of at least " + std::to_string(min_size) + " numbers in " + range.describe());
     std::vector<double> out;
     for (std::size_t i = 0; i < v.size(); ++i)
     {
       if (!v[i].is_number() || !range.contains(v[i].get<double>()))
-        fail(key + "[" + std::to_string(i) + "]", v[i].dump(), range.describe());
+        fail(key + "[" + std::to_string(i) + "]", json_excerpt(v[i]), range.describe());
       out.push_back(v[i].get<double>());
     }
     return out;
@@ -273,7 +171,7 @@ namespace clearjoint
   {
     const auto &v = require(key);
     if (!v.is_array())
-      fail(key, v.dump(), "a list of mappings");
+      fail(key, json_excerpt(v), "a list of mappings");
     std::vector<StrictObject> out;
     for (std::size_t i = 0; i < v.size(); ++i)
       out.emplace_back(v[i], file_, path_of(key) + "[" + std::to_string(i) + "]");
@@ -284,7 +182,7 @@ namespace clearjoint
   {
     const auto &v = require("schema");
     if (!v.is_string() || v.get<std::string>() != expected)
-      fail("schema", v.is_string() ? v.get<std::string>() : v.dump(), expected,
+      fail("schema", v.is_string() ? v.get<std::string>() : json_excerpt(v), expected,
            "this build reads only that schema and major version");
   }
 
@@ -296,7 +194,7 @@ namespace clearjoint
         std::string known;
         for (const auto &k : read_keys_)
           known += (known.empty() ? "" : ", ") + k;
-        fail(it.key(), it.value().dump(), "no such key",
+        fail(it.key(), json_excerpt(it.value()), "no such key",
              "unknown key; valid keys here: " + known);
       }
   }

@@ -1,12 +1,14 @@
 // Strict reading of YAML and JSON input files.
 //
-// YAML is converted to JSON first (plain scalars become numbers/booleans/null where they parse
-// as such; quoted scalars stay strings), so one reader checks both formats the same way:
+// Files are parsed by common/document_reader.h (YAML converted to JSON: plain scalars written as
+// numbers become numbers, quoted scalars stay strings), so one reader checks both formats alike:
 //   - every value is read through StrictObject, which knows the key path ("geometry.t_B");
 //   - a missing required key, a value of the wrong type or outside its range, and (on finish())
 //     any key that was never read, raise InputError naming file, key path, value and range;
 //   - expect_schema() rejects a wrong or missing "schema: clearjoint.<kind>/<major>".
 #pragma once
+
+#include "common/document_reader.h"  // read_structured_file & co.: the hardened parsers
 
 #include <nlohmann/json.hpp>
 
@@ -47,13 +49,6 @@ namespace clearjoint
     bool contains(double v) const;
     std::string describe() const;
   };
-
-  /// Parses a file into JSON; syntax errors become InputError with the file and position.
-  nlohmann::json read_json_file(const std::string &path);
-  nlohmann::json read_yaml_file(const std::string &path);
-  nlohmann::json parse_yaml_string(const std::string &text, const std::string &source_name);
-  /// By extension: .json → JSON, .yaml/.yml → YAML.
-  nlohmann::json read_structured_file(const std::string &path);
 
   class StrictObject
   {

@@ -3,14 +3,21 @@
 //   fe_stage SCENE.yaml --output DIR [--preset fast|standard|accurate] [--full-model]
 //            [--no-fields] [--no-plots]
 //   fe_stage --print-defaults
+//   fe_stage SCENE.yaml --check      (read and validate the scene and its mesh only)
 //
 // Writes DIR/force_penetration.csv (delta, force, solver statistics per increment),
 // DIR/fields/ (VTU/PVTU + PVD), DIR/force_penetration.png and DIR/manifest.json; with a `sweep`
 // block, one such folder per swept value under DIR plus DIR/manifest.json, DIR/sweep.csv and
 // DIR/sweep.png (every case's curve).
-// Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete).
+// Everything is written into DIR.tmp.<pid> and renamed to DIR at the end (an earlier DIR is
+// replaced as a whole).
+// Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete),
+// 130/143 interrupted by SIGINT/SIGTERM (after the current increment; DIR.tmp.<pid> removed).
+#include "common/atomic_file.h"
 #include "common/csv.h"
+#include "common/document_reader.h"
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/manifest.h"
 #include "common/plot_script.h"
@@ -23,10 +30,13 @@
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+
+#include <unistd.h>
 
 using namespace clearjoint;
 
@@ -76,12 +86,103 @@ namespace
             {"bodies", bodies}};
   }
 
+  /// The work folder a run writes into and the final folder it becomes (publish): messages
+  /// name the final folder, where the user will find the files.
+  std::string work_root, final_root;
+  std::string shown(const std::string &path)
+  {
+    if (!work_root.empty() && path.compare(0, work_root.size(), work_root) == 0)
+      return final_root + path.substr(work_root.size());
+    return path;
+  }
+
   /// How the scene was made: the preset of pipeline.yaml applied to it, if any.
   struct PresetUse
   {
     std::string name, file;
     fe::PresetOverrides overrides;
   };
+
+  /// The signal any rank received (collective: every rank calls it after each increment), so
+  /// that all ranks stop together at the same point instead of some waiting in a collective.
+  int interrupted_anywhere()
+  {
+    int local = interrupt::signal_received(), any = 0;
+    MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return any;
+  }
+  int signal_seen = 0;  ///< what interrupted_anywhere() returned last (for the exit code)
+
+  // Outputs are written into "<DIR>.tmp.<pid of rank 0>" and renamed to DIR as a whole when the
+  // run ends (complete, or incomplete after a numerical failure: then marked so): an
+  // interrupted run never leaves VTU/PVD or CSV files under DIR, and a rerun replaces every old
+  // output (no stale VTU files beside a new PVD).
+  std::string work_dir_for(std::string dir)
+  {
+    long pid = static_cast<long>(::getpid());
+    MPI_Bcast(&pid, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+    while (dir.size() > 1 && dir.back() == '/')
+      dir.pop_back();
+    return dir + ".tmp." + std::to_string(pid);
+  }
+
+  /// An existing DIR is replaced only if it is empty or an earlier fe_stage output: never
+  /// delete a folder fe_stage did not write.
+  void check_replaceable(const std::string &dir)
+  {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(dir, ec))
+      return;
+    bool ours = fs::is_directory(dir, ec) && fs::is_empty(dir, ec);
+    if (!ours && fs::is_regular_file(dir + "/manifest.json", ec))
+      {
+        try
+          {
+            ours = read_json_file(dir + "/manifest.json").value("stage", "") == "fe_stage";
+          }
+        catch (const std::exception &)
+          {
+            ours = false;
+          }
+      }
+    if (!ours)
+      throw InputError("", "--output", dir,
+                       "a new directory, an empty one, or a previous fe_stage output",
+                       "it exists and does not look like an fe_stage output; nothing was "
+                       "changed");
+  }
+
+  /// Manifests record paths as written (inside the work folder): point them at DIR before the
+  /// rename (the hashes are of the contents, which the rename does not change).
+  void repoint_manifests(const std::string &work, const std::string &dir)
+  {
+    namespace fs = std::filesystem;
+    for (const auto &entry : fs::recursive_directory_iterator(work))
+      if (entry.is_regular_file() && entry.path().filename() == "manifest.json")
+        {
+          std::string text = read_file(entry.path().string());
+          for (std::size_t p; (p = text.find(work)) != std::string::npos;)
+            text.replace(p, work.size(), dir);
+          write_file_atomically(entry.path().string(), text);
+        }
+  }
+
+  /// Rank 0 replaces DIR by the finished work folder.
+  void publish(const std::string &work, const std::string &dir)
+  {
+    namespace fs = std::filesystem;
+    if (rank_of(MPI_COMM_WORLD) == 0)
+      {
+        repoint_manifests(work, dir);
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+        fs::rename(work, dir, ec);
+        if (ec)
+          throw NumericalError("cannot rename " + work + " to " + dir + ": " + ec.message());
+      }
+    MPI_Barrier(MPI_COMM_WORLD);
+  }
 
   /// One case: CSV + fields + manifest in `dir`. Returns true if complete.
   bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
@@ -146,8 +247,21 @@ namespace
                         double(r.linear_iterations), double(r.n_active), double(r.n_slip),
                         r.max_penetration,
                         r.pressure_min, r.pressure_max, r.wall_time});
+      if ((signal_seen = interrupted_anywhere()) != 0)
+        throw interrupt::Interrupted("after the increment to delta = " + format_value(r.delta) +
+                                     " m");
     };
-    const fe::RunResult result = fe::run_scene(scene, options);
+    fe::RunResult result = fe::run_scene(scene, options);
+    // No run is "complete" with a NaN or Inf in its curve (issue 16): it is a numerical failure.
+    for (const auto &r : result.increments)
+      for (const double v : {r.delta, r.force, r.force_support, r.force_load, r.max_penetration,
+                             r.pressure_min, r.pressure_max})
+        if (result.complete && !std::isfinite(v))
+          {
+            result.complete = false;
+            result.message = "non-finite value (" + format_value(v) +
+                             ") in the increment to delta = " + format_value(r.delta) + " m";
+          }
     force_at_max = result.increments.empty() ? 0.0 : result.increments.back().force;
     if (root)
       {
@@ -183,13 +297,13 @@ namespace
             x["yield_check"] = yield_check_json(result.yield_check);
           }
         manifest->write(result.complete ? "complete" : "incomplete", result.message);
-        log::info("fe_stage: " + dir + ": F(" + format_value(result.increments.empty() ?
+        log::info("fe_stage: " + shown(dir) + ": F(" + format_value(result.increments.empty() ?
                                                                0.0 :
                                                                result.increments.back().delta) +
                   " m) = " + format_value(force_at_max) + " N, " +
                   log::format_duration(result.wall_time));
         if (!result.field_files.empty())
-          log::info("fe_stage: fields: open " + dir +
+          log::info("fe_stage: fields: open " + shown(dir) +
                     "/fields/solution.pvd in ParaView (displacement, stress, von_mises_stress, "
                     "plastic_zone, contact_pressure, contact_status, contact_shear, "
                     "contact_slip; one step per increment)");
@@ -202,14 +316,17 @@ int main(int argc, char **argv)
 {
   const auto runtime = fe::make_runtime(argc, argv);
   const bool root = rank_of(MPI_COMM_WORLD) == 0;
+  // SIGINT/SIGTERM (mpirun passes them on to every rank): stop after the current increment.
+  interrupt::install();
   if (!root)
     log::set_level(log::Level::error);
 
   CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint).\n"
-               "Exit codes: 0 success, 1 input error, 2 numerical failure."};
-  std::string scene_path, output_dir;
+               "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted "
+               "by SIGINT/SIGTERM."};
+  std::string scene_path, output_dir, final_dir;
   bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
-       quiet = false;
+       quiet = false, check = false;
   PresetUse preset;
   app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
   app.add_option("--output,-o", output_dir, "output directory");
@@ -224,6 +341,9 @@ int main(int argc, char **argv)
   app.add_flag("--no-fields", no_fields, "do not write VTU fields");
   app.add_flag("--no-plots", no_plots, "do not draw the force-penetration plots (PNG)");
   app.add_flag("--quiet,-q", quiet, "warnings and errors only");
+  app.add_flag("--check", check,
+               "read and validate the scene (and its mesh) and exit: 0 valid, 1 input error; "
+               "writes nothing");
   try
     {
       app.parse(argc, argv);
@@ -244,7 +364,7 @@ int main(int argc, char **argv)
     {
       if (scene_path.empty())
         throw InputError("", "scene", "(none)", "a scene file", "usage: fe_stage SCENE.yaml --output DIR");
-      if (output_dir.empty())
+      if (output_dir.empty() && !check)
         throw InputError("", "--output", "(none)", "a directory", "usage: fe_stage SCENE.yaml --output DIR");
       // all input errors before any output: the scene, with the preset's keys set as
       // run_pipeline sets them
@@ -270,6 +390,22 @@ int main(int argc, char **argv)
       if (no_fields)
         scene.output.fields = false;
       fe::validate_scene(scene);
+      if (check)
+        {
+          log::info("fe_stage: " + scene_path + " is a valid scene");
+          return exit_success;
+        }
+      check_replaceable(output_dir);
+      final_dir = output_dir;
+      output_dir = work_dir_for(output_dir);
+      work_root = output_dir;
+      final_root = final_dir;
+      if (root)
+        {
+          std::filesystem::remove_all(output_dir);
+          std::filesystem::create_directories(output_dir);
+        }
+      MPI_Barrier(MPI_COMM_WORLD);
 
       bool complete = true;
       // One case per swept value (t_B [m] or θ [deg]), each in its own folder.
@@ -349,12 +485,32 @@ int main(int argc, char **argv)
               top->write(complete ? "complete" : "incomplete");
             }
         }
+      publish(output_dir, final_dir);
       return complete ? exit_success : exit_numerical_error;
+    }
+  catch (const interrupt::Interrupted &e)
+    {
+      if (root)
+        {
+          std::error_code ec;
+          std::filesystem::remove_all(output_dir, ec);
+          log::error(std::string(e.what()) + "; " + output_dir + " removed" +
+                     (final_dir.empty() ? "" : ", " + final_dir + " left as it was"));
+        }
+      const int code = 128 + (signal_seen != 0 ? signal_seen : interrupt::signal_received());
+      if (signal_seen == 0)  // seen by rank 0 alone (while plotting): the others may wait
+        abort_other_ranks(code);
+      return code;
     }
   catch (const InputError &e)
     {
       if (root)
         log::error(e.what());
+      if (root && !final_dir.empty())  // e.g. a mesh rejected while setting up a case
+        {
+          std::error_code ec;
+          std::filesystem::remove_all(output_dir, ec);
+        }
       return exit_input_error;
     }
   catch (const NumericalError &e)

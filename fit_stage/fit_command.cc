@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 namespace clearjoint::fit
@@ -152,6 +153,39 @@ namespace clearjoint::fit
     law.scene = scene.is_null() ? scene_beside(csv_path) : scene;
     law.diagnostics = d;
     return law;
+  }
+
+  void check_fit_command(const FitCommand &c)
+  {
+    if (c.scene_file)
+      read_structured_file(*c.scene_file);
+    if (!c.family_parameter && c.inputs.size() != 1)
+      throw InputError("", "DATA.csv", std::to_string(c.inputs.size()) + " files",
+                       "exactly one CSV file (or --family PARAM FILE=VALUE ...)");
+    if (c.family_parameter && c.inputs.size() < 2)
+      throw InputError("", "--family", std::to_string(c.inputs.size()) + " members",
+                       "at least 2 FILE.csv=VALUE arguments");
+    for (const auto &arg : c.inputs)
+    {
+      std::string file = arg;
+      if (c.family_parameter)
+      {
+        const auto eq = arg.rfind('=');
+        if (eq == std::string::npos)
+          throw InputError("", "family member", arg, "FILE.csv=VALUE");
+        file = arg.substr(0, eq);
+        const std::string value = arg.substr(eq + 1);
+        char *end = nullptr;
+        const double v = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0' || !std::isfinite(v))
+          throw InputError("", "family member " + file, value, "a finite number");
+      }
+      if (!fs::exists(file))
+        continue;
+      const CsvTable t = read_csv(file);
+      t.column_index("delta");
+      t.column_index("force");
+    }
   }
 
   int run_fit_command(const FitCommand &c, const int argc, const char *const *argv)

@@ -36,6 +36,12 @@ namespace clearjoint::fit
   laws::LawFile fit_csv_file(const std::string &csv_path, const FitOptions &options,
                              const nlohmann::json &scene, std::optional<double> delta_ref);
 
+  /// fit_stage --check: validates what can be validated without fitting — the scene file, and
+  /// each data file that already exists (readable CSV with 'delta' and 'force' columns; a
+  /// FILE=VALUE member's VALUE a finite number). Throws InputError; writes nothing. Data files
+  /// that do not exist yet (a pipeline checks before its FE cases ran) are skipped.
+  void check_fit_command(const FitCommand &command);
+
   /// Runs the whole command: returns the process exit code (see fit_stage --help).
   int run_fit_command(const FitCommand &command, int argc, const char *const *argv);
 } // namespace clearjoint::fit

@@ -1,6 +1,7 @@
 // fit_stage: fits F = K·δ^n to force–penetration data and writes a clearjoint.law/1 file
 // (or a clearjoint.law_family/1 file with --family). See --help.
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/stage_main.h"
 #include "fit_stage/fit_command.h"
@@ -28,7 +29,7 @@ int main(int argc, char **argv)
     "atomically, LAW.manifest.json, and LAW.png (data, fit, residuals).\n"
     "\n"
     "Exit codes: 0 success, 1 input error (bad file, column, value or option), 2 numerical\n"
-    "failure (the fit did not converge)."};
+    "failure (the fit did not converge), 130/143 interrupted by SIGINT/SIGTERM."};
   fit::FitCommand command;
   std::string range, start, weighting = "absolute", family;
   double delta_ref = 0;
@@ -57,6 +58,10 @@ int main(int argc, char **argv)
                  "what the family does for a parameter outside its values")
     ->check(CLI::IsMember({"error", "clamp", "extend"}));
   app.add_flag("--no-plots", [&](std::int64_t) { command.plots = false; }, "skip the plot");
+  bool check = false;
+  app.add_flag("--check", check,
+               "validate the options, the data files that exist and the scene, then exit: 0 "
+               "valid, 1 input error; writes nothing (no fit is made)");
   app.add_flag("-q,--quiet", [](std::int64_t) { log::set_level(log::Level::warning); },
                "only warnings and errors");
 
@@ -69,6 +74,7 @@ int main(int argc, char **argv)
     return app.exit(e) == 0 ? exit_success : exit_input_error;
   }
 
+  interrupt::install();  // SIGINT/SIGTERM: plot.py stopped, exit 130/143
   return run_stage_main([&]() -> int {
     command.options.weighting =
       weighting == "relative" ? fit::Weighting::relative : fit::Weighting::absolute;
@@ -107,6 +113,12 @@ int main(int argc, char **argv)
           throw InputError("", "--parameter-unit", "(missing)",
                            "a unit for family parameter '" + family + "', e.g. m or rad");
       }
+    }
+    if (check)
+    {
+      fit::check_fit_command(command);
+      log::info("fit_stage: the command line and its existing input files are valid");
+      return exit_success;
     }
     return fit::run_fit_command(command, argc, argv);
   });

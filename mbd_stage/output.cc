@@ -3,6 +3,7 @@
 #include "common/atomic_file.h"
 #include "common/csv.h"
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/manifest.h"
 #include "common/plot_script.h"
@@ -86,7 +87,13 @@ namespace clearjoint::mbd
         csv.commit_incomplete(r.failure);
     }
     write_file_atomically(tmp_ + "/summary.json", r.summary.dump(2) + "\n");
+    // Plots are drawn in the temporary folder too, so that an interrupt while plot.py runs
+    // (it is stopped, common/plot_script.h) leaves DIR as it was.
+    if (make_plots)
+      run_plot_script("mbd", {tmp_});  // warns on failure: the data files are complete
+    interrupt::throw_if_requested("before " + dir_ + " was replaced");
 
+    // From here on the outputs are complete: an interrupt is noted but the manifest is written.
     std::error_code ec;
     fs::remove_all(dir_, ec);
     fs::rename(tmp_, dir_, ec);
@@ -106,7 +113,6 @@ namespace clearjoint::mbd
 
     if (make_plots)
     {
-      run_plot_script("mbd", {dir_});  // warns on failure: the data files are complete
       if (fs::exists(dir_ + "/plots"))
         for (const auto &p : fs::directory_iterator(dir_ + "/plots"))
           manifest.add_output(p.path().string());

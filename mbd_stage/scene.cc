@@ -6,6 +6,7 @@
 #include "laws/law_family.h"
 #include "laws/law_file.h"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -23,9 +24,23 @@ namespace clearjoint::mbd
       return {v[0], v[1], v[2]};
     }
 
+    // Guards against absurd starting values (issue 16): each bound is far beyond any mechanism
+    // this stage models, and close enough that nothing non-finite can arise from it (a norm of
+    // [1e308, 1e308, 0] overflows to inf and the normalised axis becomes NaN).
+    /// [m] positions and centres: a machine, not a geodesic; double precision still resolves
+    /// 1e-13 m at this distance, far below any clearance.
+    const Range position_range = Range::closed(-1e3, 1e3, "m");
+    /// [m/s] speeds of a point (about three times the speed of sound in air).
+    const Range speed_range = Range::closed(-1e3, 1e3, "m/s");
+    /// [rad/s] about 10⁶ rpm, above the fastest turbomachinery.
+    const Range spin_range = Range::closed(-1e5, 1e5, "rad/s");
+    /// [m/s²] about 100 g per component.
+    const Range gravity_range = Range::closed(-1e3, 1e3, "m/s^2");
+
     Vector3 unit_vec3(StrictObject &o, const std::string &key)
     {
-      const Vector3 a = vec3(o, key);
+      // Components of a direction: any scale, but bounded so that its norm stays finite.
+      const Vector3 a = vec3(o, key, Range::closed(-1e6, 1e6));
       if (!(a.norm() > 1e-12))
         o.fail(key, "[0, 0, 0]", "a non-zero direction");
       return a.normalized();
@@ -163,6 +178,27 @@ namespace clearjoint::mbd
       o.finish();
       return model;
     }
+    /// An impossible start (issue 16): the journal must begin inside its bearing. A journal
+    /// 2 mm off centre in a 0.5 mm clearance, or tilted 45°, would start with a penetration
+    /// many times the clearance and an enormous force; the integrator then crawls for hours.
+    /// Allowed overlap: 1 % of the clearance — hand-typed coordinates rounded to a few digits
+    /// stay well inside it, and a run at θ = θ_max starts exactly touching (δ = 0).
+    void check_starting_gaps(StrictObject &c, const ClearanceJoint &joint,
+                             const KinematicsView &k0)
+    {
+      const std::array<double, 3> delta = joint.gaps(k0);
+      const ClearanceGeometry &G = joint.geometry();
+      const double allowed[3] = {0.01 * G.c_r(), 0.01 * G.c_a(), 0.01 * G.c_a()};
+      const char *what[3] = {"radial", "axial (+axis wall)", "axial (-axis wall)"};
+      for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(delta[i]) || delta[i] > allowed[i])
+          c.fail("journal", "a starting " + std::string(what[i]) + " penetration of " +
+                              format_value(delta[i]) + " m",
+                 "a journal inside its bearing: penetration <= " + format_value(allowed[i]) +
+                   " m (1 % of the " + (i == 0 ? "radial" : "axial") + " clearance)",
+                 "move journal.center towards bearing.center, or align journal.axis with "
+                 "bearing.axis");
+    }
   } // namespace
 
   Scene read_scene(const std::string &path)
@@ -183,7 +219,7 @@ namespace clearjoint::mbd
     scene.description = top.string_or("description", "");
     scene.duration = top.number("duration", Range::positive("s"));
     auto sys = std::make_shared<MultibodySystem>();
-    sys->set_gravity(vec3(top, "gravity"));
+    sys->set_gravity(vec3(top, "gravity", gravity_range));
 
     // Bodies
     std::set<std::string> names{"ground"};
@@ -193,10 +229,13 @@ namespace clearjoint::mbd
       p.name = b.string("name");
       if (!names.insert(p.name).second)
         b.fail("name", p.name, "a unique name other than 'ground'");
-      p.mass = b.number("mass", Range::positive("kg"));
-      p.inertia = vec3(b, "inertia", Range::positive("kg*m^2"));
+      // 1e6 kg and kg·m²: a ship's engine, not a joint test rig; beyond this the stiff
+      // contact and the tiny clearance make the problem meaningless in double precision.
+      p.mass = b.number("mass", Range{.lo = 0.0, .hi = 1e6, .lo_open = true, .unit = "kg"});
+      p.inertia =
+        vec3(b, "inertia", Range{.lo = 0.0, .hi = 1e6, .lo_open = true, .unit = "kg*m^2"});
       BodyKinematics k;
-      k.r = vec3(b, "position", Range::any("m"));
+      k.r = vec3(b, "position", position_range);
       const auto e = b.number_array("euler_parameters", Range::closed(-1.0 - 1e-3, 1.0 + 1e-3), 4);
       if (e.size() != 4)
         b.fail("euler_parameters", std::to_string(e.size()) + " numbers", "exactly 4 numbers");
@@ -208,8 +247,8 @@ namespace clearjoint::mbd
                "Euler parameters must satisfy e0² + e1² + e2² + e3² = 1");
       k.e /= norm;
       k.A = rotation_matrix(k.e);
-      k.v = vec3(b, "velocity", Range::any("m/s"));
-      k.w_B = k.A.transpose() * vec3(b, "angular_velocity", Range::any("rad/s"));
+      k.v = vec3(b, "velocity", speed_range);
+      k.w_B = k.A.transpose() * vec3(b, "angular_velocity", spin_range);
       b.finish();
       sys->add_body(p, k);
     }
@@ -233,7 +272,7 @@ namespace clearjoint::mbd
       const int bi = body_ref(j, "body_i", *sys), bj = body_ref(j, "body_j", *sys);
       if (bi == bj)
         j.fail("body_j", j.raw("body_j").dump(), "a body other than body_i");
-      const Vector3 point = vec3(j, "point", Range::any("m"));
+      const Vector3 point = vec3(j, "point", position_range);
       const Vector3 axis = type == JointType::spherical && !j.has("axis")
                              ? Vector3::UnitX()
                              : unit_vec3(j, "axis");
@@ -254,7 +293,7 @@ namespace clearjoint::mbd
           d.fail("joint", jn, "the name of a revolute joint of this scene");
         if (sys->joints()[idx].type() != JointType::revolute)
           d.fail("joint", jn, "a revolute joint");
-        const double speed = d.number("speed", Range::any("rad/s"));
+        const double speed = d.number("speed", spin_range);
         d.finish();
         sys->add_driver(name, idx, speed);
       }
@@ -271,16 +310,18 @@ namespace clearjoint::mbd
         const int bb = body_ref(bo, "body", *sys), jb = body_ref(jo, "body", *sys);
         if (bb == jb)
           jo.fail("body", jo.raw("body").dump(), "a body other than the bearing's");
-        const Vector3 cb = vec3(bo, "center", Range::any("m")), ab = unit_vec3(bo, "axis");
-        const Vector3 cj = vec3(jo, "center", Range::any("m")), aj = unit_vec3(jo, "axis");
+        const Vector3 cb = vec3(bo, "center", position_range), ab = unit_vec3(bo, "axis");
+        const Vector3 cj = vec3(jo, "center", position_range), aj = unit_vec3(jo, "axis");
         bo.finish();
         jo.finish();
         StrictObject go = c.object("geometry");
         ClearanceGeometry G;
-        G.R_B = go.number("R_B", Range::positive("m"));
-        G.R_J = go.number("R_J", Range::positive("m"));
-        G.L_B = go.number("L_B", Range::positive("m"));
-        G.L_J = go.number("L_J", Range::positive("m"));
+        // 10 m: a bearing larger than that is not a journal bearing this model describes.
+        const Range size_range{.lo = 0.0, .hi = 10.0, .lo_open = true, .unit = "m"};
+        G.R_B = go.number("R_B", size_range);
+        G.R_J = go.number("R_J", size_range);
+        G.L_B = go.number("L_B", size_range);
+        G.L_J = go.number("L_J", size_range);
         if (!(G.R_J < G.R_B))
           go.fail("R_J", format_value(G.R_J), "(0, R_B = " + format_value(G.R_B) + ") m",
                   "the radial clearance c_r = R_B − R_J must be > 0");
@@ -289,9 +330,11 @@ namespace clearjoint::mbd
                   "the axial clearance c_a = (L_B − L_J)/2 must be > 0");
         go.finish();
         StrictObject mo = c.object("material");
-        const double Eb = mo.number("E_bearing", Range::positive("Pa"));
+        // 1e13 Pa: ten times diamond's Young's modulus.
+        const Range modulus_range{.lo = 0.0, .hi = 1e13, .lo_open = true, .unit = "Pa"};
+        const double Eb = mo.number("E_bearing", modulus_range);
         const double nb = mo.number("nu_bearing", Range::open(-1.0, 0.5, "1"));
-        const double Ej = mo.number("E_journal", Range::positive("Pa"));
+        const double Ej = mo.number("E_journal", modulus_range);
         const double nj = mo.number("nu_journal", Range::open(-1.0, 0.5, "1"));
         mo.finish();
         const double E_star = effective_modulus(Eb, nb, Ej, nj);
@@ -307,9 +350,11 @@ namespace clearjoint::mbd
           fo.fail("v1", format_value(fr.v1), "> v0 = " + format_value(fr.v0) + " m/s");
         fo.finish();
         c.finish();
-        sys->add_clearance_joint(std::make_unique<ClearanceJoint>(
-          name, bb, jb, cb, ab, cj, aj, G, std::move(normal), std::move(axial), fr,
-          sys->initial_view()));
+        auto joint = std::make_unique<ClearanceJoint>(name, bb, jb, cb, ab, cj, aj, G,
+                                                      std::move(normal), std::move(axial), fr,
+                                                      sys->initial_view());
+        check_starting_gaps(c, *joint, sys->initial_view());
+        sys->add_clearance_joint(std::move(joint));
       }
     }
     else
@@ -366,6 +411,15 @@ namespace clearjoint::mbd
     }
     else
       top.number_or("outputs", 0.0, Range::any());
+    if (top.has("budget"))
+    {
+      StrictObject bo = top.object("budget");
+      scene.max_wall_time = bo.number_or("wall_time", scene.max_wall_time, Range::positive("s"));
+      scene.max_steps = bo.integer_or("steps", scene.max_steps, 1, 1'000'000'000'000L);
+      bo.finish();
+    }
+    else
+      top.number_or("budget", 0.0, Range::any());
     top.finish();
 
     sys->finalize(0.0);

@@ -22,6 +22,7 @@
 //                  max_step (s, 0 = none), output_interval (s)}
 // stabilization: {alpha, beta} (1/s)                                       # optional
 // outputs:       {slider: {body, axis}, crank: {body, axis}}               # optional
+// budget:        {wall_time (s, default 14400), steps (default 1e7)}       # optional
 #pragma once
 
 #include "mbd_stage/integrator.h"
@@ -53,6 +54,12 @@ namespace clearjoint::mbd
     IntegratorSettings integrator;
     std::vector<std::string> input_files;  ///< law files it uses
     std::optional<MonitoredAxis> slider, crank;
+    /// A run that exceeds either stops as a numerical failure with its partial outputs marked
+    /// incomplete, instead of running unattended for days. The shipped 0.1 s scenes take
+    /// < 1 s and ~1000 steps (docs/benchmarks.md), a 10 s run ~1e5 steps: the defaults are
+    /// 100 times beyond that.
+    double max_wall_time = 14400.0;  ///< [s] budget.wall_time (4 h)
+    long max_steps = 10'000'000;     ///< budget.steps: accepted integrator steps
     nlohmann::json raw;  ///< the scene as read (for the summary)
     /// The assembled, finalised system (initial velocities made consistent).
     std::shared_ptr<MultibodySystem> system;

@@ -1,6 +1,7 @@
 #include "mbd_stage/simulation.h"
 
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/units.h"
 
@@ -33,6 +34,38 @@ namespace clearjoint::mbd
       const Eigen::Quaterniond q(e[0], e[1], e[2], e[3]), q0(e0[0], e0[1], e0[2], e0[3]);
       const Eigen::Quaterniond r = q.normalized() * q0.normalized().conjugate();
       return std::remainder(2.0 * std::atan2(r.vec().dot(a), r.w()), 2.0 * units::pi);
+    }
+    /// The scene's budget (issue 16): thrown as a NumericalError from the step callback, so
+    /// the run stops like any numerical failure (partial outputs kept, marked incomplete).
+    void check_budget(const Scene &scene, const long n_steps, const double t,
+                      const std::chrono::steady_clock::time_point start)
+    {
+      const auto where = [&] {
+        return "at t = " + format_value(t) + " s of " + format_value(scene.duration) +
+               " s; the scene's budget (keys budget.wall_time, budget.steps) stops runs that "
+               "would otherwise go on for days — a step size collapsing to nothing usually "
+               "means a stiff or badly scaled scene";
+      };
+      if (n_steps > scene.max_steps)
+        throw NumericalError("step budget exceeded: " + std::to_string(scene.max_steps) +
+                             " integrator steps taken " + where());
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (seconds > scene.max_wall_time)
+        throw NumericalError("wall-clock budget exceeded: " + format_value(seconds) +
+                             " s > budget.wall_time = " + format_value(scene.max_wall_time) +
+                             " s " + where());
+    }
+
+    /// "" if every value is finite, else which column and time holds the first that is not.
+    std::string first_non_finite(const SimulationResult &res)
+    {
+      for (const auto &row : res.rows)
+        for (std::size_t c = 0; c < row.size(); ++c)
+          if (!std::isfinite(row[c]))
+            return "non-finite value (" + format_value(row[c]) + ") in output column '" +
+                   res.columns[c] + "' at t = " + format_value(row[0]) + " s";
+      return "";
     }
   } // namespace
 
@@ -189,9 +222,12 @@ namespace clearjoint::mbd
       track_peaks(t, ev);
     };
     SystemEvaluation ev_step;
+    long n_steps_taken = 0;
     const auto on_step = [&](const double t, const Eigen::VectorXd &y, const bool interior) {
       if (!interior)
       {
+        check_budget(scene, ++n_steps_taken, t, start);
+        interrupt::throw_if_requested("at t = " + format_value(t) + " s");
         sys.rhs(t, y.data(), ydot.data(), &ev_step);
         track_peaks(t, ev_step);
         return;
@@ -227,6 +263,12 @@ namespace clearjoint::mbd
     catch (const NumericalError &e)
     {
       res.failure = e.what();
+    }
+    // No run ends "complete" with a NaN or Inf in its outputs.
+    if (const std::string bad = first_non_finite(res); res.complete && !bad.empty())
+    {
+      res.complete = false;
+      res.failure = bad;
     }
     progress.finish();
     res.statistics = integrator.statistics();

@@ -1,6 +1,7 @@
 // run_pipeline: runs the FE sweeps, the fits and law families, the MBD scenes and the report
 // described by pipeline.yaml, re-running only what changed. See --help.
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/manifest.h"
 #include "common/plot_script.h"
@@ -21,15 +22,18 @@ int main(int argc, char **argv)
     "run_pipeline — the clearjoint pipeline: FE sweeps → fitted laws → MBD scenes → report.\n"
     "\n"
     "  run_pipeline [pipeline.yaml] [--preset fast|standard|accurate] [--force]\n"
-    "               [--only fe|fit|mbd|report] [--no-plots] [--output-root DIR]\n"
+    "               [--only fe|fit|mbd|report] [--no-plots] [--output-root DIR] [--check]\n"
     "\n"
     "Results go to <output_root>/<run>/ (default out/default/): fe/, fit/, mbd/, scenes/,\n"
     "pipeline_summary.json, manifest.json and report.html. A task whose inputs (input files,\n"
     "upstream results, stage executable) are unchanged is reused, not re-run; --force re-runs\n"
     "all. An interrupted task leaves only '<dir>.partial/' and is redone by the next run.\n"
+    "Before the first task (and alone with --check) every generated FE and MBD scene is\n"
+    "validated by its stage's own reader; nothing is written under the output root until the\n"
+    "whole pipeline is valid.\n"
     "\n"
-    "Exit codes: 0 success, 1 input error (pipeline.yaml or a scene), 2 a stage failed or the\n"
-    "run was interrupted."};
+    "Exit codes: 0 success, 1 input error (pipeline.yaml or a scene), 2 a stage failed,\n"
+    "130/143 interrupted by SIGINT/SIGTERM (passed on to the running stage or report)."};
   std::string pipeline_file = "pipeline.yaml", preset, only, build_dir;
   pipeline::RunOptions options;
   app.add_option("pipeline", pipeline_file, "pipeline file (schema clearjoint.pipeline/1)");
@@ -41,6 +45,10 @@ int main(int argc, char **argv)
   app.add_flag("--no-plots", [&](std::int64_t) { options.plots = false; }, "no plots, no report");
   app.add_option("--build-dir", build_dir, "where the stages were built (default: ours)");
   std::string output_root;
+  bool check_only = false;
+  app.add_flag("--check", check_only,
+               "validate the pipeline file and every scene it generates, then exit (0 valid, "
+               "1 input error); writes nothing under the output root");
   app.add_option("--output-root", output_root, "overrides the file's output_root (results folder)");
   try
   {
@@ -70,6 +78,9 @@ int main(int argc, char **argv)
     // theta_max & co. depend on the scene geometry after the preset: resolve them now.
     pipeline::resolve_value_keywords(config);
     pipeline::PipelineRunner runner(config, options);
+    runner.check();  // input errors end the run here, before anything is written
+    if (check_only)
+      return exit_success;
     fs::create_directories(runner.run_dir());
     manifest = std::make_unique<Manifest>("run_pipeline", runner.run_dir() + "/manifest.json",
                                           argc, argv);
@@ -93,6 +104,7 @@ int main(int argc, char **argv)
         log::info("report: " + html);
       }
     }
+    interrupt::throw_if_requested("after the last task");
     manifest->write("complete");
     log::info("run_pipeline: " + std::to_string(n_ran) + " tasks ran, " +
               std::to_string(n_reused) + " reused, in " +
@@ -112,6 +124,6 @@ int main(int argc, char **argv)
     log::error(e.what());
     if (manifest)
       manifest->write(pipeline::interrupt_requested() ? "incomplete" : "failed", e.what());
-    return exit_numerical_error;
+    return pipeline::interrupt_requested() ? interrupt::exit_code() : exit_numerical_error;
   }
 }

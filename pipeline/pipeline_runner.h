@@ -32,6 +32,11 @@ namespace clearjoint::pipeline
     /// Runs everything; returns the summary written to <run dir>/pipeline_summary.json.
     nlohmann::json run();
     std::string run_dir() const;
+    /// Validates the whole run before anything is written (pipeline_check.cc): names and the
+    /// output root usable, and every generated FE and MBD scene accepted by its stage's own
+    /// reader (STAGE --check). Throws InputError naming the pipeline key; writes nothing
+    /// under the output root.
+    void check();
 
   private:
     struct Done
@@ -54,6 +59,7 @@ namespace clearjoint::pipeline
     std::map<std::string, int> planned_tasks() const;
     /// The chosen preset's measured fe_case_time or pipeline_time [s], if measured.
     std::optional<double> preset_time(const std::string &which) const;
+    void check_output_root() const;
     std::string stage_executable(const std::string &stage) const;
 
     PipelineConfig config_;

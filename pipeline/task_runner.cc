@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/sha256.h"
 
@@ -115,11 +116,14 @@ namespace clearjoint::pipeline
 
   void install_signal_handlers()
   {
-    struct sigaction sa{};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+    // The common handler (also seen by run_plot_script, which then stops the report's plot.py)
+    // with on_signal as its hook: the running stage gets the signal too.
+    interrupt::install(on_signal);
+  }
+
+  int run_process(const std::vector<std::string> &words, const std::string &log_path)
+  {
+    return spawn_and_wait(words, log_path);
   }
 
   std::string compute_identity(const Task &t)

@@ -46,6 +46,10 @@ namespace clearjoint::pipeline
   /// to the running stage's process group.
   void install_signal_handlers();
 
+  /// Runs argv (words) in its own process group with stdout and stderr appended to log_path;
+  /// an interrupt is passed on to it. Returns the wait status.
+  int run_process(const std::vector<std::string> &words, const std::string &log_path);
+
   std::string compute_identity(const Task &task);
 
   /// The task's earlier result if its folder holds a stamp with the task's current identity

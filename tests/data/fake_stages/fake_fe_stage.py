@@ -4,6 +4,7 @@ misalignment and geometry-swap contracts): writes force_penetration.csv from a p
 F = K·δ^n without any FE. Not a physics model.
 
     fake_fe_stage.py SCENE.yaml --output DIR
+    fake_fe_stage.py SCENE.yaml --check      (validates only, as below)
 
 What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - study radial (default): K grows with geometry.t_B.
@@ -18,7 +19,9 @@ Environment: CLEARJOINT_FAKE_SLEEP=<s> sleeps before writing (to be interrupted)
 scene key fail: true exits 2 with a message (a failing stage)."""
 import hashlib, json, math, os, sys, time
 
-scene_path, out = sys.argv[1], sys.argv[3]
+# --check: validate the scene as below and exit, like the real stage (writes nothing).
+check = "--check" in sys.argv
+scene_path, out = sys.argv[1], (None if check else sys.argv[3])
 with open(scene_path) as f:
     text = "".join(l for l in f if not l.lstrip().startswith("#"))
 scene = json.loads(text)
@@ -30,7 +33,7 @@ def input_error(key, value, allowed):
     sys.exit(1)
 
 
-if scene.get("fail"):
+if scene.get("fail") and not check:
     print("fake fe_stage: increment 3 did not converge (requested by the test)", file=sys.stderr)
     sys.exit(2)
 g = {"R_B": 0.010, "t_B": 0.004, "L_B": 0.020, "c_r": 0.0005, "c_a": 0.001}
@@ -57,6 +60,8 @@ if mesh is not None:
     with open(mesh, "rb") as f:
         K *= 1.0 + hashlib.sha256(f.read()).digest()[0] / 1000.0
 
+if check:
+    sys.exit(0)
 time.sleep(float(os.environ.get("CLEARJOINT_FAKE_SLEEP", "0")))
 os.makedirs(out, exist_ok=True)
 with open(os.path.join(out, "force_penetration.csv"), "w") as f:

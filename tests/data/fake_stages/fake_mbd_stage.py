@@ -3,6 +3,8 @@
 DIR/scene_used.json so the test can see which law it got. Not a physics model."""
 import json, os, sys
 
+if "--check" in sys.argv:  # the real stage validates the scene; the stand-in accepts it
+    sys.exit(0)
 scene_path, out = sys.argv[1], sys.argv[3]
 with open(scene_path) as f:
     text = "".join(l for l in f if not l.lstrip().startswith("#"))

@@ -37,14 +37,32 @@ TEST(Csv, IncompleteRunIsMarked)
   EXPECT_EQ(read_csv(dir.file("t.csv")).status, "incomplete: increment 3 did not converge");
 }
 
-TEST(Csv, ReaderAcceptsWhitespaceDataAndNan)
+TEST(Csv, ReaderAcceptsWhitespaceDataButNoNonFiniteValues)
 {
   test_support::ScratchDir dir("csv_ws");
-  test_support::write_text(dir.file("t.txt"), "# comment\nx y\n1.5 2\nnan 3\n");
+  test_support::write_text(dir.file("t.txt"), "# comment\nx y\n1.5 2\n-3e-4 3\n");
   const CsvTable t = read_csv(dir.file("t.txt"));
   EXPECT_TRUE(t.units.empty());
   EXPECT_EQ(t.rows[0][0], 1.5);
-  EXPECT_TRUE(std::isnan(t.rows[1][0]));
+  EXPECT_EQ(t.rows[1][0], -3e-4);
+  // nan, inf and overflowing numbers would flow into a fit: input errors naming line and column.
+  for (const std::string bad : {"nan", "inf", "-infinity", "1e400"})
+  {
+    test_support::write_text(dir.file("b.txt"), "x y\n1.5 2\n" + bad + " 3\n");
+    try
+    {
+      read_csv(dir.file("b.txt"));
+      ADD_FAILURE() << bad << " accepted";
+    }
+    catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("line 3, column 'x'"), std::string::npos) << e.what();
+    }
+  }
+  test_support::write_text(dir.file("d.csv"), "delta,delta\n1,2\n");
+  EXPECT_THROW(read_csv(dir.file("d.csv")), InputError) << "a column named twice";
+  test_support::write_text(dir.file("u.csv"), "delta,f\xffrce\n1,2\n");
+  EXPECT_THROW(read_csv(dir.file("u.csv")), InputError) << "bytes that are not UTF-8";
 }
 
 TEST(Csv, RaggedRowAndNonNumberNameFileAndLine)

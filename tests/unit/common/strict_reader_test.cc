@@ -86,7 +86,8 @@ TEST(StrictReader, MalformedYamlAndDuplicateKeys)
 {
   EXPECT_THROW(parse_yaml_string("a: [1, 2\n", "bad.yaml"), InputError);
   const std::string m = message_of([] { parse_yaml_string("a: 1\na: 2\n", "dup.yaml"); });
-  EXPECT_NE(m.find("duplicate key 'a'"), std::string::npos) << m;
+  EXPECT_NE(m.find("key 'a'"), std::string::npos) << m;
+  EXPECT_NE(m.find("duplicate key"), std::string::npos) << m;
 }
 
 TEST(StrictReader, StringChoices)

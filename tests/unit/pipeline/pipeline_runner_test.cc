@@ -168,7 +168,7 @@ TEST(RunPipeline, InterruptLeavesNothingCompleteAndTheNextRunFinishesTheJob)
   int status = 0;
   waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 2) << test_support::read_text(dir.file("log.txt"));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << "128 + SIGINT: " << test_support::read_text(dir.file("log.txt"));
   EXPECT_NE(test_support::read_text(dir.file("log.txt")).find("interrupted"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir.file("out/r/fe/thickness/t_B=0.002"))) << "nothing looks complete";
   EXPECT_FALSE(fs::exists(dir.file("out/r/pipeline_summary.json")));

@@ -1,0 +1,331 @@
+// run_pipeline --check, also the first step of every run (issue 16 item 2): every scene the
+// run would generate is composed and handed to its stage's own reader (STAGE SCENE --check),
+// in a scratch folder outside the output root, so that a bad value stops the run before
+// anything exists under the output root — reported as an input error naming the pipeline key
+// that produced it (a study value, an override, a preset key, a law) rather than as a stage
+// failure half-way through the run.
+#include "pipeline/pipeline_runner.h"
+
+#include "common/atomic_file.h"
+#include "common/document_reader.h"
+#include "common/error.h"
+#include "common/log.h"
+#include "laws/law_family.h"
+#include "laws/law_file.h"
+#include "pipeline/scene_builder.h"
+#include "pipeline/study_values.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <climits>
+#include <filesystem>
+#include <set>
+
+#ifndef CLEARJOINT_SOURCE_DIR
+#define CLEARJOINT_SOURCE_DIR "."
+#endif
+
+namespace clearjoint::pipeline
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    /// Where a scene key got its value: the pipeline key (and its value, for the message).
+    struct Origin
+    {
+      std::string scene_key, pipeline_key;
+      nlohmann::json value;
+    };
+
+    /// "clearance_joints[0].normal" → "clearance_joints.0.normal": the pipeline's spelling.
+    std::string dotted(const std::string &path)
+    {
+      std::string out;
+      for (const char c : path)
+        if (c == '[')
+          out += '.';
+        else if (c != ']')
+          out += c;
+      return out;
+    }
+
+    bool related(const std::string &a, const std::string &b)
+    {
+      return a == b || a.rfind(b + ".", 0) == 0 || b.rfind(a + ".", 0) == 0;
+    }
+
+    /// The key path an InputError message names ("... key 'a.b' has value ..."), or "".
+    std::string failing_key(const std::string &message)
+    {
+      const auto p = message.find("key '");
+      if (p == std::string::npos)
+        return "";
+      const auto q = message.find('\'', p + 5);
+      return q == std::string::npos ? "" : message.substr(p + 5, q - p - 5);
+    }
+
+    /// The stage's error message: from "input error" to the end of that line.
+    std::string error_line(const std::string &log)
+    {
+      const auto p = log.find("input error");
+      if (p == std::string::npos)
+        return log.substr(log.size() > 1000 ? log.size() - 1000 : 0);
+      const auto e = log.find('\n', p);
+      return log.substr(p, e == std::string::npos ? std::string::npos : e - p);
+    }
+
+    /// A scratch folder outside the output root, removed when the check ends.
+    class Scratch
+    {
+    public:
+      Scratch()
+        : path_(fs::temp_directory_path() /
+                ("clearjoint-check-" + std::to_string(::getpid())))
+      {
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+      }
+      ~Scratch()
+      {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+      }
+      std::string file(const std::string &name) const { return (path_ / name).string(); }
+
+    private:
+      fs::path path_;
+    };
+
+    /// Output folder and file names must fit the file system: NAME_MAX per component, with
+    /// room for the suffixes the stages and the task runner append (".partial",
+    /// ".command.txt", ".tmp.<pid>", "_band").
+    constexpr std::size_t name_suffix_room = 32;
+
+    void check_name(const std::string &source, const std::string &key, const std::string &name)
+    {
+      if (name.size() + name_suffix_room > NAME_MAX)
+        throw InputError(source, key, name.substr(0, 40) + "... (" +
+                                        std::to_string(name.size()) + " bytes)",
+                         "at most " + std::to_string(NAME_MAX - name_suffix_room) + " bytes",
+                         "a file or folder name made from it would be too long for the file "
+                         "system");
+      if (first_invalid_utf8(name) != std::string::npos)
+        throw InputError(source, key, "(bytes that are not UTF-8)", "UTF-8 text",
+                         "names are written into JSON manifests and summaries");
+    }
+  } // namespace
+
+  void PipelineRunner::check_output_root() const
+  {
+    const std::string &src = config_.source;
+    const std::string root = config_.output_root.empty() ? "." : config_.output_root;
+    if (first_invalid_utf8(root) != std::string::npos)
+      throw InputError(src, "output_root", "(a path with bytes that are not UTF-8)",
+                       "a UTF-8 path", "paths are written into JSON manifests and summaries");
+    check_name(src, "run", config_.run);
+    // The nearest existing ancestor must be a writable directory; an existing root or run
+    // folder must be a directory.
+    std::error_code ec;
+    fs::path p = fs::absolute(root, ec);
+    for (const fs::path &must_be_dir : {p, p / config_.run})
+      if (fs::exists(must_be_dir, ec) && !fs::is_directory(must_be_dir, ec))
+        throw InputError(src, must_be_dir == p ? "output_root" : "run", must_be_dir.string(),
+                         "a directory (or a path that can be created)",
+                         "it exists and is not a directory");
+    while (!p.empty() && !fs::exists(p, ec))
+      p = p.parent_path();
+    if (p.empty() || !fs::is_directory(p, ec) || ::access(p.c_str(), W_OK | X_OK) != 0)
+      throw InputError(src, "output_root", root, "a directory this user can write",
+                       "cannot create folders in " + p.string());
+    // The longest path the run writes must fit PATH_MAX (with room for the suffixes above).
+    std::size_t longest = 0;
+    for (const auto &s : config_.fe_studies)
+      for (const double v : s.values)
+        longest = std::max(longest, std::string("/scenes/fe_" + s.name + "_" + s.parameter +
+                                                "=" + value_label(v) + ".yaml")
+                                      .size());
+    for (const auto &m : config_.mbd_runs)
+      longest = std::max(longest, ("/mbd/" + m.name + "_band/n_high/").size() + 64);
+    const std::size_t total = run_dir().size() + longest + name_suffix_room;
+    if (total > PATH_MAX)
+      throw InputError(src, "output_root", root,
+                       "a path short enough that the run's files fit in " +
+                         std::to_string(PATH_MAX) + " bytes",
+                       "the longest path of this run would be about " + std::to_string(total) +
+                         " bytes");
+  }
+
+  void PipelineRunner::check()
+  {
+    const std::string &src = config_.source;
+    check_output_root();
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+    {
+      const FeStudy &s = config_.fe_studies[i];
+      const std::string key = "fe_studies[" + std::to_string(i) + "]";
+      check_name(src, key + ".name", s.name);
+      std::set<std::string> labels;
+      for (std::size_t v = 0; v < s.values.size(); ++v)
+      {
+        const std::string label = s.parameter + "=" + value_label(s.values[v]);
+        check_name(src, key + ".values[" + std::to_string(v) + "]", "fe_" + s.name + "_" + label);
+        if (!labels.insert(label).second)
+          throw InputError(src, key + ".values[" + std::to_string(v) + "]",
+                           value_label(s.values[v]), "values that differ from each other",
+                           "two cases of study '" + s.name + "' would share the folder " +
+                             label);
+      }
+    }
+    for (std::size_t i = 0; i < config_.mbd_runs.size(); ++i)
+    {
+      const MbdRun &m = config_.mbd_runs[i];
+      const std::string key = "mbd_runs[" + std::to_string(i) + "]";
+      check_name(src, key + ".name", "mbd_" + m.name + "_band");
+      // Folders under mbd/: NAME, and NAME_band for a run with a confidence band.
+      for (const std::string &folder :
+           m.band ? std::vector<std::string>{m.name, m.name + "_band"}
+                  : std::vector<std::string>{m.name})
+        if (!names.insert(folder).second)
+          throw InputError(src, key + ".name", m.name, "a name not used by another MBD run",
+                           "two runs would write into the same folder mbd/" + folder);
+    }
+
+    const Scratch scratch;
+    const auto run_check = [&](const std::string &stage, const std::string &scene_file,
+                               const std::vector<Origin> &origins,
+                               const std::string &base_key, const std::string &what) {
+      const std::string log_path = scene_file + ".log";
+      const int status =
+        run_process({stage_executable(stage), scene_file, "--check", "-q"}, log_path);
+      if (interrupt_requested())
+        throw NumericalError("interrupted while checking the scenes; nothing was written");
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        return;
+      std::string log;
+      try
+      {
+        log = read_file(log_path);
+      }
+      catch (...)
+      {
+      }
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != exit_input_error)
+        throw NumericalError(stage + " --check failed on the generated scene of " + what +
+                             " (exit status " +
+                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                             "): " + error_line(log));
+      const std::string scene_key = dotted(failing_key(error_line(log)));
+      // The last override applied to that key (or to a key above or below it) made it.
+      for (auto it = origins.rbegin(); it != origins.rend(); ++it)
+        if (!scene_key.empty() && related(dotted(it->scene_key), scene_key))
+          throw InputError(src, it->pipeline_key, json_excerpt(it->value),
+                           "a value " + stage + " accepts",
+                           what + ": " + stage + " reports: " + error_line(log));
+      throw InputError(src, base_key, what, "a scene " + stage + " accepts",
+                       stage + " reports: " + error_line(log));
+    };
+    const auto preset_origins = [&](const std::string &stage, std::vector<Origin> &origins) {
+      const auto preset = config_.presets.find(config_.preset);
+      if (preset != config_.presets.end())
+        for (const auto &[key, value] : preset->second)
+          if (key.rfind(stage + ":", 0) == 0)
+            origins.push_back({key.substr(stage.size() + 1),
+                               "presets." + config_.preset + "." + stage + "." +
+                                 key.substr(stage.size() + 1),
+                               value});
+    };
+
+    for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+    {
+      const FeStudy &study = config_.fe_studies[i];
+      const std::string key = "fe_studies[" + std::to_string(i) + "]";
+      for (std::size_t v = 0; v < study.values.size(); ++v)
+      {
+        std::vector<std::string> unused;
+        nlohmann::json scene = fe_case_scene(study, study.values[v], true, unused);
+        // A mesh a mesh task will make does not exist yet: check the rest of the scene (the
+        // mesh is checked against the scene when the FE case runs).
+        const nlohmann::json *mesh = find_key_path(scene, "geometry.mesh");
+        if (mesh && mesh->is_string() && !fs::exists(mesh->get<std::string>()))
+          scene["geometry"].erase("mesh");
+        const std::string label = study.parameter + "=" + value_label(study.values[v]);
+        const std::string file = scratch.file("fe_" + study.name + "_" + label + ".yaml");
+        write_file_atomically(file, scene.dump(2) + "\n");
+        std::vector<Origin> origins;
+        preset_origins("fe", origins);
+        for (const auto &[k, val] : study.overrides)
+          origins.push_back({k, key + ".overrides." + k, val});
+        origins.push_back({study.key, key + ".values[" + std::to_string(v) + "]",
+                           study.keywords[v].empty() ? nlohmann::json(study.values[v])
+                                                     : nlohmann::json(study.keywords[v])});
+        run_check("fe_stage", file, origins, key + ".scene",
+                  "FE case " + study.name + " " + label + " (scene " + study.scene + ")");
+      }
+    }
+
+    // Fitted laws do not exist before the run: the MBD scenes are checked with a stand-in (the
+    // paper's law for t_B = 4 mm, and a two-member family of it over the study's parameter),
+    // which validates every other key; the fitted law itself is checked when mbd_stage runs.
+    std::string stand_in_law;
+    std::map<std::string, std::string> stand_in_families;
+    const auto law_for = [&](const LawChoice &choice) -> std::string {
+      if (choice.file)
+        return fs::absolute(*choice.file).string();
+      if (stand_in_law.empty())
+      {
+        stand_in_law = scratch.file("stand_in_law.json");
+        laws::write_law_file(stand_in_law, laws::read_law_file(std::string(CLEARJOINT_SOURCE_DIR) +
+                                                               "/laws/paper_tB4.json"));
+      }
+      if (choice.value || !choice.value_keyword.empty())
+        return stand_in_law;
+      auto &family = stand_in_families[*choice.study];
+      if (family.empty())
+      {
+        const FeStudy *study = nullptr;
+        for (const auto &s : config_.fe_studies)
+          if (s.name == *choice.study)
+            study = &s;
+        const laws::LawFile law = laws::read_law_file(stand_in_law);
+        const SiValue lo = to_si(study->values.front(), study->unit);
+        const SiValue hi = to_si(study->values.back(), study->unit);
+        family = scratch.file("stand_in_family_" + study->name + ".json");
+        laws::write_law_family(
+          family, laws::LawFamily(study->parameter, lo.unit, law.delta_ref,
+                                  {{std::min(lo.value, hi.value), law},
+                                   {std::max(lo.value, hi.value) +
+                                      (lo.value == hi.value ? 1.0 : 0.0),
+                                    law}},
+                                  laws::RangePolicy::clamp));
+      }
+      return family;
+    };
+    for (std::size_t i = 0; i < config_.mbd_runs.size(); ++i)
+    {
+      const MbdRun &m = config_.mbd_runs[i];
+      const std::string key = "mbd_runs[" + std::to_string(i) + "]";
+      std::vector<Origin> origins;
+      preset_origins("mbd", origins);
+      Overrides overrides = m.overrides;
+      for (const auto &[k, val] : m.overrides)
+        origins.push_back({k, key + ".overrides." + k, val});
+      for (std::size_t l = 0; l < m.laws.size(); ++l)
+      {
+        const std::string law = law_for(m.laws[l]);
+        overrides.emplace_back(m.laws[l].key, law);
+        origins.push_back({m.laws[l].key, key + ".laws[" + std::to_string(l) + "]",
+                           m.laws[l].file ? nlohmann::json(*m.laws[l].file)
+                                          : nlohmann::json("study " + *m.laws[l].study)});
+      }
+      const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
+      const std::string file = scratch.file("mbd_" + m.name + ".yaml");
+      write_file_atomically(file, scene.dump(2) + "\n");
+      run_check("mbd_stage", file, origins, key + ".scene",
+                "MBD run " + m.name + " (scene " + m.scene + ")");
+    }
+    log::info("run_pipeline: checked " + src + ": every generated scene is valid");
+  }
+} // namespace clearjoint::pipeline

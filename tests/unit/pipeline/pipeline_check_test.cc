@@ -1,0 +1,171 @@
+// run_pipeline --check and the check every run starts with (issue 16 item 2): a bad value in
+// any generated scene is an input error naming the pipeline key that produced it, exit 1, and
+// nothing is created under the output root. Stand-in FE stage, the real mbd_stage.
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+using namespace clearjoint;
+namespace fs = std::filesystem;
+
+namespace
+{
+  struct Build
+  {
+    explicit Build(const test_support::ScratchDir &dir)
+      : root(dir.file("build"))
+    {
+      const fs::path fakes = fs::path(CLEARJOINT_TEST_DATA_DIR) / "fake_stages";
+      for (const auto &[link, target] : std::vector<std::pair<fs::path, fs::path>>{
+             {"fe_stage/fe_stage", fakes / "fake_fe_stage.py"},
+             {"mbd_stage/mbd_stage", MBD_STAGE_EXE},
+             {"fit_stage/fit_stage", FIT_STAGE_EXE}})
+      {
+        fs::create_directories((fs::path(root) / link).parent_path());
+        fs::create_symlink(target, fs::path(root) / link);
+      }
+    }
+    std::string root;
+  };
+
+  /// A pipeline with one FE study and one MBD run of the shipped slider–crank scene using the
+  /// law fitted for t_B = 4 mm; `mbd_extra` is added to the MBD run's mapping.
+  std::string pipeline(const test_support::ScratchDir &dir, const std::string &mbd_extra = "",
+                       const std::string &output_root = "", const std::string &name = "m")
+  {
+    test_support::write_text(dir.file("fe.yaml"), "{\"geometry\": {\"t_B\": 0.004}}\n");
+    const std::string src = CLEARJOINT_SOURCE_DIR;
+    const std::string text =
+      "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " +
+      (output_root.empty() ? dir.file("out") : output_root) + "\npreset: fast\n" +
+      "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
+      "accurate: {fe: null, mbd: null}}\n"
+      "fe_studies:\n  - name: thickness\n    scene: " + dir.file("fe.yaml") + "\n"
+      "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004]\n"
+      "fit: {weighting: absolute}\n"
+      "mbd_runs:\n  - {name: " + name + ", scene: " + src +
+      "/mbd_stage/scenes/slider_crank_fe_law.yaml, laws: [{key: "
+      "clearance_joints.0.normal.law_file, study: thickness, value: 0.004}]" + mbd_extra + "}\n"
+      "report: false\n";
+    test_support::write_text(dir.file("p.yaml"), text);
+    return dir.file("p.yaml");
+  }
+
+  int run_pipeline(const test_support::ScratchDir &dir, const Build &b, const std::string &args,
+                   std::string &log)
+  {
+    const int rc = test_support::run_command(std::string(RUN_PIPELINE_EXE) + " " +
+                                               dir.file("p.yaml") + " --no-plots --build-dir " +
+                                               b.root + " " + args,
+                                             dir.file("log.txt"));
+    log = test_support::read_text(dir.file("log.txt"));
+    return rc;
+  }
+} // namespace
+
+TEST(PipelineCheck, AValidPipelinePassesAndNothingIsWritten)
+{
+  test_support::ScratchDir dir("pipeline_check_ok");
+  const Build b(dir);
+  pipeline(dir);
+  std::string log;
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out"))) << log;
+}
+
+TEST(PipelineCheck, ABadOverrideIsNamedByItsPipelineKeyBeforeAnyTaskRuns)
+{
+  test_support::ScratchDir dir("pipeline_check_override");
+  const Build b(dir);
+  // Gravity 1e23 m/s^2 and a journal 2 mm off centre in a 0.5 mm clearance: mbd_stage's own
+  // reader rejects both; the message names the pipeline key. Without --check too: the run
+  // stops before its first (FE) task.
+  for (const auto &[extra, key] : std::vector<std::pair<std::string, std::string>>{
+         {", overrides: {gravity: [0, 0, -1e23]}", "mbd_runs[0].overrides.gravity"},
+         {", overrides: {clearance_joints.0.journal.center: [0.0, 0.4572, 0.002]}",
+          "mbd_runs[0].overrides.clearance_joints.0.journal.center"}})
+    for (const std::string args : {"--check", ""})
+    {
+      pipeline(dir, extra);
+      std::string log;
+      EXPECT_EQ(run_pipeline(dir, b, args, log), 1) << log;
+      EXPECT_NE(log.find("key '" + key + "'"), std::string::npos) << log;
+      EXPECT_FALSE(fs::exists(dir.file("out"))) << "nothing under the output root: " << log;
+    }
+}
+
+TEST(PipelineCheck, UnusableOutputRootsAndNamesAreInputErrors)
+{
+  test_support::ScratchDir dir("pipeline_check_root");
+  const Build b(dir);
+  std::string log;
+  test_support::write_text(dir.file("a_file"), "x");
+  pipeline(dir, "", dir.file("a_file"));
+  EXPECT_EQ(run_pipeline(dir, b, "", log), 1) << log;
+  EXPECT_NE(log.find("key 'output_root'"), std::string::npos) << log;
+  EXPECT_EQ(test_support::read_text(dir.file("a_file")), "x");
+
+  pipeline(dir, "", "", std::string(300, 'n'));
+  EXPECT_EQ(run_pipeline(dir, b, "", log), 1) << log;
+  EXPECT_NE(log.find("mbd_runs[0].name"), std::string::npos) << log;
+  EXPECT_NE(log.find("too long"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out")));
+
+  // Two MBD runs with one name would write into the same folder.
+  std::string text = test_support::read_text(pipeline(dir));
+  text.replace(text.find("report:"), 0,
+               "  - {name: m, scene: " + std::string(CLEARJOINT_SOURCE_DIR) +
+                 "/mbd_stage/scenes/slider_crank_ideal.yaml}\n");
+  test_support::write_text(dir.file("p.yaml"), text);
+  EXPECT_EQ(run_pipeline(dir, b, "", log), 1) << log;
+  EXPECT_NE(log.find("key 'mbd_runs[1].name'"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
+TEST(PipelineInterrupt, SigintDuringTheReportStopsPlotPyAndExits130)
+{
+  test_support::ScratchDir dir("pipeline_interrupt_report");
+  const Build b(dir);
+  std::string text = test_support::read_text(pipeline(dir));
+  text.replace(text.find("report: false"), 13, "report: true");
+  test_support::write_text(dir.file("p.yaml"), text);
+  // A stand-in plot.py: instant for the stages' plots, long for the report (records its pid).
+  test_support::write_text(dir.file("plot.py"),
+                           "import os, sys, time\n"
+                           "if sys.argv[1] == 'report':\n"
+                           "    open(os.environ['REPORT_PID'], 'w').write(str(os.getpid()))\n"
+                           "    time.sleep(60)\n");
+  const std::string pid_file = dir.file("report.pid");
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0)
+  {
+    const std::string cmd = "exec env CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py") +
+                            " REPORT_PID=" + pid_file + " " + RUN_PIPELINE_EXE + " " +
+                            dir.file("p.yaml") + " --build-dir " + b.root + " > " +
+                            dir.file("log.txt") + " 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), nullptr);
+    _exit(127);
+  }
+  for (int i = 0; i < 6000 && test_support::read_text(pid_file).empty(); ++i)
+    usleep(20000);
+  ASSERT_FALSE(test_support::read_text(pid_file).empty()) << test_support::read_text(dir.file("log.txt"));
+  const pid_t report = std::stoi(test_support::read_text(pid_file));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << test_support::read_text(dir.file("log.txt"));
+  const std::string manifest = test_support::read_text(dir.file("out/r/manifest.json"));
+  EXPECT_NE(manifest.find("\"status\": \"incomplete\""), std::string::npos) << manifest;
+  bool gone = false;
+  for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
+    gone = kill(report, 0) != 0;
+  EXPECT_TRUE(gone) << "the report's plot.py was stopped";
+}
