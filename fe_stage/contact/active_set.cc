@@ -38,7 +38,7 @@ namespace clearjoint::fe::detail
           {
             // (c ×0.01 … ×100 here converged slower or not at all)
             const Tensor<1, dim> z =
-              tangential(contact_traction(cn), cn.n) -
+              tangential(cn.traction, cn.n) -
               c * tangential(cn.relative - cn.relative_converged, cn.n);
             const double bound = scene_.contact.mu * lambda_trial;
             stick = z.norm() <= bound + c * eps_g;

@@ -121,17 +121,6 @@ namespace clearjoint::fe::detail
     ActiveSetChange update_active_set(double c, double eps_g, double &omega,
                                       bool &relaxation_history);
     void record_forces(double delta, IncrementRecord &rec);
-    /// The contact force on a node: K u on the DoFs the contact holds. A DoF fixed by a
-    /// symmetry plane carries that plane's reaction, not contact, and is left out (on a plane
-    /// the friction force lies in the plane by symmetry).
-    Tensor<1, dim> contact_traction(const ContactNode &cn) const
-    {
-      Tensor<1, dim> t = cn.traction;
-      for (unsigned int k = 0; k < dim; ++k)
-        if (fixed_constraints_.is_constrained(cn.dofs[k]))
-          t[k] = 0.0;
-      return t;
-    }
     /// The rigid obstacle's gap at a reference point (deal.II types around RigidObstacle::gap).
     bool obstacle_gap(const Point<dim> &X, double delta, double &g0, Tensor<1, dim> &n) const
     {
