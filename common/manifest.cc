@@ -1,8 +1,10 @@
 #include "common/manifest.h"
 
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "common/log.h"
 #include "common/sha256.h"
+#include "common/strict_reader.h"
 
 #include <openssl/opensslv.h>
 
@@ -117,5 +119,30 @@ namespace clearjoint
     const auto text = j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
     write_file_atomically(path_, text + "\n");
     written_ = true;
+  }
+
+  void check_output_replaceable(const std::string &dir, const std::string &stage)
+  {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::exists(dir, ec))
+      return;
+    bool ours = fs::is_directory(dir, ec) && fs::is_empty(dir, ec);
+    if (!ours && fs::is_regular_file(dir + "/manifest.json", ec))
+    {
+      try
+      {
+        ours = read_json_file(dir + "/manifest.json").value("stage", "") == stage;
+      }
+      catch (const std::exception &)
+      {
+        ours = false;
+      }
+    }
+    if (!ours)
+      throw InputError("", "--output", dir, "a new directory, an empty one, or a previous " +
+                                              stage + " output",
+                       "it exists and does not look like an " + stage +
+                         " output; nothing was changed");
   }
 } // namespace clearjoint

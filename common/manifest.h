@@ -56,4 +56,9 @@ namespace clearjoint
 
   /// Versions of the libraries every stage links (yaml-cpp, nlohmann-json, OpenSSL).
   nlohmann::json common_library_versions();
+
+  /// A stage replaces an existing output folder `dir` only if it is empty or holds an earlier
+  /// output of the same `stage` (its manifest.json says so): never delete a folder the stage
+  /// did not write. Throws InputError naming --output otherwise.
+  void check_output_replaceable(const std::string &dir, const std::string &stage);
 } // namespace clearjoint

@@ -126,33 +126,6 @@ namespace
     return dir + ".tmp." + std::to_string(pid);
   }
 
-  /// An existing DIR is replaced only if it is empty or an earlier fe_stage output: never
-  /// delete a folder fe_stage did not write.
-  void check_replaceable(const std::string &dir)
-  {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (!fs::exists(dir, ec))
-      return;
-    bool ours = fs::is_directory(dir, ec) && fs::is_empty(dir, ec);
-    if (!ours && fs::is_regular_file(dir + "/manifest.json", ec))
-      {
-        try
-          {
-            ours = read_json_file(dir + "/manifest.json").value("stage", "") == "fe_stage";
-          }
-        catch (const std::exception &)
-          {
-            ours = false;
-          }
-      }
-    if (!ours)
-      throw InputError("", "--output", dir,
-                       "a new directory, an empty one, or a previous fe_stage output",
-                       "it exists and does not look like an fe_stage output; nothing was "
-                       "changed");
-  }
-
   /// Manifests record paths as written (inside the work folder): point them at DIR before the
   /// rename (the hashes are of the contents, which the rename does not change).
   void repoint_manifests(const std::string &work, const std::string &dir)
@@ -395,7 +368,7 @@ int main(int argc, char **argv)
           log::info("fe_stage: " + scene_path + " is a valid scene");
           return exit_success;
         }
-      check_replaceable(output_dir);
+      check_output_replaceable(output_dir, "fe_stage");
       final_dir = output_dir;
       output_dir = work_dir_for(output_dir);
       work_root = output_dir;

@@ -34,28 +34,7 @@ namespace clearjoint::mbd
       dir_.pop_back();
     tmp_ = dir_ + ".tmp." + std::to_string(::getpid());
     std::error_code ec;
-    // An existing DIR is replaced only if it is empty or a previous mbd_stage output: never
-    // delete a directory we did not write.
-    if (fs::exists(dir_))
-    {
-      bool ours = fs::is_directory(dir_) && fs::is_empty(dir_);
-      if (!ours && fs::is_regular_file(dir_ + "/manifest.json"))
-      {
-        try
-        {
-          ours = read_json_file(dir_ + "/manifest.json").value("stage", "") == "mbd_stage";
-        }
-        catch (const std::exception &)
-        {
-          ours = false;
-        }
-      }
-      if (!ours)
-        throw InputError("", "--output", dir_,
-                         "a new directory, an empty one, or a previous mbd_stage output",
-                         "it exists and does not look like an mbd_stage output; nothing was "
-                         "changed");
-    }
+    check_output_replaceable(dir_, "mbd_stage");
     const fs::path parent = fs::path(dir_).parent_path();
     if (!parent.empty())
       fs::create_directories(parent, ec);
