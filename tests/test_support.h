@@ -1,11 +1,15 @@
 // Small helpers shared by the tests: a fresh scratch directory per test, writing files, and
-// running an executable with its exit code.
+// running an executable with its exit code — in the foreground, or in the background to be
+// interrupted.
 #pragma once
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include <fcntl.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -41,6 +45,38 @@ namespace clearjoint::test_support
   inline int run_command(const std::string &command_line, const std::string &log_path)
   {
     const int status = std::system((command_line + " > '" + log_path + "' 2>&1").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  /// Starts `exe` with `args` in the background, stdout and stderr to `log_path`, with extra
+  /// environment entries ("NAME=value"); returns its pid (for kill() and wait_exit_code()).
+  inline pid_t start_process(const std::string &exe, const std::vector<std::string> &args,
+                             const std::string &log_path,
+                             const std::vector<std::string> &env = {})
+  {
+    const pid_t pid = fork();
+    if (pid == 0)
+    {
+      for (const auto &e : env)
+        putenv(const_cast<char *>(e.c_str()));  // the child's own copy of `env`
+      const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      dup2(fd, 1);
+      dup2(fd, 2);
+      std::vector<char *> argv = {const_cast<char *>(exe.c_str())};
+      for (const auto &a : args)
+        argv.push_back(const_cast<char *>(a.c_str()));
+      argv.push_back(nullptr);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    return pid;
+  }
+
+  /// Waits for a started process: its exit status, or -1 if it did not exit normally.
+  inline int wait_exit_code(const pid_t pid)
+  {
+    int status = 0;
+    waitpid(pid, &status, 0);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
 

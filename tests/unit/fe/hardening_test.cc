@@ -34,31 +34,6 @@ namespace
            "global_refinements: 0}\n";
   }
 
-  pid_t start(const std::vector<std::string> &args, const std::string &log)
-  {
-    const pid_t pid = fork();
-    if (pid == 0)
-    {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(fd, 1);
-      dup2(fd, 2);
-      std::vector<char *> argv = {const_cast<char *>(FE_STAGE_EXE)};
-      for (const auto &a : args)
-        argv.push_back(const_cast<char *>(a.c_str()));
-      argv.push_back(nullptr);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
-    return pid;
-  }
-
-  int exit_code(const pid_t pid)
-  {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
   std::vector<std::string> temporaries(const fs::path &dir)
   {
     std::vector<std::string> out;
@@ -109,14 +84,14 @@ TEST(FeHardening, InterruptsLeaveNothingUnderTheFinalNameAndTheOldOutputIntact)
   for (const auto &[sig, delay, code] : std::vector<std::tuple<int, double, int>>{
          {SIGINT, 0.0, 130}, {SIGINT, 2.0, 130}, {SIGTERM, 1.0, 143}})
   {
-    const pid_t pid =
-      start({dir.file("long.yaml"), "--output", out, "--no-plots"}, dir.file("run.log"));
+    const pid_t pid = test_support::start_process(
+      FE_STAGE_EXE, {dir.file("long.yaml"), "--output", out, "--no-plots"}, dir.file("run.log"));
     for (int i = 0; i < 3000 && temporaries(dir.path()).empty(); ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     ASSERT_FALSE(temporaries(dir.path()).empty()) << test_support::read_text(dir.file("run.log"));
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     kill(pid, sig);
-    EXPECT_EQ(exit_code(pid), code) << test_support::read_text(dir.file("run.log"));
+    EXPECT_EQ(test_support::wait_exit_code(pid), code) << test_support::read_text(dir.file("run.log"));
     EXPECT_TRUE(temporaries(dir.path()).empty()) << "the work folder is removed";
     EXPECT_EQ(test_support::read_text(out + "/manifest.json"), manifest)
       << "the earlier output is untouched";

@@ -58,35 +58,6 @@ namespace
     return text.find(part) != std::string::npos;
   }
 
-  /// Starts mbd_stage on `scene` into `out` (stdout+stderr to `log`), returns its pid.
-  pid_t start_stage(const std::vector<std::string> &args, const std::string &log,
-                    const std::vector<std::string> &env = {})
-  {
-    const pid_t pid = fork();
-    if (pid == 0)
-    {
-      for (const auto &e : env)
-        putenv(const_cast<char *>(e.c_str()));
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(fd, 1);
-      dup2(fd, 2);
-      std::vector<char *> argv = {const_cast<char *>(MBD_STAGE_EXECUTABLE)};
-      for (const auto &a : args)
-        argv.push_back(const_cast<char *>(a.c_str()));
-      argv.push_back(nullptr);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
-    return pid;
-  }
-
-  int wait_exit_code(const pid_t pid)
-  {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
   bool wait_for(const std::function<bool()> &condition, const double seconds)
   {
     const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
@@ -207,12 +178,12 @@ TEST(MbdHardening, InterruptDuringIntegrationLeavesTheOldOutputsAndNoTemporaryFo
        std::vector<std::tuple<int, double, int>>{{SIGINT, 0.05, 130}, {SIGINT, 1.0, 130},
                                                  {SIGTERM, 0.5, 143}})
   {
-    const pid_t pid = start_stage({dir.file("long.json"), "--output", dir.file("out"),
-                                   "--no-plots"},
-                                  dir.file("run.log"));
+    const pid_t pid = test_support::start_process(
+      MBD_STAGE_EXECUTABLE, {dir.file("long.json"), "--output", dir.file("out"), "--no-plots"},
+      dir.file("run.log"));
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     kill(pid, sig);
-    EXPECT_EQ(wait_exit_code(pid), code) << test_support::read_text(dir.file("run.log"));
+    EXPECT_EQ(test_support::wait_exit_code(pid), code) << test_support::read_text(dir.file("run.log"));
     EXPECT_TRUE(has(test_support::read_text(dir.file("run.log")), "interrupted"))
       << test_support::read_text(dir.file("run.log"));
     EXPECT_EQ(test_support::read_text(dir.file("out/manifest.json")), old_manifest)
@@ -233,15 +204,14 @@ TEST(MbdHardening, InterruptWhilePlottingStopsPlotPyAndLeavesNoFinalFolder)
                            "open(os.environ['PLOT_PID_FILE'], 'w').write(str(os.getpid()))\n"
                            "time.sleep(60)\n");
   const std::string pid_file = dir.file("plot.pid");
-  const pid_t pid = start_stage({dir.file("s.json"), "--output", dir.file("out")},
-                                dir.file("run.log"),
-                                {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("slow_plot.py"),
-                                 "PLOT_PID_FILE=" + pid_file});
+  const pid_t pid = test_support::start_process(
+    MBD_STAGE_EXECUTABLE, {dir.file("s.json"), "--output", dir.file("out")}, dir.file("run.log"),
+    {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("slow_plot.py"), "PLOT_PID_FILE=" + pid_file});
   ASSERT_TRUE(wait_for([&] { return !test_support::read_text(pid_file).empty(); }, 60.0))
     << test_support::read_text(dir.file("run.log"));
   const pid_t plot_pid = std::stoi(test_support::read_text(pid_file));
   kill(pid, SIGINT);
-  EXPECT_EQ(wait_exit_code(pid), 130) << test_support::read_text(dir.file("run.log"));
+  EXPECT_EQ(test_support::wait_exit_code(pid), 130) << test_support::read_text(dir.file("run.log"));
   EXPECT_FALSE(fs::exists(dir.file("out"))) << "nothing under the final name";
   EXPECT_TRUE(entries_starting_with(dir.path(), "out.tmp").empty());
   // plot.py was stopped (and reaped by the stage): no such process any more.

@@ -142,26 +142,16 @@ TEST(PipelineInterrupt, SigintDuringTheReportStopsPlotPyAndExits130)
                            "    open(os.environ['REPORT_PID'], 'w').write(str(os.getpid()))\n"
                            "    time.sleep(60)\n");
   const std::string pid_file = dir.file("report.pid");
-  const pid_t pid = fork();
+  const pid_t pid = test_support::start_process(
+    RUN_PIPELINE_EXE, {dir.file("p.yaml"), "--build-dir", b.root}, dir.file("log.txt"),
+    {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py"), "REPORT_PID=" + pid_file});
   ASSERT_GE(pid, 0);
-  if (pid == 0)
-  {
-    const std::string cmd = "exec env CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py") +
-                            " REPORT_PID=" + pid_file + " " + RUN_PIPELINE_EXE + " " +
-                            dir.file("p.yaml") + " --build-dir " + b.root + " > " +
-                            dir.file("log.txt") + " 2>&1";
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), nullptr);
-    _exit(127);
-  }
   for (int i = 0; i < 6000 && test_support::read_text(pid_file).empty(); ++i)
     usleep(20000);
   ASSERT_FALSE(test_support::read_text(pid_file).empty()) << test_support::read_text(dir.file("log.txt"));
   const pid_t report = std::stoi(test_support::read_text(pid_file));
   kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130) << test_support::read_text(dir.file("log.txt"));
+  ASSERT_EQ(test_support::wait_exit_code(pid), 130) << test_support::read_text(dir.file("log.txt"));
   const std::string manifest = test_support::read_text(dir.file("out/r/manifest.json"));
   EXPECT_NE(manifest.find("\"status\": \"incomplete\""), std::string::npos) << manifest;
   bool gone = false;

@@ -148,16 +148,10 @@ TEST(RunPipeline, InterruptLeavesNothingCompleteAndTheNextRunFinishesTheJob)
   test_support::ScratchDir dir("pipeline_interrupt");
   FakeBuild build(dir);
   test_support::write_text(dir.file("p.yaml"), pipeline_yaml(dir.path(), "[0.002, 0.004]"));
-  const std::string cmd = std::string("CLEARJOINT_FAKE_SLEEP=30 ") + RUN_PIPELINE_EXE + " " +
-                          dir.file("p.yaml") + " --no-plots --build-dir " + build.root + " > " +
-                          dir.file("log.txt") + " 2>&1";
-  const pid_t pid = fork();
+  const pid_t pid = test_support::start_process(
+    RUN_PIPELINE_EXE, {dir.file("p.yaml"), "--no-plots", "--build-dir", build.root},
+    dir.file("log.txt"), {"CLEARJOINT_FAKE_SLEEP=30"});
   ASSERT_GE(pid, 0);
-  if (pid == 0)
-  {
-    execl("/bin/sh", "sh", "-c", ("exec env " + cmd).c_str(), nullptr);
-    _exit(127);
-  }
   // Wait until the first FE task is running, then interrupt the pipeline.
   const fs::path partial = dir.file("out/r/fe/thickness/t_B=0.002.partial");
   const fs::path started = dir.file("out/r/fe/thickness/t_B=0.002.command.txt");
@@ -165,10 +159,8 @@ TEST(RunPipeline, InterruptLeavesNothingCompleteAndTheNextRunFinishesTheJob)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130) << "128 + SIGINT: " << test_support::read_text(dir.file("log.txt"));
+  ASSERT_EQ(test_support::wait_exit_code(pid), 130)
+    << "128 + SIGINT: " << test_support::read_text(dir.file("log.txt"));
   EXPECT_NE(test_support::read_text(dir.file("log.txt")).find("interrupted"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir.file("out/r/fe/thickness/t_B=0.002"))) << "nothing looks complete";
   EXPECT_FALSE(fs::exists(dir.file("out/r/pipeline_summary.json")));
