@@ -12,24 +12,13 @@ namespace clearjoint::fe
   {
     const auto &G = scene.geometry;
     const double theta = scene.misalignment.theta_deg * units::deg;
-    StudyPlan p;
-    p.name = "misalignment";
-    p.mesh = StudyPlan::Mesh::joint;
-    p.degree = scene.mesh.degree;
-    p.deformable_partner = scene.loading.journal != JournalLoading::rigid;
+    StudyPlan p = joint_study(scene, "misalignment");
     // a finite cylinder with axis (0, sin θ, cos θ); the bottom of its rim at z < 0 is at
     // y_c − (L_J/2) sin θ − R_J cos θ and touches the bore (y = −R_B) at δ = 0
     p.obstacle.kind = RigidObstacle::Kind::tilted_cylinder;
-    p.obstacle.radius = G.R_J();
-    p.obstacle.half_length = 0.5 * G.L_J();
     p.obstacle.tilt = theta;
     p.obstacle.offset = G.R_B - 0.5 * G.L_J() * std::sin(theta) - G.R_J() * std::cos(theta);
-    p.pairing = p.deformable_partner ? StudyPlan::Pairing::common_rays :
-                                       StudyPlan::Pairing::obstacle;
     p.tilted = true;
-    p.body_names = {"bearing", "journal"};
-    p.records = "contact force on the bearing against the tilted journal's push beyond first "
-                "touch (rim contact)";
     return p;
   }
 } // namespace clearjoint::fe

@@ -2,6 +2,35 @@
 
 namespace clearjoint::fe
 {
+  StudyPlan joint_study(const FeScene &scene, const std::string &name)
+  {
+    StudyPlan p;
+    p.name = name;
+    p.mesh = StudyPlan::Mesh::joint;
+    p.degree = scene.mesh.degree;
+    p.deformable_partner = scene.loading.journal != JournalLoading::rigid;
+    p.obstacle.radius = scene.geometry.R_J();
+    p.obstacle.half_length = 0.5 * scene.geometry.L_J();
+    // the bearing's and the journal's surface nodes lie on common rays (mesh/charts.h)
+    p.pairing = p.deformable_partner ? StudyPlan::Pairing::common_rays :
+                                       StudyPlan::Pairing::obstacle;
+    p.body_names = {"bearing", "journal"};
+    return p;
+  }
+
+  StudyPlan block_study(const FeScene &scene, const std::string &name)
+  {
+    StudyPlan p;
+    p.name = name;
+    p.mesh = StudyPlan::Mesh::block;
+    p.degree = 2;
+    p.deformable_partner = scene.verification.deformable_indenter;
+    p.pairing = p.deformable_partner ? StudyPlan::Pairing::mortar : StudyPlan::Pairing::obstacle;
+    p.must_touch = false;  // the first increments of a small push may touch at no node
+    p.body_names = {"block", "indenter"};
+    return p;
+  }
+
   StudyPlan plan_study(const FeScene &scene)
   {
     switch (scene.study)

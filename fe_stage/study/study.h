@@ -36,8 +36,14 @@ namespace clearjoint::fe
     /// somewhere; zero active nodes means the mesh is too coarse for the contact patch).
     bool must_touch = true;
     std::array<std::string, 2> body_names;  // material ids 0 and 1
-    std::string records;  // what the CSV's force means in this study (for the log and docs)
   };
+
+  /// What the joint studies share: the bearing ring and the journal (rigid, or deformable and
+  /// paired on common rays), the journal's cylinder for the obstacle; the caller places it.
+  StudyPlan joint_study(const FeScene &scene, const std::string &name);
+  /// What the verification blocks share: Q2, a rigid indenter or a deformable one coupled by
+  /// dual mortar, no contact required at every increment.
+  StudyPlan block_study(const FeScene &scene, const std::string &name);
 
   StudyPlan radial_study(const FeScene &scene);
   StudyPlan misalignment_study(const FeScene &scene);
