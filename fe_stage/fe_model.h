@@ -31,6 +31,14 @@ namespace clearjoint::fe
     double pressure_min = 0.0;     // [Pa] min/max nodal pressure over the active nodes
     double pressure_max = 0.0;
     double wall_time = 0.0;        // [s] since the start of the run
+    // Coulomb's law at the converged state (contact.mu > 0; all ranks), as fractions of
+    // μ·λ_max (λ_max the largest nodal normal force): the largest |t_T| − μλ at an active node
+    // (the cone; ≤ 0 inside it), the largest ||t_T| − μλ| at a slipping node, and the largest
+    // 1 + t̂_T·ŝ_T at a slipping node that slid in this increment (0: the friction force
+    // exactly opposes the slip; sliding means more than 1e-6 of the increment's push).
+    double friction_cone_excess = 0.0;
+    double friction_slip_law_error = 0.0;
+    double friction_direction_error = 0.0;
   };
 
   /// Where the linear-elastic von Mises stress exceeds the scene's yield stress, per body, at

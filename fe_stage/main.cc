@@ -299,7 +299,7 @@ int main(int argc, char **argv)
                "by SIGINT/SIGTERM."};
   std::string scene_path, output_dir, final_dir;
   bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
-       quiet = false, check = false;
+       quiet = false, verbose = false, check = false;
   PresetUse preset;
   app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
   app.add_option("--output,-o", output_dir, "output directory");
@@ -314,6 +314,9 @@ int main(int argc, char **argv)
   app.add_flag("--no-fields", no_fields, "do not write VTU fields");
   app.add_flag("--no-plots", no_plots, "do not draw the force-penetration plots (PNG)");
   app.add_flag("--quiet,-q", quiet, "warnings and errors only");
+  app.add_flag("--verbose,-v", verbose,
+               "debug messages: every active-set iteration's changed nodes and Coulomb "
+               "slip-law residual");
   app.add_flag("--check", check,
                "read and validate the scene (and its mesh) and exit: 0 valid, 1 input error; "
                "writes nothing");
@@ -327,6 +330,8 @@ int main(int argc, char **argv)
     }
   if (quiet)
     log::set_level(log::Level::warning);
+  if (verbose && root)
+    log::set_level(log::Level::debug);
   if (print_defaults)
     {
       if (root)

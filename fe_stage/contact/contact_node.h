@@ -41,15 +41,14 @@ namespace clearjoint::fe::detail
     double weight = 0.0;  // [m²] ∫ φ_i dA over the contact surface (nodal area)
     Tensor<1, dim> n;
     double g0 = 0.0;
-    // Coulomb friction (contact.mu > 0). An active node sticks (its whole relative
-    // displacement is constrained: no new tangential slip) or slips (normal constraint, and
-    // the friction force μλ·e with its own normal force λ, implicit in the linear system).
+    // Coulomb friction (contact.mu > 0), solved by a semi-smooth Newton method (active_set.cc
+    // and contact_rows.cc): an active node sticks (its whole relative displacement is
+    // constrained: no new tangential slip) or slips (normal constraint, and the friction force
+    // linearised about the last iterate: μλ·ŵ along the slip direction plus κ·Q·w across it).
     bool stick = true;
     Tensor<1, dim> traction;     // [N] total contact force on this node (K u at its DoFs)
-    Tensor<1, dim> slip_direction;  // unit tangent of the friction force on a slipping node
-    Tensor<1, dim> direction_update;  // its last fixed-point update (relaxation)
-    unsigned int stick_slip_flips = 0;  // in this increment (cycle breaking)
-    unsigned int contact_flips = 0;     // active ↔ inactive, in this increment (friction)
+    Tensor<1, dim> slip_direction;  // ŵ = w/|w|: unit tangent of the friction force (slipping)
+    double kappa = 0.0;          // [1] μξ/|w| < 1 of the slipping node's linearisation
     Tensor<1, dim> relative;     // [m] u − u_partner (rigid obstacle: − its translation)
     Tensor<1, dim> relative_converged;  // [m] the same at the last converged increment
   };

@@ -41,66 +41,137 @@ namespace clearjoint::fe::detail
         obstacle_gap(cn.X, delta, cn.g0, cn.n);
   }
 
-  /// A slipping node s carries the friction force μλ_s·e_s and its partners −w_p·μλ_s·e_s,
-  /// with λ_s = n·(K u)_s its own normal contact force: rows (s,k) of the system get
-  /// −μ e_k nᵀK_s and rows (p,k) +w_p μ e_k nᵀK_s (K_s: the rows of s's DoFs), cell by cell:
-  /// the contact cell's matrix is extended by the partners' rows and condensed as a whole
-  /// (so the constraints' inhomogeneities reach the right-hand side too). This makes A_
-  /// non-symmetric (GMRES). Returns false if the cell holds no slipping node.
+  /// The friction force on a slipping node s, linearised about the last iterate (semi-smooth
+  /// Newton, docs/fe.md): with t = P_T M (K u)_s the node's tangential contact force (M leaves
+  /// out DoFs fixed by a symmetry plane: their reaction is not friction), λ = n·(K u)_s, the
+  /// slip increment s_T = P_T (D u + b) (D u = u_s − Σ w_p u_p; b the obstacle's motion minus
+  /// the last converged relative displacement) and w = t − c s_T, Coulomb's slip law
+  /// t = μλ ŵ(u) linearised at ŵ = w/|w| is
+  ///     t = F(u) = μ ŵ λ(u) + κ Q (t(u) − c s_T(u)),   κ = μλ/|w| < 1,  Q = P_T − ŵ ŵᵀ,
+  /// the second term the derivative of the direction (ŵ turns by Q dw/|w|). The node's rows
+  /// get K_s u − F(u) (and its partners' rows + w_p F(u), the reaction): the terms in K_s here,
+  /// cell by cell (K u is a sum over cells; (K u)_s includes the shares of hanging DoFs that
+  /// hang from s, as the condensed equations and the evaluation see them), the c·Q·s_T term
+  /// once per node in friction_node_matrix. The contact cell's matrix is extended by the
+  /// partners' rows and condensed as a whole (so the constraints' inhomogeneities reach the
+  /// right-hand side too). This makes A_ non-symmetric (GMRES). Returns false if the cell
+  /// holds no slipping node.
   bool ContactModel::friction_cell_matrix(const unsigned int k, FullMatrix<double> &M,
                                           std::vector<types::global_dof_index> &ext) const
   {
     const auto &dofs = contact_cell_dofs_[k];
     const auto &Kc = contact_cell_matrices_[k];
+    const unsigned int n = dofs.size();
     ext = dofs;
-    bool any = false;
-    std::vector<std::pair<const ContactNode *, std::vector<double>>> rows_of;
-    for (unsigned int i = 0; i < dofs.size(); ++i)
+    // per slipping node: the rows F(u) over the cell's columns (3 × n)
+    std::vector<std::pair<const ContactNode *, FullMatrix<double>>> rows_of;
+    for (unsigned int i = 0; i < n; ++i)
       {
         const auto it = slipping_.find(dofs[i]);
         if (it == slipping_.end())
           continue;
         const ContactNode &cn = nodes_[it->second];
-        any = true;
-        // n·(K_cell u) over this node's rows: one row over the cell's columns
-        std::vector<double> row(dofs.size(), 0.0);
-        for (unsigned int c = 0; c < dim; ++c)
+        // (K u)_s over the cell's columns, with the rows of hanging DoFs that hang from s
+        FullMatrix<double> Ks(dim, n);
+        for (unsigned int r = 0; r < n; ++r)
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              double share = dofs[r] == cn.dofs[c] ? 1.0 : 0.0;
+              if (share == 0.0 && hanging_constraints_.is_constrained(dofs[r]))
+                for (const auto &[m, coefficient] :
+                     *hanging_constraints_.get_constraint_entries(dofs[r]))
+                  if (m == cn.dofs[c])
+                    share += coefficient;
+              if (share != 0.0)
+                for (unsigned int j = 0; j < n; ++j)
+                  Ks(c, j) += share * Kc(r, j);
+            }
+        const Tensor<2, dim> Q = tangent_projection(cn) - outer_product(cn.slip_direction,
+                                                                         cn.slip_direction);
+        const double mu = scene_.contact.mu;
+        FullMatrix<double> F(dim, n);
+        for (unsigned int j = 0; j < n; ++j)
           {
-            const auto li = std::find(dofs.begin(), dofs.end(), cn.dofs[c]) - dofs.begin();
-            for (unsigned int j = 0; j < dofs.size(); ++j)
-              row[j] += cn.n[c] * Kc(li, j);
+            double lambda_j = 0.0;
+            for (unsigned int c = 0; c < dim; ++c)
+              lambda_j += cn.n[c] * Ks(c, j);
+            for (unsigned int a = 0; a < dim; ++a)
+              {
+                double f = mu * cn.slip_direction[a] * lambda_j;
+                for (unsigned int b = 0; b < dim; ++b)
+                  if (contact_holds(cn, b))
+                    f += cn.kappa * Q[a][b] * Ks(b, j);
+                F(a, j) = f;
+              }
           }
-        rows_of.emplace_back(&cn, std::move(row));
+        rows_of.emplace_back(&cn, std::move(F));
         for (const auto &p : cn.partners)
           for (const auto d : p.dofs)
             if (std::find(ext.begin(), ext.end(), d) == ext.end())
               ext.push_back(d);
       }
-    if (!any)
+    if (rows_of.empty())
       return false;
     M.reinit(ext.size(), ext.size());
-    for (unsigned int i = 0; i < dofs.size(); ++i)
-      for (unsigned int j = 0; j < dofs.size(); ++j)
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
         M(i, j) = Kc(i, j);
-    const double mu = scene_.contact.mu;
     auto local = [&](const types::global_dof_index d) {
       return std::find(ext.begin(), ext.end(), d) - ext.begin();
     };
-    for (const auto &[cn, row] : rows_of)
-      for (unsigned int c = 0; c < dim; ++c)
+    for (const auto &[cn, F] : rows_of)
+      for (unsigned int a = 0; a < dim; ++a)
         {
-          const double f = mu * cn->slip_direction[c];
-          const auto ls = local(cn->dofs[c]);
-          for (unsigned int j = 0; j < dofs.size(); ++j)
-            M(ls, j) -= f * row[j];
+          const auto ls = local(cn->dofs[a]);
+          for (unsigned int j = 0; j < n; ++j)
+            M(ls, j) -= F(a, j);
           for (const auto &p : cn->partners)
             {
-              const auto lp = local(p.dofs[c]);
-              for (unsigned int j = 0; j < dofs.size(); ++j)
-                M(lp, j) += p.weight * f * row[j];
+              const auto lp = local(p.dofs[a]);
+              for (unsigned int j = 0; j < n; ++j)
+                M(lp, j) += p.weight * F(a, j);
             }
         }
     return true;
+  }
+
+  /// The slip term of a slipping node's linearised friction force, −κ c Q s_T(u) with
+  /// s_T = P_T (D u + b): rows of the node +κ c Q (D u + b) = 0 part, rows of its partners
+  /// −w_p κ c Q (D u + b); the constant part goes to the right-hand side. Added once per node
+  /// (by the rank that owns it).
+  void ContactModel::friction_node_matrix(const ContactNode &cn, const double c,
+                                          const double delta, FullMatrix<double> &M,
+                                          Vector<double> &rhs,
+                                          std::vector<types::global_dof_index> &ext) const
+  {
+    // D as (DoF list, weight per body point): the node +1, each partner −w_p
+    std::vector<std::pair<const std::array<types::global_dof_index, dim> *, double>> points;
+    points.emplace_back(&cn.dofs, 1.0);
+    for (const auto &p : cn.partners)
+      points.emplace_back(&p.dofs, -p.weight);
+    ext.clear();
+    for (const auto &[d, w] : points)
+      ext.insert(ext.end(), d->begin(), d->end());
+    M.reinit(ext.size(), ext.size());
+    rhs.reinit(ext.size());
+    const Tensor<2, dim> Q =
+      tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
+    Tensor<1, dim> b = -cn.relative_converged;
+    if (!cn.two_body)
+      b[1] += delta;  // the rigid obstacle moves by −δ e_y
+    const Tensor<1, dim> Qb = Q * b;
+    const double kc = cn.kappa * c;
+    // row of body point r, component a: (its D weight) · κc Σ_b Q_ab (D u + b)_b; the node's
+    // row carries +, the partners' −w_p: both are its D weight.
+    for (unsigned int r = 0; r < points.size(); ++r)
+      for (unsigned int a = 0; a < dim; ++a)
+        {
+          const double wr = points[r].second;
+          for (unsigned int q = 0; q < points.size(); ++q)
+            for (unsigned int bb = 0; bb < dim; ++bb)
+              M(r * dim + a, q * dim + bb) += wr * kc * Q[a][bb] * points[q].second;
+          rhs(r * dim + a) = -wr * kc * Qb[a];
+        }
   }
 
   /// The constraints of this iteration: the active nodes' lines (a sticking node: no new

@@ -59,8 +59,9 @@ namespace clearjoint::fe::detail
   }
 
   /// The condensed system of this iteration: the static part, plus the contact cells condensed
-  /// with this iteration's constraints (with the friction rows of slipping nodes).
-  void ContactModel::assemble_system(const double delta)
+  /// with this iteration's constraints (with the friction rows of slipping nodes), plus the
+  /// slip terms of the slipping nodes (c: the complementarity constant [N/m]).
+  void ContactModel::assemble_system(const double delta, const double c)
   {
     ScopedTimer timer(t_assemble_);
     A_.copy_from(A_static_);
@@ -87,6 +88,14 @@ namespace clearjoint::fe::detail
           cell_rhs = 0.0;
           constraints_.distribute_local_to_global(contact_cell_matrices_[k], cell_rhs,
                                                   contact_cell_dofs_[k], A_, rhs_);
+        }
+    Vector<double> node_rhs;
+    for (const auto &[x_dof, i] : slipping_)
+      if (nodes_[i].owned)  // once per node over all ranks
+        {
+          friction_node_matrix(nodes_[i], c, delta, friction_matrix, node_rhs, friction_dofs);
+          constraints_.distribute_local_to_global(friction_matrix, node_rhs, friction_dofs, A_,
+                                                  rhs_);
         }
     A_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);

@@ -112,15 +112,37 @@ namespace clearjoint::fe::detail
     IncrementRecord solve_increment(double delta);
     // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)
     void build_contact_constraints(double delta);
-    void assemble_system(double delta);
+    void assemble_system(double delta, double c);
     struct ActiveSetChange
     {
-      unsigned int n_changed = 0;         // nodes whose active or stick state changed (all ranks)
-      double max_direction_change = 0.0;  // largest slip-direction update (this rank)
+      unsigned int n_changed = 0;  // nodes whose active or stick state changed (all ranks)
+      double slip_residual = 0.0;  // [N] largest |t − μλŵ| at nodes that slipped in the
+                                   // solve and still slip (all ranks): Coulomb's slip law
+      double force_scale = 0.0;    // [N] largest normal nodal force λ (all ranks)
     };
-    ActiveSetChange update_active_set(double c, double eps_g, double &omega,
-                                      bool &relaxation_history);
+    ActiveSetChange update_active_set(double c, double eps_g);
     void record_forces(double delta, IncrementRecord &rec);
+    void record_coulomb_check(IncrementRecord &rec) const;
+    /// Whether the contact holds DoF k of the node: a DoF fixed by a symmetry plane carries
+    /// that plane's reaction, not contact (on the plane the friction force lies in it).
+    bool contact_holds(const ContactNode &cn, const unsigned int k) const
+    {
+      return !fixed_constraints_.is_constrained(cn.dofs[k]);
+    }
+    /// The contact force on a node: K u on the DoFs the contact holds.
+    Tensor<1, dim> contact_traction(const ContactNode &cn) const
+    {
+      Tensor<1, dim> t = cn.traction;
+      for (unsigned int k = 0; k < dim; ++k)
+        if (!contact_holds(cn, k))
+          t[k] = 0.0;
+      return t;
+    }
+    /// P_T = I − n nᵀ at the node.
+    static Tensor<2, dim> tangent_projection(const ContactNode &cn)
+    {
+      return Tensor<2, dim>(unit_symmetric_tensor<dim>()) - outer_product(cn.n, cn.n);
+    }
     /// The rigid obstacle's gap at a reference point (deal.II types around RigidObstacle::gap).
     bool obstacle_gap(const Point<dim> &X, double delta, double &g0, Tensor<1, dim> &n) const
     {
@@ -136,6 +158,8 @@ namespace clearjoint::fe::detail
     void evaluate_contact(double delta);
     bool friction_cell_matrix(unsigned int k, FullMatrix<double> &M,
                               std::vector<types::global_dof_index> &ext) const;
+    void friction_node_matrix(const ContactNode &cn, double c, double delta, FullMatrix<double> &M,
+                              Vector<double> &rhs, std::vector<types::global_dof_index> &ext) const;
     void condense_hanging(TrilinosWrappers::MPI::Vector &r);
     void write_fields(unsigned int counter, double delta);
     /// Von Mises against scene.material.yield_stress at every quadrature point (collective);

@@ -78,14 +78,8 @@ namespace clearjoint::fe::detail
           // As Abaqus's CSTATUS, CSHEAR, CSLIP: status 0 open, 1 slip, 2 stick (frictionless
           // contact slides freely: slip); shear = the friction traction |t_T|/w, zero without
           // friction and off contact; slip = the tangential displacement against the other
-          // body since the start, where in contact. The friction force is K u on the node's
-          // DoFs that the contact holds: a DoF fixed by a symmetry plane or a support carries
-          // that reaction, not friction, and is left out.
-          Tensor<1, dim> t = cn.traction;
-          for (unsigned int k = 0; k < dim; ++k)
-            if (fixed_constraints_.is_constrained(cn.dofs[k]))
-              t[k] = 0.0;
-          const double shear = tangential(t, cn.n).norm();
+          // body since the start, where in contact.
+          const double shear = tangential(contact_traction(cn), cn.n).norm();
           ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && cn.stick ? 2.0 : 1.0);
           ff_owned[cn.dofs[1]] =
             friction_ && cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;

@@ -99,6 +99,8 @@ namespace clearjoint::fe::detail
   rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
   rec.pressure_min = Utilities::MPI::min(p_min, comm_);
   rec.pressure_max = Utilities::MPI::max(p_max, comm_);
+  if (friction_)
+    record_coulomb_check(rec);
   if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
     throw StepFailure{"non-finite contact force"};
   // A pushed joint must touch somewhere: no active node means the journal slipped between
@@ -114,4 +116,38 @@ namespace clearjoint::fe::detail
                       " m at a contact-surface node (candidate window too small)"};
   }
 
+  /// How well the converged state satisfies Coulomb's law at every node (IncrementRecord's
+  /// friction_* fields): computed from K u and the displacements, independently of the
+  /// stick/slip decisions that produced them.
+  void ContactModel::record_coulomb_check(IncrementRecord &rec) const
+  {
+    const double mu = scene_.contact.mu;
+    double lambda_max = 0.0, cone = -std::numeric_limits<double>::max(), slip_law = 0.0,
+           direction = 0.0;
+    for (const auto &cn : nodes_)
+      if (cn.owned && cn.active)
+        lambda_max = std::max(lambda_max, cn.lambda);
+    lambda_max = Utilities::MPI::max(lambda_max, comm_);
+    // slid: the tangential relative displacement in this increment exceeds 1e-6 of the
+    // increment's push (a sticking node's is 0 to round-off)
+    const double slid = 1e-6 * scene_.loading.delta_max / scene_.loading.n_increments;
+    for (const auto &cn : nodes_)
+      if (cn.owned && cn.active)
+        {
+          const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
+          cone = std::max(cone, t.norm() - mu * cn.lambda);
+          if (!cn.stick)
+            {
+              slip_law = std::max(slip_law, std::abs(t.norm() - mu * cn.lambda));
+              const Tensor<1, dim> s = tangential(cn.relative - cn.relative_converged, cn.n);
+              if (s.norm() > slid && t.norm() > 0.0)
+                direction = std::max(direction, 1.0 + (t / t.norm()) * (s / s.norm()));
+            }
+        }
+    const double scale = mu * lambda_max > 0.0 ? mu * lambda_max : 1.0;
+    cone = Utilities::MPI::max(cone, comm_);
+    rec.friction_cone_excess = lambda_max > 0.0 ? cone / scale : 0.0;
+    rec.friction_slip_law_error = Utilities::MPI::max(slip_law, comm_) / scale;
+    rec.friction_direction_error = Utilities::MPI::max(direction, comm_);
+  }
 } // namespace clearjoint::fe::detail

@@ -78,25 +78,25 @@ def main():
             check(np.all(shear == 0), tag + "frictionless: zero shear everywhere")
             check(np.all(status[active] == 1), tag + "frictionless: every contact point slips (1)")
         else:
-            # Coulomb's cone |t_T| <= mu*p at every contact point, equality where slipping.
-            # 1e-4 relative: the active-set loop ends when no slip direction changes by more
-            # than 1e-5 and the linear solves are converged to 1e-10; the nodal values are
-            # exact at the VTU points (Q2 patches subdivided twice = the support points).
+            # Coulomb's cone |t_T| <= mu*p at every contact point, equality where slipping,
+            # on the symmetry planes too (there the plane's reaction is not friction and is
+            # left out). 1e-4 relative: the semi-smooth Newton loop ends when the slip law
+            # holds to 1e-6 of the largest nodal force (1e-5 of mu*lambda_max, more at the
+            # small forces of the zone's edge; measured ~1e-7), the linear solves to 1e-10;
+            # the nodal values are exact at the VTU points (Q2 patches subdivided twice = the
+            # support points).
             ratio = shear[active] / (MU * pressure[active])
             check(np.all(ratio <= 1 + 1e-4), tag + "|t_T| <= mu p at every contact point "
-                  "(max ratio %.6f)" % ratio.max())
-            # Equality where slipping, off the symmetry planes x = 0 and z = 0: on a plane the
-            # component of the friction force normal to it is the plane's reaction and is
-            # left out of contact_shear, and today's stick/slip iteration takes the slip
-            # direction from K u including that reaction (docs/fe.md, known limitations).
+                  "(max ratio %.8f)" % ratio.max())
+            slipping = status[active] == 1
             xyz = p["xyz"][active]
-            off_planes = (np.abs(xyz[:, 0]) > 1e-9) & (np.abs(xyz[:, 2]) > 1e-9)
-            slipping = (status[active] == 1) & off_planes
-            check(slipping.any(), tag + "slipping contact points off the symmetry planes")
+            on_planes = (np.abs(xyz[:, 0]) < 1e-9) | (np.abs(xyz[:, 2]) < 1e-9)
+            check(slipping.any(), tag + "some contact points slip")
             if slipping.any():
                 check(np.all(np.abs(ratio[slipping] - 1) <= 1e-4),
-                      tag + "|t_T| = mu p where slipping (%d points, ratio %.8f..%.8f)"
-                      % (slipping.sum(), ratio[slipping].min(), ratio[slipping].max()))
+                      tag + "|t_T| = mu p where slipping (%d points, %d on symmetry planes, "
+                      "ratio %.8f..%.8f)" % (slipping.sum(), (slipping & on_planes).sum(),
+                                             ratio[slipping].min(), ratio[slipping].max()))
         # deal.II 9.4 writes cell data as point data (constant over each cell's patch)
         zone = p["plastic_zone"] if "plastic_zone" in p else c["plastic_zone"]
         check(np.all((zone >= 0) & (zone <= 1)), tag + "plastic_zone is a volume fraction")

@@ -150,29 +150,58 @@ TEST(FePatch, RigidFlatGivesExactForceAndUniformPressure)
     }
 }
 
+namespace
+{
+  /// Coulomb's law at every node of every converged increment (IncrementRecord's friction_*
+  /// checks, from K u and the displacements).
+  void expect_coulomb_holds(const RunResult &r, const double mu, const char *label)
+  {
+    for (const auto &f : r.increments)
+      {
+        if (f.n_active == 0)
+          continue;
+        std::printf("%s, delta = %.3g m: cone excess %.2e, slip-law error %.2e, direction "
+                    "error %.2e (of mu*lambda_max)\n",
+                    label, f.delta, f.friction_cone_excess, f.friction_slip_law_error,
+                    f.friction_direction_error);
+        // The Newton loop stops when |t_T − μλŵ| ≤ 1e-6 λ_max at every slipping node, i.e.
+        // 1e-6/μ of μλ_max; a sticking node's |t_T| ≤ μλ is its classification.
+        EXPECT_LE(f.friction_cone_excess, 1e-6 / mu);
+        EXPECT_LE(f.friction_slip_law_error, 1e-6 / mu);
+        // friction opposes the slip: 1 + cos(angle) ≈ angle²/2, the angle ≤ ~1e-3 rad
+        EXPECT_LE(f.friction_direction_error, 1e-6);
+      }
+  }
+} // namespace
+
 // Coulomb friction μ = 0.1 between journal and bore (two bodies, end_faces): the push makes
 // the journal's surface and the bore slide against each other, friction resists it, so the
 // joint gets stiffer — SPEC §2 (a peer model): by about 0.5 %. Equilibrium must still hold
-// with the friction forces (contact = support = load), non-penetration stays exact, and the
-// converged state must not depend on the active-set constant c (×10).
+// with the friction forces (contact = support = load), non-penetration stays exact, Coulomb's
+// law holds at every node, and the converged state must not depend on the complementarity
+// constant c (×0.1, ×10).
 TEST(FeFriction, CoulombStiffensTheJointByAboutHalfAPercent)
 {
   const RunResult frictionless = run(scene(coarse_two_body("end_faces")));
   FeScene s = scene(coarse_two_body("end_faces"));
   s.contact.mu = 0.1;
   const RunResult r = run(s);
-  FeScene s10 = s;
+  FeScene s10 = s, s01 = s;
   s10.contact.active_set_scale = 10.0;
-  const RunResult r10 = run(s10);
-  ASSERT_TRUE(frictionless.complete && r.complete && r10.complete) << r.message << r10.message;
+  s01.contact.active_set_scale = 0.1;
+  const RunResult r10 = run(s10), r01 = run(s01);
+  ASSERT_TRUE(frictionless.complete && r.complete && r10.complete && r01.complete)
+    << r.message << r10.message << r01.message;
   ASSERT_EQ(r.increments.size(), frictionless.increments.size());
   for (std::size_t i = 0; i < r.increments.size(); ++i)
     {
       const auto &f = r.increments[i];
       const double change = f.force / frictionless.increments[i].force - 1.0;
-      std::printf("delta = %.3g m: F = %.6g N, frictionless %.6g N (%+.3f %%), %u of %u slip\n",
+      std::printf("delta = %.3g m: F = %.6g N, frictionless %.6g N (%+.3f %%), %u of %u slip, "
+                  "c x10: %+.2e, c x0.1: %+.2e\n",
                   f.delta, f.force, frictionless.increments[i].force, 100.0 * change, f.n_slip,
-                  f.n_active);
+                  f.n_active, r10.increments[i].force / f.force - 1.0,
+                  r01.increments[i].force / f.force - 1.0);
       EXPECT_GT(change, 0.0);
       EXPECT_LT(change, 0.02);  // "about 0.5 %": a factor 4 of room for this coarse mesh
       EXPECT_GT(f.n_slip, 0u);
@@ -180,12 +209,78 @@ TEST(FeFriction, CoulombStiffensTheJointByAboutHalfAPercent)
       EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);
       EXPECT_NEAR(f.force_load / f.force, 1.0, 1e-6);
       EXPECT_LT(f.max_penetration, 1e-9 * s.loading.delta_max);
-      // Issue 3's criterion for the method's parameter: < 0.5 % for c ×10. Frictionless, c
-      // does not change F at all (FeRadial.ActiveSetConstant...); with friction the nodes on
-      // the stick/slip boundary that are held slipping after two flips depend on the iteration
-      // path c steers: measured 0.12 % at δ_max on this coarse mesh.
-      EXPECT_NEAR(r10.increments[i].force / f.force, 1.0, 5e-3);
+      // c steers the Newton path only; the converged states differ by the slip-law tolerance
+      // (≤ 1e-6 of the largest nodal force per slipping node, a few 1e-7 of F summed) and the
+      // linear solves' 1e-10: measured ≤ 5e-9. Issue 11 asks < 0.1 % for c ×10.
+      EXPECT_NEAR(r10.increments[i].force / f.force, 1.0, 1e-6);
+      EXPECT_NEAR(r01.increments[i].force / f.force, 1.0, 1e-6);
     }
+  expect_coulomb_holds(r, 0.1, "mu = 0.1");
+  expect_coulomb_holds(r10, 0.1, "mu = 0.1, c x10");
+}
+
+// The semi-smooth Newton method linearises the slip direction too, so it converges in a few
+// iterations for large friction coefficients as well (the fixed-point iteration it replaced
+// needed 9–11 per increment at μ = 0.1 here, and its cycle breakers made F depend on c).
+// μ → 0 is the frictionless problem; F grows with μ.
+TEST(FeFriction, SemiSmoothNewtonConvergesForLargeAndVanishingCoefficients)
+{
+  const RunResult frictionless = run(scene(coarse_two_body("end_faces")));
+  ASSERT_TRUE(frictionless.complete) << frictionless.message;
+  unsigned int iterations_frictionless = 0;
+  for (const auto &f : frictionless.increments)
+    iterations_frictionless += f.contact_iterations;
+  std::vector<double> previous_force;
+  for (const double mu : {1e-9, 0.1, 0.3, 0.5})
+    {
+      FeScene s = scene(coarse_two_body("end_faces"));
+      s.contact.mu = mu;
+      const RunResult r = run(s);
+      ASSERT_TRUE(r.complete) << "mu = " << mu << ": " << r.message;
+      ASSERT_EQ(r.increments.size(), frictionless.increments.size());
+      unsigned int iterations = 0;
+      for (std::size_t i = 0; i < r.increments.size(); ++i)
+        {
+          const auto &f = r.increments[i];
+          iterations += f.contact_iterations;
+          EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);  // as above
+          if (mu < 1e-6)
+            // friction forces of 1e-9 λ: F moves by ~1e-9 of itself (measured 1e-10)
+            EXPECT_NEAR(f.force / frictionless.increments[i].force, 1.0, 1e-8);
+          else if (!previous_force.empty())
+            EXPECT_GT(f.force, previous_force[i]);
+        }
+      std::printf("mu = %g: %u active-set iterations (frictionless %u), F(delta_max) = %.8g N\n",
+                  mu, iterations, iterations_frictionless, r.increments.back().force);
+      // Issue 11's target is ≤ 3× the frictionless iterations on the default mesh; measured
+      // ≤ 2.2× here. A return to linear convergence would take ≥ 5×.
+      EXPECT_LE(iterations, 3 * iterations_frictionless);
+      if (mu > 1e-6)
+        expect_coulomb_holds(r, mu, ("mu = " + std::to_string(mu)).c_str());
+      previous_force.clear();
+      for (const auto &f : r.increments)
+        previous_force.push_back(f.force);
+    }
+}
+
+// Friction with hanging nodes inside the contact zone: a hanging node's share of the contact
+// force reaches its masters, in the friction rows as in the evaluation, so Newton converges
+// and Coulomb's law holds on the masters' forces.
+TEST(FeFriction, HangingNodesInsideTheContactZone)
+{
+  FeScene s = scene(coarse_two_body("end_faces"));
+  s.mesh.contact_refinements = 1;
+  s.mesh.contact_window_deg = 20.0;  // the contact zone reaches ~30°
+  s.contact.mu = 0.3;
+  const RunResult r = run(s);
+  ASSERT_TRUE(r.complete) << r.message;
+  for (const auto &f : r.increments)
+    {
+      EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);  // CG/GMRES to 1e-10
+      EXPECT_NEAR(f.force_load / f.force, 1.0, 1e-6);
+      EXPECT_LE(f.contact_iterations, 10u);  // measured 5–7: sets settle, then 2–3 Newton steps
+    }
+  expect_coulomb_holds(r, 0.3, "hanging, mu = 0.3");
 }
 
 // The method's own parameter: the active-set constant c only steers the iteration; the
@@ -348,6 +443,8 @@ TEST(FeMpi, TwoRanksMatchOneRank)
   FeScene friction = scene(coarse_two_body("end_faces"));
   friction.contact.mu = 0.1;  // stick/slip sets and slip directions, GMRES
   expect_ranks_agree(friction);
+  hanging.contact.mu = 0.3;  // friction rows with hanging shares, partners on other ranks
+  expect_ranks_agree(hanging);
   // dual mortar between non-matching meshes (master faces gathered on every rank)
   expect_ranks_agree(scene("study: patch\ncontact: {mu: 0}\nloading: {n_increments: 2}\n"
                            "verification: {n_cells: 4, contact_refinements: 0, "
