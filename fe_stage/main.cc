@@ -195,7 +195,11 @@ namespace
           "the misalignment study, 1 for --full-model)",
           "force_support = the same force measured as the reaction of the supports (equilibrium "
           "check); force_load = the reaction on the journal's loaded set (the paper's measure)",
-          "delta = push of the rigid obstacle beyond first touch"};
+          "delta = push of the rigid obstacle beyond first touch",
+          "friction_* = Coulomb's law checked at every contact node of the converged increment, "
+          "as fractions of mu*lambda_max: cone_excess = max(|t_T| - mu*lambda)+, slip_law_error = "
+          "max ||t_T| - mu*lambda| at slipping nodes, direction_error = max 1 + cos(t_T, slip); "
+          "0 without friction"};
         comments.push_back(scene.contact.mu > 0.0 ?
                              "Coulomb friction mu = " + format_value(scene.contact.mu) +
                                " (stick/slip active set); slipping_contact_points of the active "
@@ -206,10 +210,12 @@ namespace
           std::vector<std::string>{"delta", "force", "force_support", "force_load", "contact_iterations",
                                    "linear_iterations", "active_contact_points",
                                    "slipping_contact_points", "max_penetration", "pressure_min",
-                                   "pressure_max", "wall_time"},
-          std::vector<std::string>{"m", "N", "N", "N", "1", "1", "1", "1", "m", "Pa", "Pa", "s"},
+                                   "pressure_max", "wall_time", "friction_cone_excess",
+                                   "friction_slip_law_error", "friction_direction_error"},
+          std::vector<std::string>{"m", "N", "N", "N", "1", "1", "1", "1", "m", "Pa", "Pa", "s",
+                                   "1", "1", "1"},
           comments);
-        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+        csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
       }
     fe::RunOptions options;
     options.output_dir = dir;
@@ -219,7 +225,8 @@ namespace
         csv->write_row({r.delta, r.force, r.force_support, r.force_load, double(r.contact_iterations),
                         double(r.linear_iterations), double(r.n_active), double(r.n_slip),
                         r.max_penetration,
-                        r.pressure_min, r.pressure_max, r.wall_time});
+                        r.pressure_min, r.pressure_max, r.wall_time, r.friction_cone_excess,
+                        r.friction_slip_law_error, r.friction_direction_error});
       if ((signal_seen = interrupted_anywhere()) != 0)
         throw interrupt::Interrupted("after the increment to delta = " + format_value(r.delta) +
                                      " m");

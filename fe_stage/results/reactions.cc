@@ -146,7 +146,8 @@ namespace clearjoint::fe::detail
         }
     const double scale = mu * lambda_max > 0.0 ? mu * lambda_max : 1.0;
     cone = Utilities::MPI::max(cone, comm_);
-    rec.friction_cone_excess = lambda_max > 0.0 ? cone / scale : 0.0;
+    // ≤ 0 when every node is inside or on its cone: reported as 0 (nothing exceeds it)
+    rec.friction_cone_excess = lambda_max > 0.0 ? std::max(0.0, cone / scale) : 0.0;
     rec.friction_slip_law_error = Utilities::MPI::max(slip_law, comm_) / scale;
     rec.friction_direction_error = Utilities::MPI::max(direction, comm_);
   }

@@ -417,8 +417,9 @@ def yield_check(case, man, picture_stats):
 
 def contact_field_notes(stats, mu, label, warnings, anchor):
     """Checks of what an Abaqus user reads into CPRESS/CSHEAR/CSTATUS/CSLIP (issue 15 item 4),
-    from the fields: a frictionless run should show zero shear, no 'stick' status, and slip
-    only where in contact."""
+    from the fields: a frictionless run should show zero shear and no 'stick' status, a
+    frictional one shear within Coulomb's cone (|t_T| ≤ μ p), and both slip only where in
+    contact."""
     if not stats or mu is None:
         return ""
     issues = []
@@ -430,12 +431,20 @@ def contact_field_notes(stats, mu, label, warnings, anchor):
         if stats.get("n_stick_points", 0) > 0:
             issues.append(f"contact_status = stick at {stats['n_stick_points']} of "
                           f"{stats.get('n_active_points', 0)} active points in a frictionless run")
+    elif stats.get("max_shear_over_pressure", 0) > mu * (1 + 1e-4):
+        # Coulomb's cone |t_T| ≤ μ p: fe_stage converges the slip law to 1e-6 of the largest
+        # nodal force, and the VTU stores floats (~1e-7), so 1e-4 is far above both
+        issues.append(f"contact_shear exceeds μ·p: up to {stats['max_shear_over_pressure']:.4g} × "
+                      f"the pressure with μ = {mu:g}")
     if stats.get("n_slip_points_not_in_contact", 0) > 0:
         issues.append(f"contact_slip is non-zero at {stats['n_slip_points_not_in_contact']} points "
                       f"not in contact")
     if not issues:
         return "<p>Contact fields: consistent (" + \
-            ("zero shear, no stick status" if mu == 0 else "friction run") + \
+            ("zero shear, no stick status" if mu == 0 else
+             f"friction within Coulomb's cone, shear ≤ {stats.get('max_shear_over_pressure', 0):.4g} × "
+             f"pressure with μ = {mu:g}, {stats.get('n_stick_points', 0)} of "
+             f"{stats.get('n_active_points', 0)} active points stick") + \
             ", slip only where in contact).</p>"
     warnings.add(f"FE fields, {label}", "; ".join(esc(i) for i in issues) +
                  " — read contact_shear/status/slip with care", anchor)
@@ -446,7 +455,7 @@ def contact_field_notes(stats, mu, label, warnings, anchor):
 _FIELD_STATS = {}
 
 
-def cached_field_stats(case, man, warnings, anchor, stick_code=1):
+def cached_field_stats(case, man, warnings, anchor, stick_code=2):
     """fields.field_stats of a case's last increment, read once per report (None without
     fields or when they cannot be read — then a warning says so)."""
     key = (case["fe_dir"], stick_code)
@@ -522,9 +531,9 @@ def pictures_and_checks(fs, run_dir, warnings):
     mu = get(man, "extra", "scene", "contact", "mu")
     stats = None
     # fe_stage may name its status codes (manifest extra.contact_fields.status_codes, either
-    # {"stick": 1, ...} or {"1": "stick", ...}); fe_stage's present codes: 0 open, 1 stick, 2 slip
+    # {"stick": 1, ...} or {"1": "stick", ...}); fe_stage's codes (Abaqus's): 0 open, 1 slip, 2 stick
     codes = get(man, "extra", "contact_fields", "status_codes", default={}) or {}
-    stick_code = 1
+    stick_code = 2
     for k, v in codes.items():
         if k == "stick" and isinstance(v, (int, float)):
             stick_code = int(v)

@@ -62,13 +62,13 @@ def _arrays(grid):
 
 
 def field_stats(fe_dir, yield_stress=DEFAULT_YIELD_STRESS, symmetry_factor=1.0, mu=None,
-                stick_code=1, R_B=None):
+                stick_code=2, R_B=None):
     """Numbers from the last increment's fields, for the report's warnings:
     max_von_mises [Pa]; volume_above_yield [m³] of the FULL body (modelled part × symmetry
     factor) with the cell value taken as the mean of its points; contact checks: for a
     frictionless run (mu == 0) the largest contact_shear [Pa] and its ratio to the pressure, the
-    number of active points whose status says stick (code `stick_code`: 1 in fe_stage's
-    open/stick/slip = 0/1/2, or what the manifest's contact_fields.status_codes says), and the
+    number of active points whose status says stick (code `stick_code`: 2 in fe_stage's
+    open/slip/stick = 0/1/2, or what the manifest's contact_fields.status_codes says), and the
     number of points with slip where not in contact. With R_B [m], volume_above_yield_bearing
     is the part in cells whose centre lies outside the bore (the bearing; the journal's cells
     lie inside). None if there are no fields."""
