@@ -38,7 +38,7 @@ def run_case(args, journal, level, ranks):
     with open(scene, "w") as f:
         if args.study == "misalignment":
             f.write(f"study: misalignment\nmisalignment: {{theta_deg: {args.theta}}}\n")
-        f.write(f"schema: clearjoint.fe/1\ncontact: {{mu: {args.mu}}}\noutput: {fields: false}\n"
+        f.write(f"schema: clearjoint.fe/1\ncontact: {{mu: {args.mu}}}\noutput: {{fields: false}}\n"
                 "solver: {linear: cg_amg}\n"
                 f"mesh: {{n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 1, "
                 f"global_refinements: {level}}}\n"
@@ -163,6 +163,7 @@ def plot(args, results):
             ax1.loglog([r["dofs"] for r in rs], e, "o-", label=label)
             ax2.loglog([r["wall"] for r in rs], e, "o-", label=label)
     title = args.study + (f", θ = {args.theta}°" if args.study == "misalignment" else ", t_B = 4 mm")
+    title += f", μ = {args.mu:g}" if args.mu else ", frictionless"
     for ax, x in ((ax1, "DoFs [1]"), (ax2, "wall time [s]")):
         ax.set_xlabel(x)
         ax.set_ylabel("estimated error of F(δ_max) [%] (Richardson)")
