@@ -36,6 +36,17 @@ namespace clearjoint::fe
     return "?";
   }
 
+  std::string to_string(const Contact::Pairing p)
+  {
+    switch (p)
+      {
+        case Contact::Pairing::automatic: return "automatic";
+        case Contact::Pairing::node_to_node: return "node_to_node";
+        case Contact::Pairing::mortar: return "mortar";
+      }
+    return "?";
+  }
+
   namespace
   {
     unsigned int uint_or(StrictObject &o, const std::string &key, unsigned int fallback, long lo,
@@ -112,6 +123,11 @@ namespace clearjoint::fe
         C.active_set_scale = c.number_or("active_set_scale", C.active_set_scale,
                                          Range::open(0.0, 1.0e12, ""));
         C.max_iterations = uint_or(c, "max_iterations", C.max_iterations, 1, 10000);
+        const std::string pairing =
+          c.string_or("pairing", "automatic", {"automatic", "node_to_node", "mortar"});
+        C.pairing = pairing == "node_to_node" ? Contact::Pairing::node_to_node :
+                    pairing == "mortar"       ? Contact::Pairing::mortar :
+                                                Contact::Pairing::automatic;
         c.finish();
       }
     if (top.has("loading"))
@@ -273,6 +289,22 @@ namespace clearjoint::fe
           geometry::check_tilt(jg, geometry::radians(s.sweep_theta_deg[i]), f,
                                "sweep.theta_deg." + std::to_string(i));
       }
+    using Pairing = Contact::Pairing;
+    if (s.contact.pairing != Pairing::automatic)
+      {
+        const bool deformable_journal = joint && s.loading.journal != JournalLoading::rigid;
+        const bool deformable_indenter = !joint && s.verification.deformable_indenter;
+        if (!deformable_journal && !deformable_indenter)
+          throw InputError(f, "contact.pairing", to_string(s.contact.pairing),
+                           "automatic when the other body is rigid",
+                           "pairing couples two deformable bodies: set loading.journal to "
+                           "end_faces or axis_line (or verification.deformable_indenter)");
+        if (deformable_indenter && s.contact.pairing == Pairing::node_to_node)
+          throw InputError(f, "contact.pairing", "node_to_node",
+                           "mortar or automatic for the verification blocks",
+                           "the block and its indenter are meshed independently: their "
+                           "nodes do not face each other");
+      }
     if (!G.mesh.empty())
       check_mesh_against_scene(s);
     if (joint && s.loading.delta_max >= G.R_J())
@@ -381,6 +413,9 @@ namespace clearjoint::fe
       << "  # [1] complementarity constant c = scale*E*h; does not change the solution\n"
       << "  max_iterations: " << d.contact.max_iterations
       << "   # active-set iterations per increment before the increment is cut\n"
+      << "  pairing: automatic  # automatic | node_to_node | mortar: how a deformable journal\n"
+      << "                      #   meets the bore (automatic: node_to_node on the generated\n"
+      << "                      #   joint's common rays, mortar for the verification blocks)\n"
       << "loading:\n"
       << "  journal: end_faces  # end_faces | axis_line (the paper's) | rigid (rigid journal)\n"
       << "                      #   study misalignment: rigid (its default and only choice)\n"
@@ -441,7 +476,8 @@ namespace clearjoint::fe
     j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho},
                      {"yield_stress", s.material.yield_stress}};
     j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
-                    {"max_iterations", s.contact.max_iterations}};
+                    {"max_iterations", s.contact.max_iterations},
+                    {"pairing", to_string(s.contact.pairing)}};
     j["loading"] = {{"journal", to_string(s.loading.journal)},
                     {"delta_max", s.loading.delta_max},
                     {"n_increments", s.loading.n_increments},

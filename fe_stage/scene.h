@@ -69,6 +69,10 @@ namespace clearjoint::fe
     double active_set_scale = 1.0;
     unsigned int max_iterations = 100;  // active-set iterations per increment before a cut
                                         // (frictionless: 1–5; Coulomb friction: up to ~45)
+    /// How a deformable journal's surface is paired with the bore: node_to_node on the
+    /// generated meshes' common rays, or dual mortar (any two meshes). automatic: node_to_node
+    /// for the joint, mortar for the verification blocks' deformable indenter.
+    enum class Pairing { automatic, node_to_node, mortar } pairing = Pairing::automatic;
   };
 
   struct Loading
@@ -163,4 +167,5 @@ namespace clearjoint::fe
 
   std::string to_string(Study s);
   std::string to_string(JournalLoading l);
+  std::string to_string(Contact::Pairing p);
 } // namespace clearjoint::fe

@@ -1,55 +1,73 @@
-// Dual-mortar pairing of non-matching surfaces (mortar.h) for the verification block and its
-// deformable indenter.
+// Dual-mortar pairing of non-matching surfaces (mortar.h): the verification block and its
+// deformable indenter, and the joint's bore and deformable journal (contact.pairing: mortar).
 #include "fe_stage/core/contact_model.h"
 #include "fe_stage/core/face_dofs.h"
 #include "fe_stage/mortar.h"
 
 namespace clearjoint::fe::detail
 {
-  /// Two non-matching bodies (the verification block and a deformable indenter): dual mortar
-  /// (mortar.h). Each slave node of the block's top face (the plane y = 0, normal −e_y into
-  /// the block) gets ĝ = g̃0 + n·(u − Σ_m C_sm u_m) with the weighted gap g̃0 and the mortar
-  /// coefficients C_sm of the indenter's bottom nodes; an active node's constraint is then the
-  /// same kind of line as node-to-node contact, with several partners.
+  /// Two deformable bodies coupled by dual mortar (mortar.h). Each slave node gets
+  /// ĝ = g̃0 + n·(u − Σ_m C_sm u_m) with the weighted gap g̃0 and the mortar coefficients C_sm
+  /// of the master surface's nodes; an active node's constraint is then the same kind of line
+  /// as node-to-node contact, with several partners.
+  ///   blocks: slave = the block's top face (the plane y = 0, n = −e_y into the block),
+  ///           master = the indenter's bottom;
+  ///   joint:  slave = the bore's faces that lie over the journal's length (n radial, into the
+  ///           bearing), master = the journal's cylindrical surface.
   void ContactModel::find_mortar_contact_nodes(
     const std::map<types::global_dof_index, Point<dim>> &support,
     std::map<types::global_dof_index, ContactNode> &by_x_dof)
   {
+    const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
+    const types::boundary_id master_id = joint ? bid_journal_surface : bid_indenter_surface;
+    auto slave_normal = [&](const Point<dim> &X) {
+      if (!joint)
+        return Tensor<1, dim>({0.0, -1.0, 0.0});
+      const double r = std::hypot(X[0], X[1]);
+      return Tensor<1, dim>({X[0] / r, X[1] / r, 0.0});
+    };
+    // Joint: a bore face beyond the journal's end faces no journal face, and a dual basis
+    // function is non-zero on its whole face, so such a face would make the rim nodes it
+    // shares incomplete (and drop them) — it is left out: the journal's ends are mesh planes.
+    const double z_end = joint ? plan_.obstacle.half_length * (1.0 + 1e-9) : 0.0;
+
     std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
     using NodeDofs = std::array<types::global_dof_index, dim>;
     // Master faces from every rank (the face facing a slave node is often on no cell this
-    // rank sees): per face its node count, then per node 3 DoFs and the position.
+    // rank sees): per face its node count, then per node 3 DoFs, the position and whether its
+    // y-DoF is driven by the load (the journal's rim under end-face loading).
     std::vector<double> mine;
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == bid_indenter_surface)
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == master_id)
             {
               const auto nodes = face_node_dofs(cell, f, face_dofs);
               mine.push_back(double(nodes.size()));
               for (const auto &d : nodes)
                 {
                   const Point<dim> &X = support.at(d[0]);
+                  const bool driven =
+                    std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), d[1]);
                   mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), X[0],
-                                           X[1], X[2]});
+                                           X[1], X[2], driven ? 1.0 : 0.0});
                 }
             }
     std::vector<mortar::Face> master;
-    std::map<long, NodeDofs> master_dofs;
+    std::map<long, std::pair<NodeDofs, bool>> master_dofs;
     for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
       for (std::size_t i = 0; i < part.size();)
         {
           const unsigned int nn = static_cast<unsigned int>(part[i++]);
           mortar::Face face;
-          for (unsigned int k = 0; k < nn; ++k, i += 6)
+          for (unsigned int k = 0; k < nn; ++k, i += 7)
             {
               NodeDofs d;
               for (unsigned int c = 0; c < dim; ++c)
                 d[c] = static_cast<types::global_dof_index>(part[i + c]);
               face.nodes.push_back(static_cast<long>(d[0]));
               face.X.push_back({part[i + 3], part[i + 4], part[i + 5]});
-              master_dofs[static_cast<long>(d[0])] = d;
+              master_dofs[static_cast<long>(d[0])] = {d, part[i + 6] != 0.0};
             }
           master.push_back(std::move(face));
         }
@@ -62,8 +80,13 @@ namespace clearjoint::fe::detail
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
             {
+              const auto nodes = face_node_dofs(cell, f, face_dofs);
+              if (joint && std::any_of(nodes.begin(), nodes.end(), [&](const NodeDofs &d) {
+                    return std::abs(support.at(d[0])[2]) > z_end;
+                  }))
+                continue;
               mortar::Face face;
-              for (const auto &d : face_node_dofs(cell, f, face_dofs))
+              for (const auto &d : nodes)
                 {
                   const Point<dim> &X = support.at(d[0]);
                   face.nodes.push_back(static_cast<long>(d[0]));
@@ -74,32 +97,56 @@ namespace clearjoint::fe::detail
             }
     std::vector<mortar::SlaveNode> slave_nodes;
     for (const auto &[id, d] : slave_dofs)
-      slave_nodes.push_back({id, {0.0, -1.0, 0.0}});
+      {
+        const Tensor<1, dim> n = slave_normal(support.at(d[0]));
+        slave_nodes.push_back({id, {n[0], n[1], n[2]}});
+      }
     mortar::Options options;
     // 8 × 3 Gauss points per direction of each slave face: the mortar integrals have kinks
     // where master faces end; their error (≈ 2e-3 of a master nodal force at 8 sub-intervals,
     // 8e-3 at 4, mortar_test) shows up as non-uniform pressure in the patch test.
     options.subdivisions = 8;
-    // Quadrature points farther apart than this cannot close under a push of δ_max; their
-    // nodes come out incomplete and are left out (they cannot touch).
-    options.max_distance = 4.0 * scene_.loading.delta_max;
+    // Blocks: quadrature points farther apart than this cannot close under a push of δ_max;
+    // their nodes come out incomplete and are left out (they cannot touch). Joint: every bore
+    // point over the journal faces it within 2 c_r (the top of the bore), so all of them are
+    // paired and watched for penetration, as on common rays.
+    options.max_distance = joint ? 2.0 * scene_.geometry.c_r + 4.0 * scene_.loading.delta_max :
+                                   4.0 * scene_.loading.delta_max;
     const double window_gap = 2.0 * scene_.loading.delta_max;
     for (const auto &cp : mortar::couple(slave, slave_nodes, master, options))
       {
         const NodeDofs &dofs = slave_dofs.at(cp.node);
-        if (!cp.complete || cp.weight <= 0.0 || fixed_constraints_.is_constrained(dofs[1]))
-          continue;  // out of reach, or hanging (it follows its masters)
+        if (!cp.complete || cp.weight <= 0.0)
+          continue;  // out of reach
         ContactNode cn;
         cn.dofs = dofs;
         cn.X = support.at(dofs[0]);
         cn.owned = owned_.is_element(dofs[0]);
-        cn.n = Tensor<1, dim>({0.0, -1.0, 0.0});
+        cn.n = slave_normal(cn.X);
+        // the dominant normal component not already constrained (hanging or supported
+        // nodes are skipped: they follow their masters)
+        std::array<unsigned int, dim> order = {0, 1, 2};
+        std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+          return std::abs(cn.n[a]) > std::abs(cn.n[b]);
+        });
+        bool found = false;
+        for (const unsigned int c : order)
+          if (std::abs(cn.n[c]) > 0.3 && !fixed_constraints_.is_constrained(dofs[c]))
+            {
+              cn.constrained_component = c;
+              found = true;
+              break;
+            }
+        if (!found)
+          continue;
         cn.g0 = cp.gap;
         cn.two_body = true;
-        cn.constrained_component = 1;
         cn.candidate = cp.gap <= window_gap;
         for (const auto &[m, w] : cp.masters)
-          cn.partners.push_back({master_dofs.at(m), w, false});
+          {
+            const auto &[mdofs, driven] = master_dofs.at(m);
+            cn.partners.push_back({mdofs, w, driven});
+          }
         by_x_dof.emplace(dofs[0], cn);
       }
   }

@@ -138,6 +138,17 @@ namespace clearjoint::fe::detail
           t[k] = 0.0;
       return t;
     }
+    /// The slip of a node in this increment, on the components the contact holds: a node on a
+    /// symmetry plane cannot slip across it (its partner combination may move across it when
+    /// the partners are not on the plane themselves, as a mortar coupling's are not).
+    Tensor<1, dim> contact_slip_increment(const ContactNode &cn) const
+    {
+      Tensor<1, dim> s = cn.relative - cn.relative_converged;
+      for (unsigned int k = 0; k < dim; ++k)
+        if (!contact_holds(cn, k))
+          s[k] = 0.0;
+      return tangential(s, cn.n);
+    }
     /// P_T = I − n nᵀ at the node.
     static Tensor<2, dim> tangent_projection(const ContactNode &cn)
     {

@@ -139,7 +139,7 @@ namespace clearjoint::fe::detail
           if (!cn.stick)
             {
               slip_law = std::max(slip_law, std::abs(t.norm() - mu * cn.lambda));
-              const Tensor<1, dim> s = tangential(cn.relative - cn.relative_converged, cn.n);
+              const Tensor<1, dim> s = contact_slip_increment(cn);
               if (s.norm() > slid && t.norm() > 0.0)
                 direction = std::max(direction, 1.0 + (t / t.norm()) * (s / s.norm()));
             }

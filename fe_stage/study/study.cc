@@ -11,9 +11,14 @@ namespace clearjoint::fe
     p.deformable_partner = scene.loading.journal != JournalLoading::rigid;
     p.obstacle.radius = scene.geometry.R_J();
     p.obstacle.half_length = 0.5 * scene.geometry.L_J();
-    // the bearing's and the journal's surface nodes lie on common rays (mesh/charts.h)
-    p.pairing = p.deformable_partner ? StudyPlan::Pairing::common_rays :
-                                       StudyPlan::Pairing::obstacle;
+    // the generated bearing's and journal's surface nodes lie on common rays (mesh/charts.h);
+    // dual mortar pairs any two surfaces
+    if (!p.deformable_partner)
+      p.pairing = StudyPlan::Pairing::obstacle;
+    else
+      p.pairing = scene.contact.pairing == Contact::Pairing::mortar ?
+                    StudyPlan::Pairing::mortar :
+                    StudyPlan::Pairing::common_rays;
     p.body_names = {"bearing", "journal"};
     return p;
   }

@@ -101,6 +101,25 @@ TEST(FeScene, JournalLoadingOptions)
                {"loading.journal", "end_faces"});
 }
 
+// contact.pairing couples two deformable bodies: node_to_node (the generated joint's common
+// rays) or dual mortar; it means nothing against a rigid journal, and the verification
+// blocks' independently meshed indenter has no facing nodes.
+TEST(FeScene, ContactPairing)
+{
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\n").contact.pairing, Contact::Pairing::automatic);
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\ncontact: {pairing: mortar}\n").contact.pairing,
+            Contact::Pairing::mortar);
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\ncontact: {pairing: node_to_node}\n").contact.pairing,
+            Contact::Pairing::node_to_node);
+  expect_error("schema: clearjoint.fe/1\ncontact: {pairing: nts}\n",
+               {"contact.pairing", "mortar"});
+  expect_error("schema: clearjoint.fe/1\ncontact: {pairing: mortar}\nloading: {journal: rigid}\n",
+               {"contact.pairing", "rigid", "loading.journal"});
+  expect_error("schema: clearjoint.fe/1\nstudy: patch\ncontact: {pairing: node_to_node}\n"
+               "verification: {indenter: deformable}\n",
+               {"contact.pairing", "node_to_node", "mortar"});
+}
+
 TEST(FeStageCli, BadInputExitsOneAndWritesNothing)
 {
   const auto dir = std::filesystem::temp_directory_path() / "clearjoint_fe_cli_test";
