@@ -65,6 +65,16 @@ namespace clearjoint::fe
     }
   };
 
+  /// One adaptive refinement cycle (mesh.adaptive_cycles): the curve computed on its mesh.
+  struct AdaptiveCycle
+  {
+    unsigned long n_dofs = 0;
+    unsigned long n_cells = 0;
+    double force = 0.0;                   // [N] F(δ_max), full body
+    unsigned int contact_iterations = 0;  // over the curve's increments
+    double wall_time = 0.0;               // [s] of the curve on this mesh
+  };
+
   struct RunResult
   {
     std::vector<IncrementRecord> increments;  // without the origin row
@@ -79,6 +89,13 @@ namespace clearjoint::fe
     unsigned int n_ranks = 1;
     std::vector<std::string> field_files;  // written VTU/PVTU/PVD (rank 0 lists them)
     YieldCheck yield_check;        // at the last converged increment (empty before the first)
+    /// Adaptive refinement: one entry per mesh, the last the recorded curve's mesh; empty
+    /// without mesh.adaptive_cycles.
+    std::vector<AdaptiveCycle> adaptive_cycles;
+    double adaptive_error = -1.0;  // [1] estimated relative error of F(δ_max); < 0: none
+    std::string adaptive_error_method;
+    double adaptive_order = 0.0;   // [1] q of F = F_inf + C N^-q (0: not extrapolated)
+    double adaptive_extrapolated_force = 0.0;  // [N] F_inf (0: not extrapolated)
   };
 
   struct RunOptions

@@ -257,6 +257,44 @@ namespace
             run_plot_script("fe", {dir + "/force_penetration.png", dir}))
           manifest->add_output(dir + "/force_penetration.png");
         auto &x = manifest->extra();
+        if (!result.adaptive_cycles.empty())
+          {
+            // One row per adaptive mesh: what a convergence plot needs (the last row is the
+            // recorded curve's mesh), and the error estimate from the sequence.
+            const std::string path = dir + "/adaptive_cycles.csv";
+            CsvWriter cycles(path,
+                             {"cycle", "n_cells", "n_dofs", "force_at_delta_max",
+                              "contact_iterations", "wall_time"},
+                             {"1", "1", "1", "N", "1", "s"},
+                             {"clearjoint fe_stage: adaptive refinement, mesh.adaptive_cycles = " +
+                                std::to_string(scene.mesh.adaptive_cycles) +
+                                ", adaptive_fraction = " +
+                                format_value(scene.mesh.adaptive_fraction) +
+                                " (Kelly indicator, fixed fraction of the cells)",
+                              "force_at_delta_max = F at the end of the curve on that mesh "
+                              "(full body); the last row is the recorded curve's mesh"});
+            nlohmann::json rows = nlohmann::json::array();
+            for (std::size_t k = 0; k < result.adaptive_cycles.size(); ++k)
+              {
+                const auto &c = result.adaptive_cycles[k];
+                cycles.write_row({double(k), double(c.n_cells), double(c.n_dofs), c.force,
+                                  double(c.contact_iterations), c.wall_time});
+                rows.push_back({{"n_cells", c.n_cells}, {"n_dofs", c.n_dofs},
+                                {"force_at_delta_max", {{"value", c.force}, {"unit", "N"}}},
+                                {"contact_iterations", c.contact_iterations},
+                                {"wall_time", {{"value", c.wall_time}, {"unit", "s"}}}});
+              }
+            cycles.commit();
+            manifest->add_output(path);
+            x["adaptive"] = {{"cycles", rows}, {"fraction", scene.mesh.adaptive_fraction}};
+            if (result.adaptive_error >= 0.0)
+              x["adaptive"]["estimated_error_F_max"] = {
+                {"value", result.adaptive_error}, {"unit", "1"},
+                {"method", result.adaptive_error_method}};
+            if (result.adaptive_order > 0.0)
+              x["adaptive"]["extrapolated_force"] = {
+                {"value", result.adaptive_extrapolated_force}, {"unit", "N"}};
+          }
         x["n_dofs"] = result.n_dofs;
         x["n_cells"] = result.n_cells;
         x["n_mpi_ranks"] = result.n_ranks;

@@ -159,6 +159,9 @@ namespace clearjoint::fe
         M.contact_refinements = uint_or(m, "contact_refinements", M.contact_refinements, 0, 8);
         M.contact_window_deg =
           m.number_or("contact_window_deg", M.contact_window_deg, Range::open(0.0, 180.0, "deg"));
+        M.adaptive_cycles = uint_or(m, "adaptive_cycles", M.adaptive_cycles, 0, 8);
+        M.adaptive_fraction =
+          m.number_or("adaptive_fraction", M.adaptive_fraction, Range::open(0.0, 1.0, ""));
         m.finish();
       }
     if (top.has("solver"))
@@ -299,12 +302,24 @@ namespace clearjoint::fe
                            "automatic when the other body is rigid",
                            "pairing couples two deformable bodies: set loading.journal to "
                            "end_faces or axis_line (or verification.deformable_indenter)");
+        if (deformable_journal && s.contact.pairing == Pairing::node_to_node &&
+            s.mesh.adaptive_cycles > 0)
+          throw InputError(f, "contact.pairing", "node_to_node",
+                           "mortar or automatic with mesh.adaptive_cycles > 0",
+                           "adaptive refinement refines the bore and the journal differently, "
+                           "so their nodes no longer lie on common rays");
         if (deformable_indenter && s.contact.pairing == Pairing::node_to_node)
           throw InputError(f, "contact.pairing", "node_to_node",
                            "mortar or automatic for the verification blocks",
                            "the block and its indenter are meshed independently: their "
                            "nodes do not face each other");
       }
+    if (s.mesh.adaptive_cycles > 0 && s.contact.mu > 0.0)
+      throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
+                       "0 when contact.mu > 0",
+                       "friction on adaptively refined meshes is not supported yet: on "
+                       "Kelly-refined contact zones the stick/slip Newton iteration does not "
+                       "settle (docs/fe.md); set contact.mu: 0 for adaptive runs");
     if (!G.mesh.empty())
       check_mesh_against_scene(s);
     if (joint && s.loading.delta_max >= G.R_J())
@@ -433,6 +448,10 @@ namespace clearjoint::fe
       << "  # extra refinements of the cells inside the contact window\n"
       << "  contact_window_deg: " << d.mesh.contact_window_deg
       << "  # [deg] half-angle of the refined zone about the bottom\n"
+      << "  adaptive_cycles: " << d.mesh.adaptive_cycles
+      << "   # 0..8 cycles of (curve, Kelly indicator, refine) before the recorded curve\n"
+      << "  adaptive_fraction: " << d.mesh.adaptive_fraction
+      << " # (0, 1) of the cells refined per cycle, those with the largest indicators\n"
       << "solver:\n"
       << "  linear: automatic   # automatic | cg_amg | direct\n"
       << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
@@ -488,7 +507,9 @@ namespace clearjoint::fe
                  {"n_axial", s.mesh.n_axial},
                  {"global_refinements", s.mesh.global_refinements},
                  {"contact_refinements", s.mesh.contact_refinements},
-                 {"contact_window_deg", s.mesh.contact_window_deg}};
+                 {"contact_window_deg", s.mesh.contact_window_deg},
+                 {"adaptive_cycles", s.mesh.adaptive_cycles},
+                 {"adaptive_fraction", s.mesh.adaptive_fraction}};
     const char *lin = s.solver.linear == LinearSolver::automatic ? "automatic" :
                       s.solver.linear == LinearSolver::cg_amg    ? "cg_amg" :
                                                                    "direct";

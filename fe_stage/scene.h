@@ -92,6 +92,11 @@ namespace clearjoint::fe
     unsigned int global_refinements = 0;
     unsigned int contact_refinements = 1;  // extra refinements inside the contact window
     double contact_window_deg = 40.0;   // [deg] half-angle of the refined zone about the bottom
+    /// Adaptive refinement: this many cycles of (curve, Kelly indicator, refine the
+    /// adaptive_fraction of the cells with the largest indicators) before the recorded curve;
+    /// 0: off. A deformable journal then pairs by dual mortar.
+    unsigned int adaptive_cycles = 0;
+    double adaptive_fraction = 0.2;     // [1] of the active cells refined per cycle, (0, 1)
   };
 
   struct Solver

@@ -60,6 +60,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <Epetra_Map.h>
@@ -71,6 +73,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -108,6 +111,11 @@ namespace clearjoint::fe::detail
     void assemble_static();
     void compute_nodal_weights();
     void set_obstacle_position(double delta);
+    bool push_through(const std::vector<double> &targets, std::string &message,
+                      const std::function<void(unsigned int, IncrementRecord &)> &on_converged);
+    void prepare_mesh();
+    void refine_adaptively();
+    void estimate_adaptive_error(RunResult &result) const;
     /// One increment to `delta` from the current state; throws StepFailure.
     IncrementRecord solve_increment(double delta);
     // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)

@@ -16,6 +16,7 @@ namespace clearjoint::fe::detail
     two_body_ = plan_.deformable_partner;
     build_fixed_constraints();
 
+    support_y_dofs_.clear();
     {
       const FEValuesExtractors::Scalar uy(1);
       const IndexSet sy = DoFTools::extract_boundary_dofs(dof_handler_, fe_->component_mask(uy),

@@ -5,84 +5,29 @@
 
 namespace clearjoint::fe::detail
 {
-  RunResult ContactModel::run()
+  /// Pushes from δ = 0 through `targets` (increasing, the last δ_max): each target reached
+  /// from the last converged state, with a linear predictor, and halved on failure up to
+  /// loading.max_cuts times (state restored). `on_converged(k, record)` is called for target
+  /// k = 1, 2, … Returns false with `message` set when an increment fails for good.
+  bool ContactModel::push_through(
+    const std::vector<double> &targets, std::string &message,
+    const std::function<void(unsigned int, IncrementRecord &)> &on_converged)
   {
-    RunResult result;
-    result.n_ranks = n_ranks_;
-    make_grid();
-    setup_system();
-    find_contact_nodes();
-    make_matrices();
-    assemble_static();
-    compute_nodal_weights();
-    result.n_dofs = dof_handler_.n_dofs();
-    result.n_cells = tria_.n_global_active_cells();
-    result.symmetry_factor = symmetry_factor_;
-    result.h_min = h_min_;
-    auto seconds = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    };
-    result.setup_time = seconds();
-    const bool fields = options_.write_fields && !options_.output_dir.empty();
-    if (fields && rank_ == 0)
-      std::filesystem::create_directories(options_.output_dir + "/fields");
-    const unsigned int n_candidates = Utilities::MPI::sum(
-      (unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
-                                  [](const ContactNode &c) { return c.owned && c.candidate; }),
-      comm_);  // collective: outside the rank-0 branch
-    if (rank_ == 0)
-      log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
-                std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
-                " contact candidate nodes, " + std::to_string(contact_cell_matrices_.size()) +
-                " contact cells (rank 0), " + (use_direct_ ? "direct" : "CG+AMG") +
-                " solver, setup " + log::format_duration(result.setup_time));
-
     const auto &L = scene_.loading;
-    const double step0 = L.delta_max / L.n_increments;
     solution_owned_ = 0.0;
     solution_ = 0.0;
-    if (fields)
+    for (auto &cn : nodes_)
       {
-        set_obstacle_position(0.0);
-        evaluate_contact(0.0);
-        write_fields(0, 0.0);
+        cn.active = false;
+        cn.stick = true;
+        cn.relative = cn.relative_converged = Tensor<1, dim>();
       }
-    // One line per converged increment: what an Abaqus user reads in the .sta file. The ETA
-    // prices the remaining push at the cost per metre of the increments after the first: the
-    // first carries the AMG setup and the cold active set (3–6× a later increment's cost,
-    // which made an ETA taken from it overshoot up to 6-fold; docs/benchmarks.md).
-    double first_time = 0.0, first_delta = 0.0;
-    auto log_increment = [&](const unsigned int inc, const IncrementRecord &r) {
-      if (inc == 1)
-        {
-          first_time = r.wall_time;
-          first_delta = r.delta;
-        }
-      if (rank_ != 0)
-        return;
-      std::string eta;
-      if (inc == 1 && inc < L.n_increments)
-        eta = "  ETA after the next increment";
-      else if (inc < L.n_increments)
-        {
-          const double seconds_per_metre = (r.wall_time - first_time) / (r.delta - first_delta);
-          eta = "  ETA " + log::format_duration(seconds_per_metre * (L.delta_max - r.delta));
-        }
-      char buf[320];
-      std::snprintf(buf, sizeof(buf),
-                    "fe_stage: increment %u/%u  delta %.4g um  F %.6g N  contact its %u  "
-                    "linear its %u  active %u (slip %u)  %s%s",
-                    inc, L.n_increments, r.delta * 1e6, r.force, r.contact_iterations,
-                    r.linear_iterations, r.n_active, r.n_slip,
-                    log::format_duration(r.wall_time).c_str(), eta.c_str());
-      log::info(buf);
-    };
     double delta_done = 0.0, delta_previous = 0.0;
     bool have_previous = false;
     TrilinosWrappers::MPI::Vector solution_previous(owned_, comm_);
-    for (unsigned int inc = 1; inc <= L.n_increments; ++inc)
+    for (unsigned int inc = 1; inc <= targets.size(); ++inc)
       {
-        const double target = (inc == L.n_increments) ? L.delta_max : inc * step0;
+        const double target = targets[inc - 1];
         double step = target - delta_done;
         unsigned int cuts = 0;
         IncrementRecord rec;
@@ -127,19 +72,12 @@ namespace clearjoint::fe::detail
                 nodes_ = saved_nodes;
                 if (cuts >= L.max_cuts)
                   {
-                    result.message = "increment " + std::to_string(inc) + " to delta = " +
-                                     format_value(try_delta) + " m failed after " +
-                                     std::to_string(cuts) + " cuts: " + f.reason;
+                    message = "increment " + std::to_string(inc) + " to delta = " +
+                              format_value(try_delta) + " m failed after " +
+                              std::to_string(cuts) + " cuts: " + f.reason;
                     if (rank_ == 0)
-                      log::error("fe_stage: " + result.message);
-                    result.wall_time = seconds();
-                    result.field_files = field_files_;
-                    if (!result.increments.empty())
-                      {
-                        result.yield_check = check_yield(nullptr);
-                        log_yield_check(result.yield_check);
-                      }
-                    return result;
+                      log::error("fe_stage: " + message);
+                    return false;
                   }
                 ++cuts;
                 step *= 0.5;
@@ -151,15 +89,232 @@ namespace clearjoint::fe::detail
           }
         rec.contact_iterations = total_contact_its;
         rec.linear_iterations = total_linear_its;
+        on_converged(inc, rec);
+      }
+    return true;
+  }
+
+  /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
+  void ContactModel::prepare_mesh()
+  {
+    h_min_ = Utilities::MPI::min(
+      [&] {
+        double h = std::numeric_limits<double>::max();
+        for (const auto &cell : tria_.active_cell_iterators())
+          if (cell->is_locally_owned())
+            h = std::min(h, cell->minimum_vertex_distance());
+        return h;
+      }(),
+      comm_);
+    amg_.reset();  // built for the previous mesh's matrix
+    setup_system();
+    find_contact_nodes();
+    make_matrices();
+    assemble_static();
+    compute_nodal_weights();
+  }
+
+  /// One adaptive cycle's refinement: Kelly's estimator (jumps of the stress across interior
+  /// faces) on the converged solution at δ_max marks the fraction mesh.adaptive_fraction of
+  /// the cells with the largest indicators in both bodies; p4est refines them (2:1 balance).
+  void ContactModel::refine_adaptively()
+  {
+    Vector<float> indicator(tria_.n_active_cells());
+    KellyErrorEstimator<dim>::estimate(*mapping_, dof_handler_, QGauss<dim - 1>(fe_->degree + 1),
+                                       {}, solution_, indicator, ComponentMask(), nullptr,
+                                       numbers::invalid_unsigned_int,
+                                       tria_.locally_owned_subdomain());
+    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+      tria_, indicator, scene_.mesh.adaptive_fraction, 0.0);
+    tria_.execute_coarsening_and_refinement();
+  }
+
+  /// The error of F(δ_max) on the last mesh from the adaptive sequence F_k on N_k DoFs: with
+  /// three or more meshes F_k = F_∞ + C N_k^(−q) through the last three (q by bisection; a
+  /// generalised Richardson extrapolation, as the uniform levels' in docs/benchmarks.md);
+  /// otherwise, or when the last three are not monotone, the last cycle's change, which only
+  /// bounds the error from below — the method says which.
+  void ContactModel::estimate_adaptive_error(RunResult &result) const
+  {
+    const auto &c = result.adaptive_cycles;
+    if (c.size() < 2)
+      return;
+    const std::size_t k = c.size() - 1;
+    const double F2 = c[k].force, F1 = c[k - 1].force;
+    result.adaptive_error = std::abs(F2 - F1) / std::abs(F2);
+    result.adaptive_error_method = "change in the last cycle (a lower bound)";
+    if (c.size() < 3)
+      return;
+    const double F0 = c[k - 2].force;
+    const double N0 = c[k - 2].n_dofs, N1 = c[k - 1].n_dofs, N2 = c[k].n_dofs;
+    const double r = (F0 - F1) / (F1 - F2);
+    if (!(r > 0.0) || !(N2 > N1 && N1 > N0))
+      return;
+    auto ratio = [&](const double q) {
+      return (std::pow(N0, -q) - std::pow(N1, -q)) / (std::pow(N1, -q) - std::pow(N2, -q));
+    };
+    // ratio(q) grows with q from (log N1 − log N0)/(log N2 − log N1) at q → 0
+    double lo = 1e-3, hi = 20.0;
+    if (!(ratio(lo) < r && ratio(hi) > r))
+      return;
+    for (int i = 0; i < 200 && hi - lo > 1e-12; ++i)
+      (ratio(0.5 * (lo + hi)) < r ? lo : hi) = 0.5 * (lo + hi);
+    const double q = 0.5 * (lo + hi);
+    const double F_inf =
+      F2 - (F1 - F2) * std::pow(N2, -q) / (std::pow(N1, -q) - std::pow(N2, -q));
+    result.adaptive_order = q;
+    result.adaptive_extrapolated_force = F_inf;
+    result.adaptive_error = std::abs(F2 - F_inf) / std::abs(F_inf);
+    result.adaptive_error_method = "extrapolation of the last three meshes, F = F_inf + C N^-q, "
+                                   "q = " + format_value(q);
+  }
+
+  RunResult ContactModel::run()
+  {
+    RunResult result;
+    result.n_ranks = n_ranks_;
+    auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    };
+    const auto &L = scene_.loading;
+    std::vector<double> targets;
+    for (unsigned int inc = 1; inc <= L.n_increments; ++inc)
+      targets.push_back(inc == L.n_increments ? L.delta_max :
+                                                inc * (L.delta_max / L.n_increments));
+    make_grid();
+    // Adaptive cycles (mesh.adaptive_cycles): the curve is computed on the current mesh (not
+    // recorded), F(δ_max) kept, and the cells where Kelly's indicator is largest refined; the
+    // recorded curve is the one on the last mesh. The same path on every mesh keeps the
+    // sequence F_k(N_k) comparable with friction too; it gives the error estimate.
+    for (unsigned int cycle = 0; cycle <= scene_.mesh.adaptive_cycles; ++cycle)
+      {
+        if (cycle > 0)
+          refine_adaptively();
+        prepare_mesh();
+        if (cycle == scene_.mesh.adaptive_cycles)
+          break;
+        const double t0 = seconds();
+        AdaptiveCycle c;
+        c.n_dofs = dof_handler_.n_dofs();
+        c.n_cells = tria_.n_global_active_cells();
+        if (!push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
+              c.force = r.force;
+              c.contact_iterations += r.contact_iterations;
+            }))
+          {
+            result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
+            result.wall_time = seconds();
+            return result;
+          }
+        c.wall_time = seconds() - t0;
+        result.adaptive_cycles.push_back(c);
+        if (rank_ == 0)
+          {
+            char buf[200];
+            std::snprintf(buf, sizeof(buf),
+                          "fe_stage: adaptive cycle %u/%u  %lu cells  %lu DoFs  F(delta_max) "
+                          "%.8g N  contact its %u  %s",
+                          cycle + 1, scene_.mesh.adaptive_cycles, c.n_cells, c.n_dofs, c.force,
+                          c.contact_iterations, log::format_duration(c.wall_time).c_str());
+            log::info(buf);
+          }
+      }
+    result.n_dofs = dof_handler_.n_dofs();
+    result.n_cells = tria_.n_global_active_cells();
+    result.symmetry_factor = symmetry_factor_;
+    result.h_min = h_min_;
+    result.setup_time = seconds();
+    const bool fields = options_.write_fields && !options_.output_dir.empty();
+    if (fields && rank_ == 0)
+      std::filesystem::create_directories(options_.output_dir + "/fields");
+    const unsigned int n_candidates = Utilities::MPI::sum(
+      (unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
+                                  [](const ContactNode &c) { return c.owned && c.candidate; }),
+      comm_);  // collective: outside the rank-0 branch
+    if (rank_ == 0)
+      log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
+                std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
+                " contact candidate nodes, " + std::to_string(contact_cell_matrices_.size()) +
+                " contact cells (rank 0), " + (use_direct_ ? "direct" : "CG+AMG") +
+                " solver, setup " + log::format_duration(result.setup_time));
+
+    if (fields)
+      {
+        solution_owned_ = 0.0;
+        solution_ = 0.0;
+        set_obstacle_position(0.0);
+        evaluate_contact(0.0);
+        write_fields(0, 0.0);
+      }
+    // One line per converged increment: what an Abaqus user reads in the .sta file. The ETA
+    // prices the remaining push at the cost per metre of the increments after the first: the
+    // first carries the AMG setup and the cold active set (3–6× a later increment's cost,
+    // which made an ETA taken from it overshoot up to 6-fold; docs/benchmarks.md).
+    double first_time = 0.0, first_delta = 0.0;
+    auto log_increment = [&](const unsigned int inc, const IncrementRecord &r) {
+      if (inc == 1)
+        {
+          first_time = r.wall_time;
+          first_delta = r.delta;
+        }
+      if (rank_ != 0)
+        return;
+      std::string eta;
+      if (inc == 1 && inc < L.n_increments)
+        eta = "  ETA after the next increment";
+      else if (inc < L.n_increments)
+        {
+          const double seconds_per_metre = (r.wall_time - first_time) / (r.delta - first_delta);
+          eta = "  ETA " + log::format_duration(seconds_per_metre * (L.delta_max - r.delta));
+        }
+      char buf[320];
+      std::snprintf(buf, sizeof(buf),
+                    "fe_stage: increment %u/%u  delta %.4g um  F %.6g N  contact its %u  "
+                    "linear its %u  active %u (slip %u)  %s%s",
+                    inc, L.n_increments, r.delta * 1e6, r.force, r.contact_iterations,
+                    r.linear_iterations, r.n_active, r.n_slip,
+                    log::format_duration(r.wall_time).c_str(), eta.c_str());
+      log::info(buf);
+    };
+    const bool complete =
+      push_through(targets, result.message, [&](const unsigned int inc, IncrementRecord &rec) {
         rec.wall_time = seconds();
         result.increments.push_back(rec);
         if (options_.on_increment)
           options_.on_increment(rec);
         if (fields)
-          write_fields(inc, target);
+          write_fields(inc, targets[inc - 1]);
         log_increment(inc, rec);
+      });
+    if (!complete)
+      {
+        result.wall_time = seconds();
+        result.field_files = field_files_;
+        if (!result.increments.empty())
+          {
+            result.yield_check = check_yield(nullptr);
+            log_yield_check(result.yield_check);
+          }
+        return result;
       }
     result.complete = true;
+    if (!result.adaptive_cycles.empty())
+      {
+        // the curve's F(δ_max) on the final mesh closes the sequence
+        AdaptiveCycle last;
+        last.n_dofs = result.n_dofs;
+        last.n_cells = result.n_cells;
+        last.force = result.increments.back().force;
+        last.wall_time = result.increments.back().wall_time - result.setup_time;
+        for (const auto &r : result.increments)
+          last.contact_iterations += r.contact_iterations;
+        result.adaptive_cycles.push_back(last);
+        estimate_adaptive_error(result);
+        if (rank_ == 0 && result.adaptive_error >= 0.0)
+          log::info("fe_stage: estimated error of F(delta_max) on the final mesh " +
+                    format_value(100.0 * result.adaptive_error) + " % (" +
+                    result.adaptive_error_method + ")");
+      }
     result.yield_check = check_yield(nullptr);
     log_yield_check(result.yield_check);
     result.wall_time = seconds();

@@ -115,6 +115,15 @@ TEST(FeScene, ContactPairing)
                {"contact.pairing", "mortar"});
   expect_error("schema: clearjoint.fe/1\ncontact: {pairing: mortar}\nloading: {journal: rigid}\n",
                {"contact.pairing", "rigid", "loading.journal"});
+  // adaptive refinement breaks the common rays; friction on adaptive meshes is not supported
+  expect_error("schema: clearjoint.fe/1\ncontact: {mu: 0, pairing: node_to_node}\n"
+               "mesh: {adaptive_cycles: 2}\n",
+               {"contact.pairing", "adaptive_cycles"});
+  expect_error("schema: clearjoint.fe/1\nmesh: {adaptive_cycles: 2}\n",
+               {"mesh.adaptive_cycles", "contact.mu"});
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\ncontact: {mu: 0}\nmesh: {adaptive_cycles: 2}\n")
+              .mesh.adaptive_cycles,
+            2u);
   expect_error("schema: clearjoint.fe/1\nstudy: patch\ncontact: {pairing: node_to_node}\n"
                "verification: {indenter: deformable}\n",
                {"contact.pairing", "node_to_node", "mortar"});

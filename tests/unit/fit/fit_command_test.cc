@@ -130,6 +130,8 @@ TEST(FitStageCommand, DiscretisationErrorIsRecordedAndChecked)
                                     dir.file("data.csv") + "=0.006 --discretisation-error 4.8 --output " +
                                     dir.file("family.json"));
   ASSERT_EQ(fam.exit_code, 0) << fam.output;
-  for (const auto &m : laws::read_law_family(dir.file("family.json")).members())
+  // a named family: members() refers into it (a temporary's would dangle in the range-for)
+  const auto family = laws::read_law_family(dir.file("family.json"));
+  for (const auto &m : family.members())
     EXPECT_EQ(m.law.discretisation_error->F_relative, 0.048);
 }
