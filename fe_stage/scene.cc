@@ -357,11 +357,12 @@ namespace clearjoint::fe
     if (s.study != Study::radial && s.study != Study::misalignment)
       throw InputError(f, "geometry.mesh", G.mesh, "study radial or misalignment",
                        "the verification problems generate their own block");
-    if (s.loading.journal != JournalLoading::rigid)
-      throw InputError(f, "loading.journal", to_string(s.loading.journal),
-                       "rigid when geometry.mesh is given",
-                       "the journal of a Gmsh mesh does not share the bearing's contact nodes; "
-                       "this version pairs contact nodes only on its own generated meshes");
+    const bool deformable_journal = s.loading.journal != JournalLoading::rigid;
+    if (deformable_journal && s.contact.pairing == Contact::Pairing::node_to_node)
+      throw InputError(f, "contact.pairing", "node_to_node",
+                       "mortar or automatic when geometry.mesh has the deformable journal",
+                       "a Gmsh mesh's journal and bore do not share rays: they are paired by "
+                       "dual mortar");
     const geometry::MshMesh msh = geometry::read_joint_mesh(G.mesh);
     // The bore must be the scene's: the rigid journal is placed from R_B and c_r.
     const double tol = 1e-6 * G.R_B;  // Gmsh writes coordinates to ~16 digits
@@ -377,6 +378,25 @@ namespace clearjoint::fe
                        "the bore radius of " + G.mesh + " (its bearing_contact nodes lie at " +
                          format_value(r_lo) + " .. " + format_value(r_hi) + " m)",
                        "the scene's geometry numbers must describe the meshed joint");
+    // A deformable journal is used as meshed, on the journal chart about (0, −c_r): its
+    // surface must be the scene's journal at first touch.
+    if (deformable_journal)
+      {
+        double d_lo = std::numeric_limits<double>::max(), d_hi = 0.0;
+        for (const std::size_t node : msh.nodes_of("journal_contact"))
+          {
+            const double d = std::hypot(msh.nodes[node][0], msh.nodes[node][1] + G.c_r);
+            d_lo = std::min(d_lo, d);
+            d_hi = std::max(d_hi, d);
+          }
+        if (std::abs(d_lo - G.R_J()) > tol || std::abs(d_hi - G.R_J()) > tol)
+          throw InputError(f, "geometry.c_r", format_value(G.c_r),
+                           "the mesh's journal: its journal_contact nodes lie " +
+                             format_value(d_lo) + " .. " + format_value(d_hi) +
+                             " m from (0, -c_r), not at R_J = R_B - c_r",
+                           "a deformable journal from " + G.mesh + " must be meshed at first "
+                           "touch (journal_offset = c_r in the .geo) with the scene's radius");
+      }
     // The tilted journal breaks the z = 0 symmetry: the bearing must reach z < 0.
     double z_lo = std::numeric_limits<double>::max();
     for (const std::size_t node : msh.nodes_of("bearing"))

@@ -12,8 +12,9 @@ namespace clearjoint::fe::detail
   /// hexahedra become the coarse mesh on the bearing's polar chart, so Q2 curved faces follow
   /// the bore. Boundary ids come from the surface groups; boundary faces outside the groups
   /// that lie on x = 0 or z = 0 are symmetry planes, and set the symmetry factor. The journal
-  /// is the scene's rigid cylinder (R_J, L_J from the geometry keys): a deformable journal
-  /// from a Gmsh mesh needs node-to-segment contact, which this version does not have.
+  /// is the scene's rigid cylinder (R_J, L_J from the geometry keys), or with a deformable
+  /// journal loading the mesh's own journal (its volume, journal_contact surface on the
+  /// journal chart, journal_loaded end faces), paired with the bore by dual mortar.
   void ContactModel::make_gmsh_grid()
   {
     const auto &G = scene_.geometry;
@@ -28,6 +29,8 @@ namespace clearjoint::fe::detail
                                                     std::to_string(group_dim));
     };
     const int bearing = tag_of("bearing", 3);
+    const bool journal = scene_.loading.journal != JournalLoading::rigid;
+    const int journal_tag = journal ? tag_of("journal", 3) : -1;
 
     // Gmsh numbers a hexahedron's corners counter-clockwise per face, deal.II
     // lexicographically: deal.II corner i is Gmsh corner gmsh_corner[i].
@@ -45,20 +48,25 @@ namespace clearjoint::fe::detail
     };
     std::vector<CellData<dim>> cells;
     for (const auto &e : msh.elements)
-      if (e.type == 5 && e.physical == bearing)
+      if (e.type == 5 && (e.physical == bearing || (journal && e.physical == journal_tag)))
         {
           CellData<dim> c;
           for (unsigned int i = 0; i < 8; ++i)
             c.vertices[i] = vertex(e.nodes[gmsh_corner[i]]);
-          c.material_id = 0;
-          c.manifold_id = 0;
+          c.material_id = e.physical == bearing ? 0 : 1;
+          c.manifold_id = e.physical == bearing ? 0 : numbers::flat_manifold_id;
           cells.push_back(c);
         }
 
     // Surface groups → boundary ids, keyed by the sorted corner vertices of each quad.
     std::map<std::array<unsigned int, 4>, types::boundary_id> face_id;
-    const std::vector<std::pair<std::string, types::boundary_id>> surfaces = {
+    std::vector<std::pair<std::string, types::boundary_id>> surfaces = {
       {"bearing_contact", bid_contact}, {"bearing_fixed", bid_fixed}};
+    if (journal)
+      {
+        surfaces.emplace_back("journal_contact", bid_journal_surface);
+        surfaces.emplace_back("journal_loaded", bid_journal_end);
+      }
     for (const auto &[name, id] : surfaces)
       {
         const int tag = tag_of(name, 2);
@@ -83,8 +91,10 @@ namespace clearjoint::fe::detail
         // deal.II handles non-standard face orientations in 3D; ordering only saves work
       }
     serial.create_triangulation(vertices, cells, SubCellData());
+    // the bearing on its polar chart (faces and edges too: the curved bore for the Q2
+    // mapping); the journal's cells flat, its cylindrical surface on the journal chart (below)
     for (const auto &cell : serial.active_cell_iterators())
-      cell->set_all_manifold_ids(0);  // faces and edges too: curved bore for the Q2 mapping
+      cell->set_all_manifold_ids(cell->material_id() == 0 ? 0 : numbers::flat_manifold_id);
     const double plane_tol = 1e-8 * G.R_B;
     bool sym_x = false, sym_z = false;
     unsigned int n_contact = 0, n_fixed = 0;
@@ -116,17 +126,25 @@ namespace clearjoint::fe::detail
             sym_z = sym_z || id == bid_sym_z;
             face->set_boundary_id(id);
           }
+    if (journal)
+      for (const auto &cell : serial.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == bid_journal_surface)
+            cell->face(f)->set_all_manifold_ids(1);
     if (n_contact == 0 || n_fixed == 0)
       throw InputError(G.mesh, n_contact == 0 ? "bearing_contact" : "bearing_fixed",
                        "(no boundary face of the bearing)", "boundary faces of the bearing");
 
     tria_.copy_triangulation(serial);
     tria_.set_manifold(0, RayChart(G.c_r, G.R_J(), false));
+    if (journal)
+      tria_.set_manifold(1, RayChart(G.c_r, G.R_J(), true));  // axis at y = −c_r
     refine_joint_mesh();
     symmetry_factor_ = (sym_x ? 2.0 : 1.0) * (sym_z ? 2.0 : 1.0);
     if (rank_ == 0)
       log::info("fe_stage: " + G.mesh + ": " + std::to_string(cells.size()) +
-                " bearing hexahedra, symmetry planes" + (sym_x ? " x = 0" : "") +
+                (journal ? " bearing and journal" : " bearing") + " hexahedra, symmetry planes" + (sym_x ? " x = 0" : "") +
                 (sym_z ? " z = 0" : "") + (sym_x || sym_z ? "" : " none") +
                 " (force factor " + format_value(symmetry_factor_) + ")");
   }

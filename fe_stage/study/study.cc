@@ -16,11 +16,11 @@ namespace clearjoint::fe
     if (!p.deformable_partner)
       p.pairing = StudyPlan::Pairing::obstacle;
     else
-      // adaptive refinement breaks the common rays: mortar unless node_to_node was asked for
-      // (which the scene check rejects together with adaptive cycles)
+      // adaptive refinement and a Gmsh journal have no common rays: mortar (node_to_node with
+      // either is an input error)
       p.pairing = scene.contact.pairing == Contact::Pairing::mortar ||
                       (scene.contact.pairing == Contact::Pairing::automatic &&
-                       scene.mesh.adaptive_cycles > 0) ?
+                       (scene.mesh.adaptive_cycles > 0 || !scene.geometry.mesh.empty())) ?
                     StudyPlan::Pairing::mortar :
                     StudyPlan::Pairing::common_rays;
     p.body_names = {"bearing", "journal"};

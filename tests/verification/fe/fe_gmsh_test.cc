@@ -79,6 +79,38 @@ TEST(FeGmsh, DefaultJointMeshReproducesTheGeneratedMesh)
     EXPECT_NEAR(g.increments[i].force / r.increments[i].force, 1.0, 1e-7);
 }
 
+// The deformable journal of a Gmsh mesh (issue 11 item 2): default_joint.geo's O-grid journal
+// pushed at its end faces, paired with the bore by dual mortar, against the generated joint of
+// about the same size (16 cells over 180°, 2 through the wall, 5 along the half length) with
+// its own journal mesh. The two journals are meshed differently, so they agree only within
+// the discretisation error of meshes this coarse: 4.8 % at the generated level 0
+// (docs/benchmarks.md); measured 3.6 % apart here, 0.18 % apart at h = 1 mm (docs/fe.md).
+TEST(FeGmsh, DeformableJournalFromGmshMatchesTheGeneratedOneWithinTheDiscretisationError)
+{
+  const fs::path msh = make_mesh("fe_stage/geometries/default_joint.geo", "default_h2",
+                                 "-setnumber h 2e-3");
+  ASSERT_FALSE(msh.empty()) << read(scratch / "default_h2.log");
+  const std::string common = "contact: {mu: 0}\nloading: {journal: end_faces, n_increments: 2}\n";
+  const FeScene from_gmsh =
+    scene(common + "geometry: {mesh: " + msh.string() + "}\nmesh: {contact_refinements: 0}\n");
+  const FeScene generated = scene(common + "mesh: {n_circumferential: 16, n_radial: 2, "
+                                           "n_axial: 5, contact_refinements: 0}\n");
+  const RunResult g = run(from_gmsh), r = run(generated);
+  ASSERT_TRUE(g.complete && r.complete) << g.message << r.message;
+  EXPECT_DOUBLE_EQ(g.symmetry_factor, 4.0);
+  for (std::size_t i = 0; i < r.increments.size(); ++i)
+    {
+      const auto &f = g.increments[i];
+      std::printf("delta = %.3g m: Gmsh journal %.8g N, generated %.8g N (%+.2f %%)\n", f.delta,
+                  f.force, r.increments[i].force, 100.0 * (f.force / r.increments[i].force - 1));
+      EXPECT_NEAR(f.force / r.increments[i].force, 1.0, 0.05);
+      // equilibrium with the mortar constraint forces reaching the driven rim: CG to 1e-10
+      EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);
+      EXPECT_NEAR(f.force_load / f.force, 1.0, 1e-6);
+      EXPECT_LT(f.max_penetration, 1e-9 * from_gmsh.loading.delta_max);
+    }
+}
+
 // A different bearing: the flanged sleeve, held only by its flange face, half model over the
 // whole length. Both studies run on it; equilibrium holds; the tilted journal (1°) carries far
 // less force at the same push than the aligned one (as on the default bearing).
@@ -164,11 +196,19 @@ TEST(FeGmsh, BadMeshesAndInconsistentScenesAreInputErrors)
       rigid + "geometry: {mesh: " + msh.string() + ", R_B: 0.0105, c_r: 0.0005}\n");
     EXPECT_NE(msg.find("geometry.R_B"), std::string::npos) << msg;
   }
-  // a deformable journal needs the generated meshes' paired contact nodes
+  // a deformable Gmsh journal is paired by mortar (its nodes are on no common rays) ...
   {
     const std::string msg =
-      input_error_of("geometry: {mesh: " + msh.string() + "}\nloading: {journal: end_faces}\n");
-    EXPECT_NE(msg.find("loading.journal"), std::string::npos) << msg;
+      input_error_of("geometry: {mesh: " + msh.string() + "}\nloading: {journal: end_faces}\n"
+                     "contact: {pairing: node_to_node}\n");
+    EXPECT_NE(msg.find("contact.pairing"), std::string::npos) << msg;
+  }
+  // ... and must be the scene's journal at first touch (here the scene's c_r is not the mesh's)
+  {
+    const std::string msg = input_error_of("geometry: {mesh: " + msh.string() +
+                                           ", c_r: 0.0006}\nloading: {journal: end_faces}\n");
+    EXPECT_NE(msg.find("geometry.c_r"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("journal_contact"), std::string::npos) << msg;
   }
   // the misalignment study needs the whole length (the default .geo meshes z >= 0 only)
   {
