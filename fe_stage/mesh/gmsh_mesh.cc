@@ -144,7 +144,8 @@ namespace clearjoint::fe::detail
     symmetry_factor_ = (sym_x ? 2.0 : 1.0) * (sym_z ? 2.0 : 1.0);
     if (rank_ == 0)
       log::info("fe_stage: " + G.mesh + ": " + std::to_string(cells.size()) +
-                (journal ? " bearing and journal" : " bearing") + " hexahedra, symmetry planes" + (sym_x ? " x = 0" : "") +
+                (journal ? " bearing and journal" : " bearing") + " hexahedra, symmetry planes" +
+                (sym_x ? " x = 0" : "") +
                 (sym_z ? " z = 0" : "") + (sym_x || sym_z ? "" : " none") +
                 " (force factor " + format_value(symmetry_factor_) + ")");
   }
