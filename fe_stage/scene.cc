@@ -122,6 +122,8 @@ namespace clearjoint::fe
         C.mu = c.number_or("mu", C.mu, Range::closed(0.0, 10.0, ""));
         C.active_set_scale = c.number_or("active_set_scale", C.active_set_scale,
                                          Range::open(0.0, 1.0e12, ""));
+        C.tangential_scale = c.number_or("tangential_scale", C.tangential_scale,
+                                         Range::open(0.0, 1.0e12, ""));
         C.max_iterations = uint_or(c, "max_iterations", C.max_iterations, 1, 10000);
         const std::string pairing =
           c.string_or("pairing", "automatic", {"automatic", "node_to_node", "mortar"});
@@ -446,11 +448,14 @@ namespace clearjoint::fe
       << "          # [1] Coulomb friction coefficient, [0, 10] (0: frictionless)\n"
       << "  active_set_scale: " << d.contact.active_set_scale
       << "  # [1] complementarity constant c = scale*E*h; does not change the solution\n"
+      << "  tangential_scale: " << d.contact.tangential_scale
+      << "  # [1] friction's constant c_T = scale*c; does not change the solution\n"
       << "  max_iterations: " << d.contact.max_iterations
       << "   # active-set iterations per increment before the increment is cut\n"
       << "  pairing: automatic  # automatic | node_to_node | mortar: how a deformable journal\n"
       << "                      #   meets the bore (automatic: node_to_node on the generated\n"
-      << "                      #   joint's common rays, mortar for the verification blocks)\n"
+      << "                      #   joint's common rays; mortar for a Gmsh journal, adaptive\n"
+      << "                      #   meshes and the verification blocks)\n"
       << "loading:\n"
       << "  journal: end_faces  # end_faces | axis_line (the paper's) | rigid (rigid journal)\n"
       << "                      #   study misalignment: rigid (its default and only choice)\n"
@@ -516,6 +521,7 @@ namespace clearjoint::fe
                      {"yield_stress", s.material.yield_stress}};
     j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
                     {"max_iterations", s.contact.max_iterations},
+                    {"tangential_scale", s.contact.tangential_scale},
                     {"pairing", to_string(s.contact.pairing)}};
     j["loading"] = {{"journal", to_string(s.loading.journal)},
                     {"delta_max", s.loading.delta_max},

@@ -67,11 +67,16 @@ namespace clearjoint::fe
     /// solution does not depend on it (non-penetration is exact at the contact nodes); it only
     /// steers how the active set is guessed between iterations.
     double active_set_scale = 1.0;
+    /// [1] friction's complementarity constant c_T = tangential_scale · c (stick where
+    /// |t − c_T s_T| ≤ μ(λ − c ĝ)); like c it leaves the converged solution unchanged and only
+    /// steers the semi-smooth Newton path (docs/fe.md says how the default was chosen).
+    double tangential_scale = 1.0;
     unsigned int max_iterations = 100;  // active-set iterations per increment before a cut
                                         // (frictionless: 1–5; Coulomb friction: up to ~45)
     /// How a deformable journal's surface is paired with the bore: node_to_node on the
     /// generated meshes' common rays, or dual mortar (any two meshes). automatic: node_to_node
-    /// for the joint, mortar for the verification blocks' deformable indenter.
+    /// for the generated joint; mortar for a Gmsh journal, adaptive meshes and the
+    /// verification blocks' deformable indenter.
     enum class Pairing { automatic, node_to_node, mortar } pairing = Pairing::automatic;
   };
 

@@ -93,7 +93,8 @@ namespace clearjoint::fe::detail
     for (const auto &[x_dof, i] : slipping_)
       if (nodes_[i].owned)  // once per node over all ranks
         {
-          friction_node_matrix(nodes_[i], c, delta, friction_matrix, node_rhs, friction_dofs);
+          friction_node_matrix(nodes_[i], scene_.contact.tangential_scale * c, delta,
+                               friction_matrix, node_rhs, friction_dofs);
           constraints_.distribute_local_to_global(friction_matrix, node_rhs, friction_dofs, A_,
                                                   rhs_);
         }
