@@ -453,9 +453,8 @@ namespace clearjoint::fe
       << "  max_iterations: " << d.contact.max_iterations
       << "   # active-set iterations per increment before the increment is cut\n"
       << "  pairing: automatic  # automatic | node_to_node | mortar: how a deformable journal\n"
-      << "                      #   meets the bore (automatic: node_to_node on the generated\n"
-      << "                      #   joint's common rays; mortar for a Gmsh journal, adaptive\n"
-      << "                      #   meshes and the verification blocks)\n"
+      << "                      #   meets the bore (automatic = mortar; node_to_node: the\n"
+      << "                      #   generated joint's nodes on common rays)\n"
       << "loading:\n"
       << "  journal: end_faces  # end_faces | axis_line (the paper's) | rigid (rigid journal)\n"
       << "                      #   study misalignment: rigid (its default and only choice)\n"

@@ -74,9 +74,8 @@ namespace clearjoint::fe
     unsigned int max_iterations = 100;  // active-set iterations per increment before a cut
                                         // (frictionless: 1–5; Coulomb friction: up to ~45)
     /// How a deformable journal's surface is paired with the bore: node_to_node on the
-    /// generated meshes' common rays, or dual mortar (any two meshes). automatic: node_to_node
-    /// for the generated joint; mortar for a Gmsh journal, adaptive meshes and the
-    /// verification blocks' deformable indenter.
+    /// generated meshes' common rays, or dual mortar (any two meshes). automatic: mortar (the
+    /// joint with a deformable journal, generated or Gmsh, and the verification blocks).
     enum class Pairing { automatic, node_to_node, mortar } pairing = Pairing::automatic;
   };
 

@@ -17,7 +17,7 @@ namespace
     "contact: {mu: 0}\n"
     "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 0}\n"
     "loading: {journal: rigid, n_increments: 3}\n";
-  // The same mesh with the deformable journal (two bodies, node-to-node on common rays).
+  // The same mesh with the deformable journal (two bodies, dual mortar by default).
   std::string coarse_two_body(const std::string &journal)
   {
     return "contact: {mu: 0}\n"
@@ -303,6 +303,7 @@ TEST(FeMortarJoint, MatchesNodeToNodeOnTheRayMatchedMesh)
     {
       FeScene rays = scene(coarse_two_body("end_faces"));
       rays.contact.mu = c.mu;
+      rays.contact.pairing = Contact::Pairing::node_to_node;
       if (c.hanging)
         {
           rays.mesh.contact_refinements = 1;
@@ -535,8 +536,9 @@ TEST(FeMpi, TwoRanksMatchOneRank)
   expect_ranks_agree(friction);
   hanging.contact.mu = 0.3;  // friction rows with hanging shares, partners on other ranks
   expect_ranks_agree(hanging);
-  // dual mortar on the joint: the journal's surface faces gathered on every rank
-  friction.contact.pairing = Contact::Pairing::mortar;
+  // node-to-node on the common rays (the joint's default pairing is dual mortar, whose
+  // journal surface faces are gathered on every rank)
+  friction.contact.pairing = Contact::Pairing::node_to_node;
   expect_ranks_agree(friction);
   // adaptive refinement: Kelly's indicator and p4est's refinement across ranks
   FeScene adaptive = scene(coarse_radial);
