@@ -19,7 +19,10 @@ TEST(StudyPlan, RadialJournalTouchesTheBoreBottomAtDeltaZero)
   EXPECT_EQ(p.name, "radial");
   EXPECT_EQ(p.mesh, StudyPlan::Mesh::joint);
   EXPECT_TRUE(p.deformable_partner);  // end_faces journal
-  EXPECT_EQ(p.pairing, StudyPlan::Pairing::common_rays);
+  EXPECT_EQ(p.pairing, StudyPlan::Pairing::mortar);  // the default pairing (contact.pairing)
+  FeScene rays = scene;
+  rays.contact.pairing = Contact::Pairing::node_to_node;
+  EXPECT_EQ(plan_study(rays).pairing, StudyPlan::Pairing::common_rays);
   EXPECT_TRUE(p.must_touch);
   double g0;
   Vec3 n;
