@@ -1,6 +1,7 @@
 // Quasi-static stepping: increments of δ from 0 to δ_max, a linear predictor, step cutting with
 // rollback on failure, one log line per increment (as an Abaqus .sta file) with an ETA, and the
-// yield check of the last converged state.
+// yield check of the last converged state; before it, the adaptive cycles (mesh.adaptive_cycles:
+// curve, Kelly indicator, refinement) and the error estimate from their sequence.
 #include "fe_stage/core/contact_model.h"
 
 namespace clearjoint::fe::detail
