@@ -14,7 +14,8 @@ finest levels (observed order p = log2((F0 - F1)/(F1 - F2))).
                       [--plot FILE.png]
 
 --pairing chooses how the deformable journal meets the bore (contact.pairing; default
-automatic = node_to_node on the common rays). --mu is Coulomb's coefficient (default 0, frictionless; 0.1 the paper's). The table gives the
+automatic = mortar; node_to_node pairs the generated meshes' nodes on common rays). --mu is
+Coulomb's coefficient (default 0, frictionless; 0.1 the paper's). The table gives the
 active-set iterations summed over the increments beside the wall time.
 
 --study misalignment runs the tilted (rigid) journal at --theta degrees on the same mesh levels

@@ -136,7 +136,8 @@ namespace clearjoint::fe::detail
   }
 
   /// The slip term of a slipping node's linearised friction force, −κ c Q s_T(u) with
-  /// s_T = P_T M (D u + b) (M: the components the contact holds, contact_slip_increment): rows of the node +κ c Q (D u + b) = 0 part, rows of its partners
+  /// s_T = P_T M (D u + b) (M: the components the contact holds, as in
+  /// contact_slip_increment): rows of the node +κ c Q M (D u + b) = 0 part, rows of its partners
   /// −w_p κ c Q (D u + b); the constant part goes to the right-hand side. Added once per node
   /// (by the rank that owns it).
   void ContactModel::friction_node_matrix(const ContactNode &cn, const double c,
@@ -159,10 +160,7 @@ namespace clearjoint::fe::detail
     Tensor<1, dim> b = -cn.relative_converged;
     if (!cn.two_body)
       b[1] += delta;  // the rigid obstacle moves by −δ e_y
-    for (unsigned int k = 0; k < dim; ++k)
-      if (!contact_holds(cn, k))
-        b[k] = 0.0;
-    const Tensor<1, dim> Qb = Q * b;
+    const Tensor<1, dim> Qb = Q * held_components(cn, b);
     const double kc = cn.kappa * c;
     // row of body point r, component a: (its D weight) · κc Σ_b Q_ab (D u + b)_b; the node's
     // row carries +, the partners' −w_p: both are its D weight.

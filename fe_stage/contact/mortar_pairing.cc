@@ -123,22 +123,8 @@ namespace clearjoint::fe::detail
         cn.X = support.at(dofs[0]);
         cn.owned = owned_.is_element(dofs[0]);
         cn.n = slave_normal(cn.X);
-        // the dominant normal component not already constrained (hanging or supported
-        // nodes are skipped: they follow their masters)
-        std::array<unsigned int, dim> order = {0, 1, 2};
-        std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
-          return std::abs(cn.n[a]) > std::abs(cn.n[b]);
-        });
-        bool found = false;
-        for (const unsigned int c : order)
-          if (std::abs(cn.n[c]) > 0.3 && !fixed_constraints_.is_constrained(dofs[c]))
-            {
-              cn.constrained_component = c;
-              found = true;
-              break;
-            }
-        if (!found)
-          continue;
+        if (!choose_constrained_component(cn, cn.n))
+          continue;  // hanging or supported: it follows its masters
         cn.g0 = cp.gap;
         cn.two_body = true;
         cn.candidate = cp.gap <= window_gap;

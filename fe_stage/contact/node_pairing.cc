@@ -95,21 +95,8 @@ namespace clearjoint::fe::detail
                       by_x_dof.emplace(dofs[0], cn);
                       continue;
                     }
-                  // the dominant normal component not already constrained
-                  std::array<unsigned int, dim> order = {0, 1, 2};
-                  std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
-                    return std::abs(n[a]) > std::abs(n[b]);
-                  });
-                  bool found = false;
-                  for (const unsigned int c : order)
-                    if (std::abs(n[c]) > 0.3 && !fixed_constraints_.is_constrained(dofs[c]))
-                      {
-                        cn.constrained_component = c;
-                        found = true;
-                        break;
-                      }
                   // Hanging or supported nodes are skipped: they follow their masters.
-                  if (!found)
+                  if (!choose_constrained_component(cn, n))
                     continue;
                   if (two_body_)
                     {

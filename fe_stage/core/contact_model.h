@@ -137,25 +137,43 @@ namespace clearjoint::fe::detail
     {
       return !fixed_constraints_.is_constrained(cn.dofs[k]);
     }
+    /// v with the components the contact does not hold (fixed by a symmetry plane or a
+    /// support, or hanging) set to zero.
+    Tensor<1, dim> held_components(const ContactNode &cn, Tensor<1, dim> v) const
+    {
+      for (unsigned int k = 0; k < dim; ++k)
+        if (!contact_holds(cn, k))
+          v[k] = 0.0;
+      return v;
+    }
     /// The contact force on a node: K u on the DoFs the contact holds.
     Tensor<1, dim> contact_traction(const ContactNode &cn) const
     {
-      Tensor<1, dim> t = cn.traction;
-      for (unsigned int k = 0; k < dim; ++k)
-        if (!contact_holds(cn, k))
-          t[k] = 0.0;
-      return t;
+      return held_components(cn, cn.traction);
+    }
+    /// Sets the node's constrained component: the largest component of the normal n
+    /// (|n_c| > 0.3) whose DoF is not already constrained. False if there is none (a hanging or
+    /// supported node: it follows its masters and is no contact node).
+    bool choose_constrained_component(ContactNode &cn, const Tensor<1, dim> &n) const
+    {
+      std::array<unsigned int, dim> order = {0, 1, 2};
+      std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+        return std::abs(n[a]) > std::abs(n[b]);
+      });
+      for (const unsigned int c : order)
+        if (std::abs(n[c]) > 0.3 && !fixed_constraints_.is_constrained(cn.dofs[c]))
+          {
+            cn.constrained_component = c;
+            return true;
+          }
+      return false;
     }
     /// The slip of a node in this increment, on the components the contact holds: a node on a
     /// symmetry plane cannot slip across it (its partner combination may move across it when
     /// the partners are not on the plane themselves, as a mortar coupling's are not).
     Tensor<1, dim> contact_slip_increment(const ContactNode &cn) const
     {
-      Tensor<1, dim> s = cn.relative - cn.relative_converged;
-      for (unsigned int k = 0; k < dim; ++k)
-        if (!contact_holds(cn, k))
-          s[k] = 0.0;
-      return tangential(s, cn.n);
+      return tangential(held_components(cn, cn.relative - cn.relative_converged), cn.n);
     }
     /// P_T = I − n nᵀ at the node.
     static Tensor<2, dim> tangent_projection(const ContactNode &cn)

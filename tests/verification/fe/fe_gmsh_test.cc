@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 using namespace clearjoint;
 using namespace clearjoint::fe;
@@ -41,6 +42,28 @@ namespace
     return s.str();
   }
 
+  /// default_joint.geo meshed at `h_args` (gmsh -setnumber arguments, `name` for the file) and
+  /// the generated joint with `generated_mesh` (the keys inside `mesh: {...}`), both with the
+  /// `common` scene keys and no extra contact refinement, both run: {from Gmsh, generated}.
+  /// A failed meshing is a test failure and leaves both results incomplete.
+  std::pair<RunResult, RunResult> run_default_joint_both_ways(const std::string &name,
+                                                              const std::string &h_args,
+                                                              const std::string &common,
+                                                              const std::string &generated_mesh)
+  {
+    const fs::path msh = make_mesh("fe_stage/geometries/default_joint.geo", name, h_args);
+    if (msh.empty())
+      {
+        ADD_FAILURE() << read(scratch / (name + ".log"));
+        return {};
+      }
+    const FeScene from_gmsh =
+      scene(common + "geometry: {mesh: " + msh.string() + "}\nmesh: {contact_refinements: 0}\n");
+    const FeScene generated =
+      scene(common + "mesh: {" + generated_mesh + ", contact_refinements: 0}\n");
+    return {run(from_gmsh), run(generated)};
+  }
+
   /// Reads (and runs) the scene and returns the InputError message ("" if none was thrown).
   /// The mesh checks belong to reading the scene: they stop a run before any output.
   std::string input_error_of(const std::string &yaml)
@@ -63,15 +86,10 @@ namespace
 // solver's tolerance (1e-10 relative residual; 1e-7 allows for Gmsh's 16-digit coordinates).
 TEST(FeGmsh, DefaultJointMeshReproducesTheGeneratedMesh)
 {
-  const fs::path msh = make_mesh("fe_stage/geometries/default_joint.geo", "default_h1",
-                                 "-setnumber h 1e-3");
-  ASSERT_FALSE(msh.empty()) << read(scratch / "default_h1.log");
-  const std::string common = "contact: {mu: 0}\nloading: {journal: rigid, n_increments: 2}\n";
-  const FeScene from_gmsh =
-    scene(common + "geometry: {mesh: " + msh.string() + "}\nmesh: {contact_refinements: 0}\n");
-  const FeScene generated = scene(common + "mesh: {n_circumferential: 32, n_radial: 4, "
-                                           "n_axial: 10, contact_refinements: 0}\n");
-  const RunResult g = run(from_gmsh), r = run(generated);
+  const auto [g, r] = run_default_joint_both_ways(
+    "default_h1", "-setnumber h 1e-3",
+    "contact: {mu: 0}\nloading: {journal: rigid, n_increments: 2}\n",
+    "n_circumferential: 32, n_radial: 4, n_axial: 10");
   ASSERT_TRUE(g.complete && r.complete) << g.message << r.message;
   EXPECT_EQ(g.n_dofs, r.n_dofs);
   EXPECT_DOUBLE_EQ(g.symmetry_factor, 4.0);  // x = 0 and z = 0 found as symmetry planes
@@ -87,15 +105,10 @@ TEST(FeGmsh, DefaultJointMeshReproducesTheGeneratedMesh)
 // (docs/benchmarks.md); measured 3.6 % apart here, 0.18 % apart at h = 1 mm (docs/fe.md).
 TEST(FeGmsh, DeformableJournalFromGmshMatchesTheGeneratedOneWithinTheDiscretisationError)
 {
-  const fs::path msh = make_mesh("fe_stage/geometries/default_joint.geo", "default_h2",
-                                 "-setnumber h 2e-3");
-  ASSERT_FALSE(msh.empty()) << read(scratch / "default_h2.log");
-  const std::string common = "contact: {mu: 0}\nloading: {journal: end_faces, n_increments: 2}\n";
-  const FeScene from_gmsh =
-    scene(common + "geometry: {mesh: " + msh.string() + "}\nmesh: {contact_refinements: 0}\n");
-  const FeScene generated = scene(common + "mesh: {n_circumferential: 16, n_radial: 2, "
-                                           "n_axial: 5, contact_refinements: 0}\n");
-  const RunResult g = run(from_gmsh), r = run(generated);
+  const auto [g, r] = run_default_joint_both_ways(
+    "default_h2", "-setnumber h 2e-3",
+    "contact: {mu: 0}\nloading: {journal: end_faces, n_increments: 2}\n",
+    "n_circumferential: 16, n_radial: 2, n_axial: 5");
   ASSERT_TRUE(g.complete && r.complete) << g.message << r.message;
   EXPECT_DOUBLE_EQ(g.symmetry_factor, 4.0);
   for (std::size_t i = 0; i < r.increments.size(); ++i)
@@ -107,7 +120,7 @@ TEST(FeGmsh, DeformableJournalFromGmshMatchesTheGeneratedOneWithinTheDiscretisat
       // equilibrium with the mortar constraint forces reaching the driven rim: CG to 1e-10
       EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);
       EXPECT_NEAR(f.force_load / f.force, 1.0, 1e-6);
-      EXPECT_LT(f.max_penetration, 1e-9 * from_gmsh.loading.delta_max);
+      EXPECT_LT(f.max_penetration, 1e-9 * FeScene().loading.delta_max);  // the default push
     }
 }
 
