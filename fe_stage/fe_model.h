@@ -75,6 +75,61 @@ namespace clearjoint::fe
     double wall_time = 0.0;               // [s] of the curve on this mesh
   };
 
+  /// One converged time step of the impact study (study impact). Forces and energies are of
+  /// the FULL bodies (symmetry factor applied); δ > 0 is the journal's displacement toward the
+  /// bearing (−y) beyond first touch.
+  struct DynamicStepRecord
+  {
+    unsigned int step = 0;
+    double time = 0.0;             // [s] t_{n+1}
+    double time_step = 0.0;        // [s] Δt of this step
+    double delta = 0.0;            // [m] journal displacement beyond first touch (deformable:
+                                   //     of its centre of mass)
+    double delta_rate = 0.0;       // [m/s] dδ/dt (> 0 approaching)
+    double force = 0.0;            // [N] contact force at t_{n+1} (on the journal, +y)
+    double force_support = 0.0;    // [N] reaction of the bearing's supports at t_{n+1}
+    double kinetic_journal = 0.0;  // [J] ½ m_J δ̇² (deformable: ½ v_Jᵀ M v_J)
+    double kinetic_bearing = 0.0;  // [J] ½ vᵀMv
+    double strain_bearing = 0.0;   // [J] ½ uᵀKu of the bearing
+    double strain_journal = 0.0;   // [J] of a deformable journal (0: rigid)
+    double work_contact = 0.0;     // [J] net work of the contact forces on both bodies since
+                                   //     t = 0 (trapezoidal; ≤ 0: lost where nodes close)
+    double numerical_dissipation = 0.0;  // [J] HHT's, since t = 0: W_c − ΔT − ΔU (EnergyLedger;
+                                         //     0 to round-off for α = 0)
+    unsigned int journal_iterations = 0;  // contact solves to find the journal's position
+    unsigned int contact_iterations = 0;  // active-set iterations over those solves
+    unsigned int linear_iterations = 0;
+    unsigned int n_active = 0;
+    unsigned int cuts = 0;         // halvings of Δt before this step converged
+    double wall_time = 0.0;        // [s] since the start of the run
+  };
+
+  /// What an impact case found (study impact); NaN/false where the run did not get there.
+  struct ImpactSummary
+  {
+    double velocity_in = 0.0;      // [m/s] at first touch
+    double journal_mass = 0.0;     // [kg] full body ρ π R_J² L_J
+    double contact_stiffness = 0.0;// [N/m] secant k_c = F(δ_est)/δ_est of the static curve
+    double contact_period = 0.0;   // [s] T_c = 2π √(m_J/k_c)
+    double time_step = 0.0;        // [s] Δt at the start
+    double alpha = 0.0;
+    double peak_force = 0.0;       // [N]
+    double time_of_peak = 0.0;     // [s]
+    double delta_at_peak = 0.0;    // [m]
+    double delta_max = 0.0;        // [m] deepest penetration
+    double quasi_static_force_at_peak_delta = 0.0;  // [N] static curve at δ(peak)
+    double dynamic_gap = 0.0;      // [1] (F_peak − F_qs(δ_peak)) / F_qs(δ_peak)
+    bool separated = false;        // the journal left the bearing before the end time
+    double contact_duration = 0.0; // [s] from first touch to F = 0 (interpolated)
+    double velocity_out = 0.0;     // [m/s] journal speed away from the bearing (separated)
+    double restitution = 0.0;      // [1] v_out / v_in (separated; else 0)
+    double kinetic_initial = 0.0;  // [J] ½ m_J v²
+    double bearing_energy_left = 0.0;  // [J] kinetic + strain of the bearing at the end
+    double numerical_dissipation = 0.0;  // [J]
+    double work_contact = 0.0;     // [J]
+    unsigned int n_steps = 0;
+  };
+
   struct RunResult
   {
     std::vector<IncrementRecord> increments;  // without the origin row
@@ -96,6 +151,10 @@ namespace clearjoint::fe
     std::string adaptive_error_method;
     double adaptive_order = 0.0;   // [1] q of F = F_inf + C N^-q (0: not extrapolated)
     double adaptive_extrapolated_force = 0.0;  // [N] F_inf (0: not extrapolated)
+    /// Study impact: `increments` hold the quasi-static curve of the same mesh (the reference
+    /// the dynamic path is compared with), these the time steps.
+    std::vector<DynamicStepRecord> dynamic_steps;
+    ImpactSummary impact;
   };
 
   struct RunOptions
@@ -105,6 +164,8 @@ namespace clearjoint::fe
     MPI_Comm comm = MPI_COMM_WORLD;
     /// Called on every rank after each converged increment (main() streams the CSV from it).
     std::function<void(const IncrementRecord &)> on_increment;
+    /// Study impact: called on every rank after each converged time step.
+    std::function<void(const DynamicStepRecord &)> on_dynamic_step;
   };
 
   /// Runs one scene (no sweep). Throws InputError for scene problems found late; numerical

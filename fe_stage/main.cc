@@ -24,6 +24,7 @@
 #include "common/strict_reader.h"
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
+#include "fe_stage/impact_output.h"
 #include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
 
@@ -159,8 +160,10 @@ namespace
 
   /// One case: CSV + fields + manifest in `dir`. Returns true if complete.
   bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
-                const bool plots, const PresetUse &preset, double &force_at_max)
+                const bool plots, const PresetUse &preset, double &force_at_max,
+                fe::ImpactSummary *impact = nullptr)
   {
+    const bool is_impact = scene.study == fe::Study::impact;
     const bool root = rank_of(MPI_COMM_WORLD) == 0;
     if (root)
       std::filesystem::create_directories(dir);
@@ -217,6 +220,17 @@ namespace
           comments);
         csv->write_row({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
       }
+    // Study impact: force_penetration.csv holds the quasi-static reference curve of the same
+    // mesh; the time history goes to impact_history.csv.
+    std::unique_ptr<CsvWriter> history;
+    const std::string history_path = dir + "/impact_history.csv";
+    if (root && is_impact)
+      {
+        history = std::make_unique<CsvWriter>(history_path, fe::impact_history_columns(),
+                                              fe::impact_history_units(),
+                                              fe::impact_history_comments(scene));
+        history->write_row(fe::impact_history_start(scene));
+      }
     fe::RunOptions options;
     options.output_dir = dir;
     options.write_fields = scene.output.fields;
@@ -231,7 +245,15 @@ namespace
         throw interrupt::Interrupted("after the increment to delta = " + format_value(r.delta) +
                                      " m");
     };
+    options.on_dynamic_step = [&](const fe::DynamicStepRecord &r) {
+      if (history)
+        history->write_row(fe::impact_history_row(r));
+      if ((signal_seen = interrupted_anywhere()) != 0)
+        throw interrupt::Interrupted("after the time step to t = " + format_value(r.time) + " s");
+    };
     fe::RunResult result = fe::run_scene(scene, options);
+    if (impact)
+      *impact = result.impact;
     // No run is "complete" with a NaN or Inf in its curve (issue 16): it is a numerical failure.
     for (const auto &r : result.increments)
       for (const double v : {r.delta, r.force, r.force_support, r.force_load, r.max_penetration,
@@ -250,6 +272,19 @@ namespace
         else
           csv->commit_incomplete(result.message);
         manifest->add_output(csv_path);
+        if (history)
+          {
+            if (result.complete)
+              history->commit();
+            else
+              history->commit_incomplete(result.message);
+            manifest->add_output(history_path);
+            manifest->extra()["impact"] = fe::impact_summary_json(result.impact);
+            // F(t), δ(t), F(δ) over the quasi-static curve, and the energies
+            if (plots && !result.dynamic_steps.empty() &&
+                run_plot_script("fe_impact", {dir + "/impact.png", dir}))
+              manifest->add_output(dir + "/impact.png");
+          }
         for (const auto &f : result.field_files)
           manifest->add_output(f);
         // F–δ, linear and log–log (a warning, not a failure, if Python/matplotlib is missing)
@@ -451,7 +486,14 @@ int main(int argc, char **argv)
           c.scene.misalignment.theta_deg = th;
           cases.push_back(c);
         }
+      for (const double v : scene.sweep_velocity)
+        {
+          Case c{scene, output_dir + "/v_" + label(v) + "mps", v};
+          c.scene.impact.velocity = v;
+          cases.push_back(c);
+        }
       const bool by_theta = !scene.sweep_theta_deg.empty();
+      const bool by_velocity = !scene.sweep_velocity.empty();
       if (cases.empty())
         {
           double f;
@@ -466,24 +508,42 @@ int main(int argc, char **argv)
               std::filesystem::create_directories(output_dir);
               top = std::make_unique<Manifest>("fe_stage", output_dir + "/manifest.json", argc, argv);
               top->add_input(scene_path);
-              table = std::make_unique<CsvWriter>(
-                output_dir + "/sweep.csv",
-                std::vector<std::string>{by_theta ? "theta" : "t_B", "force_at_delta_max"},
-                std::vector<std::string>{by_theta ? "deg" : "m", "N"},
-                std::vector<std::string>{std::string("fe_stage ") +
-                                         (by_theta ? "misalignment" : "thickness") +
-                                         " sweep; one folder per case"});
+              if (by_velocity)
+                table = std::make_unique<CsvWriter>(
+                  output_dir + "/impact_sweep.csv", fe::impact_sweep_columns(),
+                  fe::impact_sweep_units(),
+                  std::vector<std::string>{
+                    "fe_stage impact sweep (paper 3.2); one folder per velocity",
+                    "dynamic_gap = peak force / quasi-static force at the same delta - 1; "
+                    "restitution = journal speed away / speed in (0 if it had not left the "
+                    "bearing: separated = 0)",
+                    "bearing_energy_left = kinetic + strain energy of the bearing's vibration "
+                    "when the journal left"});
+              else
+                table = std::make_unique<CsvWriter>(
+                  output_dir + "/sweep.csv",
+                  std::vector<std::string>{by_theta ? "theta" : "t_B", "force_at_delta_max"},
+                  std::vector<std::string>{by_theta ? "deg" : "m", "N"},
+                  std::vector<std::string>{std::string("fe_stage ") +
+                                           (by_theta ? "misalignment" : "thickness") +
+                                           " sweep; one folder per case"});
             }
           for (auto &c : cases)
             {
               c.scene.sweep_t_B.clear();
               c.scene.sweep_theta_deg.clear();
+              c.scene.sweep_velocity.clear();
               double f = 0.0;
-              const bool ok = run_case(c.scene, c.folder, argc, argv, !no_plots, preset, f);
+              fe::ImpactSummary impact;
+              const bool ok =
+                run_case(c.scene, c.folder, argc, argv, !no_plots, preset, f, &impact);
               complete = complete && ok;
               if (root)
                 {
-                  table->write_row({c.value, f});
+                  if (by_velocity)
+                    table->write_row(fe::impact_sweep_row(impact));
+                  else
+                    table->write_row({c.value, f});
                   top->add_output(c.folder + "/manifest.json");
                 }
               if (!ok)
@@ -495,16 +555,28 @@ int main(int argc, char **argv)
                 table->commit();
               else
                 table->commit_incomplete("a case failed; see its manifest");
-              top->add_output(output_dir + "/sweep.csv");
-              // every case's curve in one figure, labelled by its value
-              std::vector<std::string> plot_args = {output_dir + "/sweep.png"};
-              for (const auto &c : cases)
-                if (std::filesystem::exists(c.folder + "/force_penetration.csv"))
-                  plot_args.push_back(c.folder + "=" +
-                                      (by_theta ? "theta " + label(c.value) + " deg" :
-                                                  "t_B " + label(units::to_mm(c.value)) + " mm"));
-              if (!no_plots && run_plot_script("fe", plot_args))
-                top->add_output(output_dir + "/sweep.png");
+              const std::string table_path =
+                output_dir + (by_velocity ? "/impact_sweep.csv" : "/sweep.csv");
+              top->add_output(table_path);
+              if (by_velocity)
+                {
+                  if (!no_plots && run_plot_script("fe_impact", {output_dir + "/impact_sweep.png",
+                                                                 "--sweep", table_path}))
+                    top->add_output(output_dir + "/impact_sweep.png");
+                }
+              else
+                {
+                  // every case's curve in one figure, labelled by its value
+                  std::vector<std::string> plot_args = {output_dir + "/sweep.png"};
+                  for (const auto &c : cases)
+                    if (std::filesystem::exists(c.folder + "/force_penetration.csv"))
+                      plot_args.push_back(c.folder + "=" +
+                                          (by_theta ? "theta " + label(c.value) + " deg" :
+                                                      "t_B " + label(units::to_mm(c.value)) +
+                                                        " mm"));
+                  if (!no_plots && run_plot_script("fe", plot_args))
+                    top->add_output(output_dir + "/sweep.png");
+                }
               top->write(complete ? "complete" : "incomplete");
             }
         }

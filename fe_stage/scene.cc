@@ -21,6 +21,7 @@ namespace clearjoint::fe
         case Study::misalignment: return "misalignment";
         case Study::hertz: return "hertz";
         case Study::patch: return "patch";
+        case Study::impact: return "impact";
       }
     return "?";
   }
@@ -64,14 +65,18 @@ namespace clearjoint::fe
     top.expect_schema("clearjoint.fe/1");
 
     const std::string study =
-      top.string_or("study", "radial", {"radial", "misalignment", "hertz", "patch"});
+      top.string_or("study", "radial", {"radial", "misalignment", "hertz", "patch", "impact"});
     s.study = study == "radial"       ? Study::radial :
               study == "misalignment" ? Study::misalignment :
               study == "hertz"        ? Study::hertz :
+              study == "impact"       ? Study::impact :
                                         Study::patch;
     // The misalignment study's journal is rigid unless the scene says otherwise (SPEC §2: the
     // end-face loading drives the contact rim); validate_scene rejects any other choice.
-    if (s.study == Study::misalignment)
+    // The impact study's journal is rigid unless the scene says end_faces or axis_line: then it
+    // is deformable, free in the time steps, and its quasi-static reference curve is pushed
+    // that way (the thickness study's loading).
+    if (s.study == Study::misalignment || s.study == Study::impact)
       s.loading.journal = JournalLoading::rigid;
     s.full_model = top.boolean_or("full_model", false);
 
@@ -220,9 +225,31 @@ namespace clearjoint::fe
         s.output.fields = o.boolean_or("fields", s.output.fields);
         o.finish();
       }
+    if (top.has("impact"))
+      {
+        auto o = top.object("impact");
+        auto &I = s.impact;
+        I.velocity = o.number_or("velocity", I.velocity, Range::open(0.0, 100.0, "m/s"));
+        I.alpha = o.number_or("alpha", I.alpha, Range::closed(-1.0 / 3.0, 0.0, ""));
+        I.steps_per_period = uint_or(o, "steps_per_period", I.steps_per_period, 10, 100000);
+        if (o.has("time_step"))
+          I.time_step = o.number("time_step", Range::positive("s"));
+        if (o.has("end_time"))
+          I.end_time = o.number("end_time", Range::positive("s"));
+        I.max_steps = uint_or(o, "max_steps", I.max_steps, 1, 1000000);
+        I.field_stride = uint_or(o, "field_stride", I.field_stride, 1, 1000000);
+        const std::string mass =
+          o.string_or("mass", "redistributed", {"redistributed", "lumped", "consistent"});
+        I.mass = mass == "lumped"     ? Impact::Mass::lumped :
+                 mass == "consistent" ? Impact::Mass::consistent :
+                                        Impact::Mass::redistributed;
+        o.finish();
+      }
     if (top.has("sweep"))
       {
         auto w = top.object("sweep");
+        if (w.has("velocity"))
+          s.sweep_velocity = w.number_array("velocity", Range::open(0.0, 100.0, "m/s"), 1);
         if (w.has("t_B"))
           s.sweep_t_B = w.number_array("t_B", Range::positive("m"), 1);
         if (w.has("theta_deg"))
@@ -242,10 +269,14 @@ namespace clearjoint::fe
                   w.fail(key, raw[i].dump(), "a number of degrees or 'theta_max'");
               }
           }
-        if (s.sweep_t_B.empty() && s.sweep_theta_deg.empty())
-          w.fail("t_B", "(none)", "sweep needs t_B [m] or theta_deg [deg]");
-        if (!s.sweep_t_B.empty() && !s.sweep_theta_deg.empty())
-          w.fail("theta_deg", "(given with t_B)", "one swept parameter per scene");
+        if (s.sweep_t_B.empty() && s.sweep_theta_deg.empty() && s.sweep_velocity.empty())
+          w.fail("t_B", "(none)", "sweep needs t_B [m], theta_deg [deg] or velocity [m/s]");
+        if (int(!s.sweep_t_B.empty()) + int(!s.sweep_theta_deg.empty()) +
+              int(!s.sweep_velocity.empty()) > 1)
+          w.fail(s.sweep_velocity.empty() ? "theta_deg" : "velocity", "(given with another)",
+                 "one swept parameter per scene");
+        if (!s.sweep_velocity.empty() && s.study != Study::impact)
+          w.fail("velocity", "(list)", "study impact only");
         if (!s.sweep_theta_deg.empty() && s.study != Study::misalignment)
           w.fail("theta_deg", "(list)", "study misalignment only");
         w.finish();
@@ -271,14 +302,37 @@ namespace clearjoint::fe
                        "L_J = L_B - 2 c_a must lie in (0, L_B)");
     if (!(s.loading.delta_max > 0.0))
       throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max), "(0, inf) m");
-    if ((s.study == Study::radial || s.study == Study::misalignment) && s.full_model &&
+    if (is_joint_study(s.study) && s.full_model &&
         s.mesh.n_circumferential < 8)
       throw InputError(f, "mesh.n_circumferential", std::to_string(s.mesh.n_circumferential),
                        ">= 8 for the full model");
     for (const double t : s.sweep_t_B)
       if (!(t > 0.0))
         throw InputError(f, "sweep.t_B", format_value(t), "(0, inf) m");
-    const bool joint = s.study == Study::radial || s.study == Study::misalignment;
+    const bool joint = is_joint_study(s.study);
+    if (s.study == Study::impact)
+      {
+        const auto &I = s.impact;
+        if (!(I.velocity > 0.0 && I.velocity < 100.0))
+          throw InputError(f, "impact.velocity", format_value(I.velocity), "(0, 100) m/s");
+        if (!(I.alpha >= -1.0 / 3.0 && I.alpha <= 0.0))
+          throw InputError(f, "impact.alpha", format_value(I.alpha), "[-1/3, 0]",
+                           "Hilber-Hughes-Taylor alpha; 0 = trapezoidal rule, no numerical "
+                           "damping");
+        if (I.steps_per_period < 10)
+          throw InputError(f, "impact.steps_per_period", std::to_string(I.steps_per_period),
+                           ">= 10", "the time step must resolve the contact period (dt/T <= 1/10)");
+        if (!(I.time_step >= 0.0))
+          throw InputError(f, "impact.time_step", format_value(I.time_step), "(0, inf) s");
+        if (!(I.end_time >= 0.0))
+          throw InputError(f, "impact.end_time", format_value(I.end_time), "(0, inf) s");
+        if (s.mesh.adaptive_cycles > 0)
+          throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
+                           "0 for study impact", "the impact runs on one mesh");
+      }
+    for (const double v : s.sweep_velocity)
+      if (!(v > 0.0 && v < 100.0))
+        throw InputError(f, "sweep.velocity", format_value(v), "(0, 100) m/s");
     if (s.study == Study::misalignment)
       {
         if (s.loading.journal != JournalLoading::rigid)
@@ -356,8 +410,8 @@ namespace clearjoint::fe
   {
     const auto &G = s.geometry;
     const std::string &f = s.source_file;
-    if (s.study != Study::radial && s.study != Study::misalignment)
-      throw InputError(f, "geometry.mesh", G.mesh, "study radial or misalignment",
+    if (!is_joint_study(s.study))
+      throw InputError(f, "geometry.mesh", G.mesh, "study radial, misalignment or impact",
                        "the verification problems generate their own block");
     const bool deformable_journal = s.loading.journal != JournalLoading::rigid;
     if (deformable_journal && s.contact.pairing == Contact::Pairing::node_to_node)
@@ -422,7 +476,7 @@ namespace clearjoint::fe
     o << "# fe_stage scene, schema clearjoint.fe/1. SI units everywhere (m, Pa, kg/m^3).\n"
       << "# Every key is optional except schema; shown here with its default.\n"
       << "schema: clearjoint.fe/1\n"
-      << "study: radial            # radial | misalignment | hertz | patch (verification problems)\n"
+      << "study: radial            # radial | misalignment | impact | hertz | patch (verification)\n"
       << "full_model: false        # false: symmetry planes (radial: x = 0 and z = 0, quarter\n"
       << "                         #   model; misalignment: x = 0 only, half model)\n"
       << "geometry:\n"
@@ -496,11 +550,26 @@ namespace clearjoint::fe
       << "    # coarse cells per edge of a deformable indenter\n"
       << "  indenter_height: " << d.verification.indenter_height
       << "  # [m] height of a deformable indenter (its top is pushed by delta)\n"
+      << "impact:               # study impact (paper 3.2): the journal (mass rho*pi*R_J^2*L_J; rigid\n"
+      << "                      #   unless loading.journal is end_faces or axis_line: deformable and\n"
+      << "                      #   free, its quasi-static curve pushed that way) starts at first\n"
+      << "                      #   touch moving toward the bearing (-y)\n"
+      << "  velocity: " << d.impact.velocity << "       # [m/s] speed at first touch, (0, 100)\n"
+      << "  alpha: " << d.impact.alpha << "         # HHT alpha in [-1/3, 0] (0: trapezoidal rule)\n"
+      << "  steps_per_period: " << d.impact.steps_per_period
+      << "  # >= 10: dt = T_c/this, T_c = 2 pi sqrt(m_J/k_c), k_c measured\n"
+      << "  # time_step: 1.0e-6   # [s] > 0: a fixed dt instead\n"
+      << "  # end_time: 1.0e-3    # [s] > 0: run to this time, past the separation (default:\n"
+      << "                      #   stop once the journal has left, at the latest at 4 T_c)\n"
+      << "  max_steps: " << d.impact.max_steps << "      # time steps at most\n"
+      << "  field_stride: " << d.impact.field_stride << "       # VTU fields every this many steps\n"
+      << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | consistent\n"
       << "output:\n"
       << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
       << "# sweep:              # optional: one run (and output folder) per value\n"
       << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n"
-      << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n";
+      << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n"
+      << "#   velocity: [0.05, 0.08, 0.10, 0.15, 0.20]         # [m/s] (study impact)\n";
     return o.str();
   }
 
@@ -552,6 +621,21 @@ namespace clearjoint::fe
                          {"indenter_n_cells", s.verification.indenter_n_cells},
                          {"indenter_height", s.verification.indenter_height}};
     j["output"] = {{"fields", s.output.fields}};
+    if (s.study == Study::impact)
+      {
+        j["impact"] = {{"velocity", s.impact.velocity},
+                       {"alpha", s.impact.alpha},
+                       {"steps_per_period", s.impact.steps_per_period},
+                       {"max_steps", s.impact.max_steps},
+                       {"field_stride", s.impact.field_stride},
+                       {"mass", s.impact.mass == Impact::Mass::lumped     ? "lumped" :
+                                s.impact.mass == Impact::Mass::consistent ? "consistent" :
+                                                                            "redistributed"}};
+        if (s.impact.time_step > 0.0)
+          j["impact"]["time_step"] = s.impact.time_step;
+        if (s.impact.end_time > 0.0)
+          j["impact"]["end_time"] = s.impact.end_time;
+      }
     return j;
   }
 } // namespace clearjoint::fe

@@ -18,7 +18,15 @@ namespace clearjoint::fe
   /// What is simulated. `radial` is the paper's §2.2/§3.1 study, `misalignment` its §3.3 study
   /// (journal tilted by θ in the y–z plane); `hertz` and `patch` are the verification problems
   /// of SPEC §2 (a rigid sphere / a rigid flat pressed onto an elastic block).
-  enum class Study { radial, misalignment, hertz, patch };
+  /// `impact` is the paper's §3.2 study: the journal launched into the bearing, implicit
+  /// dynamics (Hilber–Hughes–Taylor α).
+  enum class Study { radial, misalignment, hertz, patch, impact };
+
+  /// The studies that model the joint (bearing and journal), not a verification block.
+  inline bool is_joint_study(Study s)
+  {
+    return s == Study::radial || s == Study::misalignment || s == Study::impact;
+  }
 
   /// How the journal is loaded (SPEC §2): `end_faces` (default) drives u_y = −δ on the journal's
   /// end face(s); `axis_line` drives only the journal's axis (the paper's choice; drifts with
@@ -130,6 +138,31 @@ namespace clearjoint::fe
     double indenter_height = 20.0e-3;   // [m] H_i
   };
 
+  /// Impact study (paper §3.2): the journal (full-body mass ρ π R_J² L_J; rigid, or with
+  /// loading.journal end_faces / axis_line deformable and free) starts at first
+  /// touch with `velocity` toward the bearing (−y) — equivalent to the paper's coaxial start, as
+  /// the free flight across the clearance changes nothing (no gravity, bearing at rest) — and
+  /// the run follows it through the deepest penetration until it leaves the bearing.
+  struct Impact
+  {
+    double velocity = 0.10;   // [m/s] speed at first touch, (0, 100)
+    double alpha = -0.05;     // [1] HHT α in [−1/3, 0] (solve/hht.h says why this default)
+    /// Δt = T_c / steps_per_period, T_c = 2π √(m_J/k_c) the period of the journal's mass on
+    /// the contact's secant stiffness k_c at the expected δ_max (measured by a static push on
+    /// the same mesh): ≥ 10, the Δt/T ≤ 1/10.
+    unsigned int steps_per_period = 40;
+    double time_step = 0.0;   // [s] > 0: this Δt instead (0: from steps_per_period)
+    double end_time = 0.0;    // [s] > 0: run to this time (past the separation: the bearing's
+                              //   free vibration); 0: stop once the journal has left, at the
+                              //   latest at 4 T_c (twice a linear contact's duration)
+    unsigned int max_steps = 5000;  // time steps at most (a bound on the loop)
+    unsigned int field_stride = 5;  // VTU fields every this many steps (and the last)
+    /// The mass matrix: `redistributed` (row-sum lumped, the contact surface's nodes massless,
+    /// their mass moved to their cells' other nodes: the contact force converges with Δt),
+    /// `lumped` (row-sum), `consistent` (both oscillate at the contact: docs/fe.md).
+    enum class Mass { redistributed, lumped, consistent } mass = Mass::redistributed;
+  };
+
   struct Output
   {
     bool fields = true;  // write VTU/PVTU + PVD fields
@@ -147,9 +180,11 @@ namespace clearjoint::fe
     Verification verification;
     Misalignment misalignment;
     Output output;
+    Impact impact;
     bool full_model = false;  // false: the symmetry planes the scene allows (quarter model)
     std::vector<double> sweep_t_B;  // [m] if non-empty, one run per value, one folder each
     std::vector<double> sweep_theta_deg;  // [deg] the same for the misalignment angle
+    std::vector<double> sweep_velocity;   // [m/s] the same for the impact velocity
     std::string source_file;        // for messages and the manifest
   };
 

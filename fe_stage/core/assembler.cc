@@ -4,13 +4,28 @@
 
 namespace clearjoint::fe::detail
 {
+  /// The operator once per mesh (and per time step size): the unconstrained K_ and the
+  /// condensed part of the cells without contact nodes. Quasi-static: the stiffness K; dynamic
+  /// (dynamic_): c_m M + c_k K, with M and K also kept apart for the step's right-hand side and
+  /// the energies.
   void ContactModel::assemble_static()
   {
     const unsigned int p = fe_->degree;
     const QGauss<dim> quadrature(p + 1);
-    FEValues<dim> fe_values(*mapping_, *fe_, quadrature, update_gradients | update_JxW_values);
+    FEValues<dim> fe_values(*mapping_, *fe_, quadrature,
+                            update_gradients | update_JxW_values |
+                              (dynamic_ ? update_values : update_default));
     const unsigned int n_dofs = fe_->n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n_dofs, n_dofs);
+    const double c_m = dynamic_ ? operator_coefficients_.mass : 0.0;
+    const double c_k = dynamic_ ? operator_coefficients_.stiffness : 1.0;
+    const double rho = scene_.material.rho;
+    FullMatrix<double> cell_matrix(n_dofs, n_dofs), cell_mass(n_dofs, n_dofs);
+    // the contact surface's DoFs (every node of nodes_, candidate or watched): massless with
+    // impact.mass = redistributed
+    std::set<types::global_dof_index> surface_dofs;
+    if (dynamic_ && scene_.impact.mass == Impact::Mass::redistributed)
+      for (const auto &cn : nodes_)
+        surface_dofs.insert(cn.dofs.begin(), cn.dofs.end());
     Vector<double> cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
     const FEValuesExtractors::Vector u(0);
@@ -39,6 +54,26 @@ namespace clearjoint::fe::detail
             for (unsigned int j = 0; j < i; ++j)
               cell_matrix(i, j) = cell_matrix(j, i);
           cell->get_dof_indices(dofs);
+          if (dynamic_)
+            {
+              // consistent mass: ρ φ_i·φ_j (a vector element: only equal components couple)
+              cell_mass = 0.0;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    const unsigned int ci = fe_->system_to_component_index(i).first;
+                    for (unsigned int j = 0; j < n_dofs; ++j)
+                      if (fe_->system_to_component_index(j).first == ci)
+                        cell_mass(i, j) += rho * fe_values.shape_value(i, q) *
+                                           fe_values.shape_value(j, q) * fe_values.JxW(q);
+                  }
+              if (scene_.impact.mass != Impact::Mass::consistent)
+                lump_and_redistribute(cell_mass, dofs, surface_dofs);
+              K_elastic_.add(dofs, cell_matrix);
+              M_.add(dofs, cell_mass);
+              cell_matrix *= c_k;
+              cell_matrix.add(c_m, cell_mass);
+            }
           K_.add(dofs, cell_matrix);
           const int k = contact_cell_of_[cell->active_cell_index()];
           if (k >= 0)
@@ -54,6 +89,11 @@ namespace clearjoint::fe::detail
             }
         }
     K_.compress(VectorOperation::add);
+    if (dynamic_)
+      {
+        K_elastic_.compress(VectorOperation::add);
+        M_.compress(VectorOperation::add);
+      }
     A_static_.compress(VectorOperation::add);
     rhs_static_unit_.compress(VectorOperation::add);  // from the journal load at δ = 1
   }
@@ -101,6 +141,86 @@ namespace clearjoint::fe::detail
     A_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
     rhs_.add(delta, rhs_static_unit_);
+    if (dynamic_)
+      add_condensed(dynamic_load_, rhs_);
+  }
+
+  /// Row-sum lumping of a cell's consistent mass (positive for Lagrange Q1 and Q2: the tensor
+  /// products of 1D row sums), then, per displacement component, the mass of the contact
+  /// surface's DoFs moved to the cell's other DoFs in proportion to theirs (total mass kept).
+  /// Massless contact nodes are the mass redistribution of Khenous, Laborde and Renard (Eur. J.
+  /// Mech. A 27, 2008): with mass on the nodes whose displacement the contact prescribes, each
+  /// closing node receives an impulse over one time step, so the contact force oscillates and
+  /// its peak grows without bound as Δt → 0 (measured: docs/fe.md); without it the semi-discrete
+  /// problem is well posed and the force converges with Δt.
+  void ContactModel::lump_and_redistribute(FullMatrix<double> &cell_mass,
+                                           const std::vector<types::global_dof_index> &dofs,
+                                           const std::set<types::global_dof_index> &surface) const
+  {
+    const unsigned int n = cell_mass.m();
+    std::vector<double> m(n, 0.0);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        m[i] += cell_mass(i, j);
+    if (!surface.empty())
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          double total = 0.0, moved = 0.0;
+          for (unsigned int i = 0; i < n; ++i)
+            if (fe_->system_to_component_index(i).first == c)
+              {
+                total += m[i];
+                if (surface.count(dofs[i]))
+                  moved += m[i];
+              }
+          if (moved <= 0.0 || moved >= total)
+            continue;  // no surface DoF in the cell (or only: keep its mass where it is)
+          for (unsigned int i = 0; i < n; ++i)
+            if (fe_->system_to_component_index(i).first == c)
+              m[i] = surface.count(dofs[i]) ? 0.0 : m[i] * total / (total - moved);
+        }
+    cell_mass = 0.0;
+    for (unsigned int i = 0; i < n; ++i)
+      cell_mass(i, i) = m[i];
+  }
+
+  void ContactModel::set_dynamic_operator(const MatrixCoefficients &c)
+  {
+    dynamic_ = true;
+    operator_coefficients_ = c;
+    for (auto *m : {&K_, &A_static_})
+      *m = 0.0;
+    M_.reinit(K_);  // K_'s pattern (a new setup may have changed it)
+    K_elastic_.reinit(K_);
+    dynamic_load_.reinit(owned_, comm_);
+    M_ = 0.0;
+    K_elastic_ = 0.0;
+    rhs_static_unit_ = 0.0;
+    assemble_static();
+    amg_.reset();  // built for the previous operator
+  }
+
+  /// The condensed system's right-hand side gets C^T b: a constrained DoF's entry of b moves to
+  /// its masters with the constraint's coefficients (as distribute_local_to_global does with a
+  /// cell vector). Every rank moves the entries of the lines of the DoFs it owns.
+  void ContactModel::add_condensed(const TrilinosWrappers::MPI::Vector &b,
+                                   TrilinosWrappers::MPI::Vector &rhs)
+  {
+    TrilinosWrappers::MPI::Vector ghosted(owned_, relevant_, comm_);
+    ghosted = b;
+    TrilinosWrappers::MPI::Vector moved;
+    moved.reinit(owned_, relevant_, comm_, true);  // writable: masters owned elsewhere
+    for (const auto &line : constraints_.get_lines())
+      if (owned_.is_element(line.index))
+        {
+          const double bi = ghosted[line.index];
+          for (const auto &[m, c] : line.entries)
+            moved[m] += c * bi;
+          moved[line.index] -= bi;
+        }
+    moved.compress(VectorOperation::add);
+    rhs += b;
+    rhs += moved;
   }
 
 } // namespace clearjoint::fe::detail

@@ -31,8 +31,9 @@ namespace clearjoint::fe::detail
     else
       VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, bid_fixed, zero,
                                                fixed_constraints_, fe_->component_mask(uy));
-    // Journal load at δ = 1 (u_y = −1 m); every inhomogeneity is then scaled by δ.
-    if (two_body_)
+    // Journal load at δ = 1 (u_y = −1 m); every inhomogeneity is then scaled by δ. (Not for the
+    // impact study's time steps: its deformable journal is free.)
+    if (two_body_ && journal_driven_)
       {
         std::map<types::global_dof_index, Point<dim>> support;
         DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);

@@ -25,6 +25,7 @@
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/linear_elastic.h"
 #include "fe_stage/mesh/boundary_ids.h"
+#include "fe_stage/solve/hht.h"
 #include "fe_stage/study/study.h"
 
 #include "common/error.h"
@@ -114,6 +115,15 @@ namespace clearjoint::fe::detail
     bool push_through(const std::vector<double> &targets, std::string &message,
                       const std::function<void(unsigned int, IncrementRecord &)> &on_converged);
     void prepare_mesh();
+    /// Study impact (solve/impact_stepping.cc): the static curve, then HHT-α time steps.
+    RunResult run_impact();
+    /// Switches the assembled operator to c_m M + c_k K (dynamic_ on) and reassembles.
+    void set_dynamic_operator(const MatrixCoefficients &c);
+    /// rhs += C^T b: b moved off the DoFs constrained in constraints_ onto their masters.
+    void add_condensed(const TrilinosWrappers::MPI::Vector &b, TrilinosWrappers::MPI::Vector &rhs);
+    void lump_and_redistribute(FullMatrix<double> &cell_mass,
+                               const std::vector<types::global_dof_index> &dofs,
+                               const std::set<types::global_dof_index> &surface) const;
     void refine_adaptively();
     void estimate_adaptive_error(RunResult &result) const;
     /// One increment to `delta` from the current state; throws StepFailure.
@@ -229,11 +239,19 @@ namespace clearjoint::fe::detail
     std::vector<types::global_dof_index> loaded_y_dofs_;  // owned journal DoFs driven by δ
     std::vector<types::global_dof_index> loaded_sorted_;  // the same, sorted (lookups)
     bool two_body_ = false;
+    bool journal_driven_ = true;                    // false: a deformable journal is free
     bool friction_ = false;                         // contact.mu > 0
     bool nonsymmetric_ = false;                     // slipping nodes in A_ (GMRES, not CG)
     std::map<types::global_dof_index, unsigned int> slipping_;  // x-DoF → node (this iteration)
     AffineConstraints<double> constraints_;         // + contact lines of the active set
-    TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions)
+    TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions);
+                                                    // dynamic: c_m M + c_k K
+    // Implicit dynamics (study impact): the operator K_ and the condensed matrices hold
+    // c_m M + c_k K; the residual K_ u − dynamic_load_ is then the constraint forces.
+    bool dynamic_ = false;
+    MatrixCoefficients operator_coefficients_;      // {mass 0, stiffness 1}: quasi-static
+    TrilinosWrappers::SparseMatrix M_, K_elastic_;  // mass, stiffness (unconstrained; dynamic)
+    TrilinosWrappers::MPI::Vector dynamic_load_;    // owned: the known part of the step's rhs
     TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
     TrilinosWrappers::SparseMatrix A_;              // condensed system of this iteration
     TrilinosWrappers::MPI::Vector solution_owned_, rhs_, residual_owned_;

@@ -9,6 +9,8 @@ namespace clearjoint::fe::detail
   void ContactModel::evaluate_contact(const double delta)
   {
     K_.vmult(residual_owned_, solution_owned_);
+    if (dynamic_)  // the constraint forces of the step: (c_m M + c_k K) u − b
+      residual_owned_ -= dynamic_load_;
     condense_hanging(residual_owned_);
     residual_ = residual_owned_;
     for (auto &cn : nodes_)

@@ -172,6 +172,8 @@ namespace clearjoint::fe::detail
 
   RunResult ContactModel::run()
   {
+    if (plan_.dynamic)
+      return run_impact();
     RunResult result;
     result.n_ranks = n_ranks_;
     auto seconds = [&] {

@@ -45,6 +45,7 @@ namespace clearjoint::fe
         case Study::misalignment: return misalignment_study(scene);
         case Study::hertz: return hertz_study(scene);
         case Study::patch: return patch_study(scene);
+        case Study::impact: return impact_study(scene);
       }
     return radial_study(scene);
   }

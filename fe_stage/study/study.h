@@ -35,6 +35,8 @@ namespace clearjoint::fe
     /// Every converged increment must have a contact point (a pushed joint touches
     /// somewhere; zero active nodes means the mesh is too coarse for the contact patch).
     bool must_touch = true;
+    /// Implicit dynamics (mass matrix, HHT-α time steps) instead of quasi-static increments.
+    bool dynamic = false;
     std::array<std::string, 2> body_names;  // material ids 0 and 1
   };
 
@@ -49,6 +51,7 @@ namespace clearjoint::fe
   StudyPlan misalignment_study(const FeScene &scene);
   StudyPlan hertz_study(const FeScene &scene);
   StudyPlan patch_study(const FeScene &scene);
+  StudyPlan impact_study(const FeScene &scene);
 
   /// The plan of scene.study.
   StudyPlan plan_study(const FeScene &scene);

@@ -4,6 +4,7 @@
 #include "common/strict_reader.h"
 #include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
+#include "fe_stage/solve/hht.h"
 
 #include <gtest/gtest.h>
 
@@ -247,4 +248,39 @@ TEST(FeScene, YieldStressDefaultsToTheHardeningTablesFirstPoint)
                      .material.yield_stress, 3.0e8);
   expect_error("schema: clearjoint.fe/1\nmaterial: {yield_stress: -1}\n",
                {"material.yield_stress", "-1"});
+}
+
+// Study impact (issue 12 item 6): v ≤ 0, α outside [−1/3, 0], a time step or end time ≤ 0 are
+// input errors naming the key and its range; the sweep over velocities is read.
+TEST(FeScene, ImpactStudy)
+{
+  const std::string head = "schema: clearjoint.fe/1\nstudy: impact\n";
+  const FeScene s = parse(head + "impact: {velocity: 0.15, alpha: -0.1, time_step: 1.0e-6, "
+                                 "end_time: 2.0e-4, mass: consistent}\n"
+                                 "sweep: {velocity: [0.05, 0.2]}\n");
+  EXPECT_EQ(s.study, Study::impact);
+  EXPECT_EQ(s.loading.journal, JournalLoading::rigid);
+  EXPECT_DOUBLE_EQ(s.impact.velocity, 0.15);
+  EXPECT_DOUBLE_EQ(s.impact.alpha, -0.1);
+  EXPECT_DOUBLE_EQ(s.impact.time_step, 1.0e-6);
+  EXPECT_DOUBLE_EQ(s.impact.end_time, 2.0e-4);
+  EXPECT_EQ(s.impact.mass, Impact::Mass::consistent);
+  EXPECT_EQ(s.sweep_velocity, (std::vector<double>{0.05, 0.2}));
+  const FeScene d = parse(head);
+  EXPECT_DOUBLE_EQ(d.impact.alpha, HhtAlpha::default_alpha);
+  EXPECT_EQ(d.impact.mass, Impact::Mass::redistributed);
+  expect_error(head + "impact: {velocity: 0}\n", {"impact.velocity", "(0, 100) m/s"});
+  expect_error(head + "impact: {velocity: -0.1}\n", {"impact.velocity", "-0.1"});
+  expect_error(head + "impact: {alpha: -0.5}\n", {"impact.alpha", "-0.5"});
+  expect_error(head + "impact: {alpha: 0.1}\n", {"impact.alpha", "0.1"});
+  expect_error(head + "impact: {time_step: 0}\n", {"impact.time_step", "s"});
+  expect_error(head + "impact: {time_step: -1.0e-6}\n", {"impact.time_step"});
+  expect_error(head + "impact: {end_time: 0}\n", {"impact.end_time", "s"});
+  expect_error(head + "impact: {steps_per_period: 5}\n", {"impact.steps_per_period", "10"});
+  expect_error(head + "impact: {mass: heavy}\n", {"impact.mass", "redistributed"});
+  EXPECT_EQ(parse(head + "loading: {journal: end_faces}\n").loading.journal,
+            JournalLoading::end_faces);  // a deformable journal
+  expect_error(head + "sweep: {velocity: [0.1, 0]}\n", {"sweep.velocity"});
+  expect_error("schema: clearjoint.fe/1\nsweep: {velocity: [0.1]}\n",
+               {"sweep.velocity", "study impact"});
 }

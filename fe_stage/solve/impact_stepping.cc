@@ -1,0 +1,496 @@
+// The impact study's time stepping (paper §3.2; issue 12): the rigid journal, launched at first
+// touch toward the bearing, against the elastic bearing ring, by Hilber–Hughes–Taylor α.
+//
+// Per run:
+//   1. the quasi-static curve F_qs(δ) of the same journal on the same mesh, pushed to 1.5× the
+//      δ_max a linear contact of the probed stiffness would reach — the reference the dynamic
+//      path is compared with, and the contact stiffness k_c that sets the time step:
+//      T_c = 2π √(m_J/k_c) is the period of the journal's mass on the contact (the contact
+//      lasts about T_c/2), and Δt = T_c / impact.steps_per_period (≥ 10: Δt/T ≤ 1/10). The
+//      bearing's own modes faster than that are not resolved; HHT's α < 0 damps them.
+//   2. time steps n → n+1. The bearing: M a + (1+α)(K u − λ)_{n+1} − α(K u − λ)_n = 0 with the
+//      contact force λ enforced exactly by the active set (the constraint rows of the
+//      quasi-static model): the condensed operator is c_m M + (1+α)K and the known part
+//      b = c_m M û + α(K u_n − λ_n) (û the Newmark predictor), so that the residual
+//      (c_m M + (1+α)K) u − b at the constrained DoFs is (1+α)λ_{n+1}. The journal (full-body
+//      mass m_J, one unknown δ): m_J δ̈_{n+1} + (1+α)F_{n+1} − αF_n = 0, F the contact force.
+//      For a given journal position δ the bearing's step is a contact solve (solve_increment);
+//      g(δ) = m_J c_m (δ − δ̂) + (1+α)F_{n+1}(δ) − αF_n increases with δ, so the position is
+//      found by regula falsi (Illinois) on a bracket that always exists: [δ̂ − g(δ̂)/(m_J c_m),
+//      δ̂] (F ≥ 0 and grows with δ). A step that fails is halved (at most loading.max_cuts
+//      times; the smaller Δt is kept), state restored, as the quasi-static increments are.
+//   3. the run stops when the journal has left the bearing (out of contact for T_c/10 after
+//      contact, moving away) or at the end time.
+#include "fe_stage/core/contact_model.h"
+
+namespace clearjoint::fe::detail
+{
+  namespace
+  {
+    /// Linear interpolation of the static curve at δ (0 below the first point's δ is reached
+    /// through the origin); beyond the last point, the last segment extended.
+    double interpolate_curve(const std::vector<IncrementRecord> &c, const double delta)
+    {
+      double d0 = 0.0, f0 = 0.0;
+      for (std::size_t i = 0; i < c.size(); ++i)
+        {
+          const double d1 = c[i].delta, f1 = c[i].force;
+          if (delta <= d1 || i + 1 == c.size())
+            return f0 + (f1 - f0) * (delta - d0) / (d1 - d0);
+          d0 = d1;
+          f0 = f1;
+        }
+      return 0.0;
+    }
+  } // namespace
+
+  RunResult ContactModel::run_impact()
+  {
+    RunResult result;
+    result.n_ranks = n_ranks_;
+    auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    };
+    const auto &I = scene_.impact;
+    const auto &L = scene_.loading;
+    auto &S = result.impact;
+    make_grid();
+    prepare_mesh();
+    result.n_dofs = dof_handler_.n_dofs();
+    result.n_cells = tria_.n_global_active_cells();
+    result.symmetry_factor = symmetry_factor_;
+    result.h_min = h_min_;
+    result.setup_time = seconds();
+    const double R_J = scene_.geometry.R_J(), L_J = scene_.geometry.L_J();
+    S.velocity_in = I.velocity;
+    S.journal_mass = scene_.material.rho * numbers::PI * R_J * R_J * L_J;
+    S.alpha = I.alpha;
+    S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
+    const double m_J = S.journal_mass;
+    if (rank_ == 0)
+      log::info("fe_stage: impact: " + std::to_string(result.n_cells) + " cells, " +
+                std::to_string(result.n_dofs) + " DoFs; " +
+                (plan_.deformable_partner ? "deformable" : "rigid") + " journal " +
+                format_value(m_J) +
+                " kg at " + format_value(I.velocity) + " m/s, setup " +
+                log::format_duration(result.setup_time));
+
+    // 1. The static probe and the quasi-static reference curve on this mesh.
+    const double delta_probe = 0.02 * L.delta_max;
+    double f_probe = 0.0;
+    if (!push_through({delta_probe}, result.message,
+                      [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
+      {
+        result.message = "static probe of the contact stiffness: " + result.message;
+        result.wall_time = seconds();
+        return result;
+      }
+    if (!(f_probe > 0.0))
+      {
+        result.message = "the static probe at delta = " + format_value(delta_probe) +
+                         " m found no contact force (mesh too coarse where the journal touches)";
+        result.wall_time = seconds();
+        return result;
+      }
+    const double delta_estimate = I.velocity * std::sqrt(m_J * delta_probe / f_probe);
+    const double delta_curve = 1.5 * delta_estimate;
+    if (delta_curve > L.delta_max)
+      throw InputError(scene_.source_file, "loading.delta_max", format_value(L.delta_max),
+                       ">= " + format_value(delta_curve) + " m for this impact",
+                       "study impact: the contact candidates and the quasi-static reference "
+                       "curve cover penetrations up to loading.delta_max; this impact is "
+                       "expected to reach " + format_value(delta_estimate) + " m");
+    std::vector<double> targets;
+    for (unsigned int k = 1; k <= L.n_increments; ++k)
+      targets.push_back(delta_curve * k / L.n_increments);
+    const bool curve_ok =
+      push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
+        r.wall_time = seconds();
+        result.increments.push_back(r);
+        if (options_.on_increment)
+          options_.on_increment(r);
+      });
+    if (!curve_ok)
+      {
+        result.message = "quasi-static reference curve: " + result.message;
+        result.wall_time = seconds();
+        return result;
+      }
+    S.contact_stiffness = interpolate_curve(result.increments, delta_estimate) / delta_estimate;
+    S.contact_period = 2.0 * numbers::PI * std::sqrt(m_J / S.contact_stiffness);
+    double dt = I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
+    S.time_step = dt;
+    const double t_end = I.end_time > 0.0 ? I.end_time : 4.0 * S.contact_period;
+    if (rank_ == 0)
+      log::info("fe_stage: impact: contact stiffness " + format_value(S.contact_stiffness) +
+                " N/m (static curve at the expected delta_max " + format_value(delta_estimate) +
+                " m), period T_c = " + format_value(S.contact_period) + " s, dt = " +
+                format_value(dt) + " s (T_c/" + format_value(S.contact_period / dt) +
+                "), end time " + format_value(t_end) + " s");
+
+    // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
+    // loaded set (the static curve pushed it at its end faces or axis, as the thickness study).
+    const bool deformable = plan_.deformable_partner;
+    if (deformable)
+      {
+        journal_driven_ = false;
+        prepare_mesh();
+      }
+    const HhtAlpha hht(I.alpha, "impact.alpha", scene_.source_file);
+    set_dynamic_operator(hht.coefficients(dt));
+    solution_owned_ = 0.0;
+    solution_ = 0.0;
+    for (auto &cn : nodes_)
+      {
+        cn.active = false;
+        cn.stick = true;
+        cn.relative = cn.relative_converged = Tensor<1, dim>();
+      }
+    TrilinosWrappers::MPI::Vector u(owned_, comm_), v(owned_, comm_), a(owned_, comm_),
+      lambda(owned_, comm_), u_new(owned_, comm_), v_new(owned_, comm_), a_new(owned_, comm_),
+      lambda_new(owned_, comm_), tmp(owned_, comm_), u_peak(owned_, comm_);
+    double d = 0.0, d_rate = I.velocity, d_acc = 0.0, F = 0.0;  // the journal
+    const double sym = symmetry_factor_;
+    // A deformable journal: its DoFs (mask), its y-DoFs (the direction of δ), its mass from the
+    // FE mass matrix; it starts as a rigid translation at −v e_y. δ is its centre of mass's
+    // displacement: −(1_yᵀ M u)/(1_yᵀ M 1_y).
+    TrilinosWrappers::MPI::Vector journal_mask(owned_, comm_), journal_y(owned_, comm_);
+    double journal_mass_modelled = 0.0;
+    if (deformable)
+      {
+        std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->material_id() == 1)
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (owned_.is_element(dofs[i]))
+                  {
+                    journal_mask[dofs[i]] = 1.0;
+                    if (fe_->system_to_component_index(i).first == 1)
+                      journal_y[dofs[i]] = 1.0;
+                  }
+            }
+        journal_mask.compress(VectorOperation::insert);
+        journal_y.compress(VectorOperation::insert);
+        M_.vmult(tmp, journal_y);
+        journal_mass_modelled = journal_y * tmp;
+        S.journal_mass = sym * journal_mass_modelled;
+        v.add(-I.velocity, journal_y);
+        if (rank_ == 0)
+          log::info("fe_stage: impact: deformable journal, FE mass " +
+                    format_value(S.journal_mass) + " kg (rho pi R_J^2 L_J = " +
+                    format_value(m_J) + " kg)");
+      }
+    // ½ sym xᵀ A y restricted to the journal's DoFs (mask) or over all
+    auto energy = [&](const TrilinosWrappers::SparseMatrix &A, const TrilinosWrappers::MPI::Vector &x,
+                      const bool journal_only) {
+      A.vmult(tmp, x);
+      if (!journal_only)
+        return 0.5 * sym * (x * tmp);
+      TrilinosWrappers::MPI::Vector xm = x;
+      xm.scale(journal_mask);
+      return 0.5 * sym * (xm * tmp);
+    };
+    // the centre of mass's displacement toward the bearing (deformable journal)
+    auto centre_of_mass_y = [&](const TrilinosWrappers::MPI::Vector &x) {
+      M_.vmult(tmp, x);
+      return -(journal_y * tmp) / journal_mass_modelled;
+    };
+    EnergyLedger ledger;
+    S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
+    ledger.start(S.kinetic_initial);
+    double work_contact = 0.0;
+    double t = 0.0;
+    bool in_contact = false, have_peak = false;
+    unsigned int free_steps = 0;  // steps without contact since the contact last ended
+    double contact_end = 0.0;     // [s] when it last ended
+    const bool fields = options_.write_fields && !options_.output_dir.empty();
+    if (fields && rank_ == 0)
+      std::filesystem::create_directories(options_.output_dir + "/fields");
+    if (fields)
+      {
+        set_obstacle_position(0.0);
+        evaluate_contact(0.0);
+        write_fields(0, 0.0);
+      }
+    unsigned int step = 0;
+    for (; step < I.max_steps && t < t_end * (1.0 - 1e-12); ++step)
+      {
+        DynamicStepRecord rec;
+        rec.step = step + 1;
+        const TrilinosWrappers::MPI::Vector saved = u;
+        const std::vector<ContactNode> saved_nodes = nodes_;
+        IncrementRecord inc;
+        double d_new = 0.0;
+        for (;;)
+          {
+            try
+              {
+                const double c_m = hht.coefficients(dt).mass;
+                // the predictor û and the known part b = c_m M û + α(K u_n − λ_n)
+                TrilinosWrappers::MPI::Vector u_hat = u;
+                u_hat.add(dt, v);
+                u_hat.add(dt * dt * (0.5 - hht.beta()), a);
+                M_.vmult(dynamic_load_, u_hat);
+                dynamic_load_ *= c_m;
+                K_elastic_.vmult(tmp, u);
+                tmp -= lambda;
+                dynamic_load_.add(I.alpha, tmp);
+                const double d_hat = d + dt * d_rate + dt * dt * (0.5 - hht.beta()) * d_acc;
+                solution_owned_ = u_hat;
+                solution_ = solution_owned_;
+                if (deformable)
+                  {
+                    // the journal is part of the FE system: one contact solve
+                    inc = solve_increment(0.0);
+                    rec.contact_iterations += inc.contact_iterations;
+                    rec.linear_iterations += inc.linear_iterations;
+                    rec.journal_iterations = 1;
+                    break;
+                  }
+                // g(δ) = m_J c_m (δ − δ̂) + (1+α)F(δ) − αF_n, F from the contact solve
+                unsigned int evaluations = 0;
+                auto g_of = [&](const double delta) {
+                  inc = solve_increment(delta);
+                  ++evaluations;
+                  rec.contact_iterations += inc.contact_iterations;
+                  rec.linear_iterations += inc.linear_iterations;
+                  return m_J * c_m * (delta - d_hat) + inc.force - I.alpha * F;
+                };
+                double hi = d_hat, g_hi = g_of(hi);
+                d_new = hi;
+                // the force scale of this step: tolerance 1e-9 of it (the linear solves hold
+                // the contact force to ~1e-10)
+                const double tol = 1e-9 * std::max(g_hi, m_J * c_m * 1e-3 * L.delta_max);
+                if (g_hi > tol)
+                  {
+                    double lo = d_hat - g_hi / (m_J * c_m), g_lo = g_of(lo);
+                    d_new = lo;
+                    // Illinois: the end that stays twice in a row has its value halved
+                    int side = 0;
+                    bool converged = std::abs(g_lo) <= tol;
+                    while (!converged)
+                      {
+                        if (evaluations >= 60)
+                          throw StepFailure{"the journal's position did not converge in 60 "
+                                            "contact solves (bracket " + format_value(lo) +
+                                            " .. " + format_value(hi) + " m)"};
+                        const double x = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+                        const double gx = g_of(x);
+                        d_new = x;
+                        converged = std::abs(gx) <= tol;
+                        if (gx > 0.0)
+                          {
+                            hi = x, g_hi = gx;
+                            if (side == 1)
+                              g_lo *= 0.5;
+                            side = 1;
+                          }
+                        else
+                          {
+                            lo = x, g_lo = gx;
+                            if (side == -1)
+                              g_hi *= 0.5;
+                            side = -1;
+                          }
+                      }
+                    // the last evaluation (d_new) is the converged state
+                  }
+                rec.journal_iterations = evaluations;
+                break;
+              }
+            catch (const StepFailure &f)
+              {
+                u = saved;
+                solution_owned_ = u;
+                solution_ = solution_owned_;
+                nodes_ = saved_nodes;
+                if (rec.cuts >= L.max_cuts)
+                  {
+                    result.message = "time step " + std::to_string(step + 1) + " at t = " +
+                                     format_value(t) + " s failed after " +
+                                     std::to_string(rec.cuts) + " cuts: " + f.reason;
+                    if (rank_ == 0)
+                      log::error("fe_stage: " + result.message);
+                    result.wall_time = seconds();
+                    result.field_files = field_files_;
+                    return result;
+                  }
+                ++rec.cuts;
+                dt *= 0.5;
+                set_dynamic_operator(hht.coefficients(dt));
+                if (rank_ == 0)
+                  log::warning("fe_stage: time step " + std::to_string(step + 1) +
+                               " failed (" + f.reason + "); retrying with dt " +
+                               format_value(dt) + " s");
+              }
+          }
+        // Converged: the Newmark updates, the new contact forces, the energies.
+        u_new = solution_owned_;
+        hht.update_rates(u_new, u, v, a, dt, v_new, a_new);
+        lambda_new = residual_owned_;  // (1+α)λ_{n+1} at the constrained DoFs
+        lambda_new *= 1.0 / (1.0 + I.alpha);
+        const double F_new = inc.force / (1.0 + I.alpha);
+        double d_rate_new = 0.0, d_acc_new = 0.0;
+        if (deformable)
+          {
+            d_new = centre_of_mass_y(u_new);
+            d_rate_new = centre_of_mass_y(v_new);
+            d_acc_new = centre_of_mass_y(a_new);
+          }
+        else
+          hht.update_rates(d_new, d, d_rate, d_acc, dt, d_rate_new, d_acc_new);
+        // net work of the contact forces: on the meshed bodies (λ at the contact DoFs, and at a
+        // deformable journal's mortar partners; the supports do not move) and on a rigid
+        // journal (F e_y along its displacement −δ e_y)
+        const double w_bodies = sym * trapezoidal_work(u_new, u, lambda_new, lambda);
+        const double w_journal = deformable ? 0.0 : -0.5 * (d_new - d) * (F + F_new);
+        work_contact += w_bodies + w_journal;
+        const double strain_total = energy(K_elastic_, u_new, false);
+        const double strain_j = deformable ? energy(K_elastic_, u_new, true) : 0.0;
+        const double kinetic_total = energy(M_, v_new, false);
+        const double kinetic_fe_journal = deformable ? energy(M_, v_new, true) : 0.0;
+        const double kinetic_b = kinetic_total - kinetic_fe_journal;
+        const double kinetic_j =
+          deformable ? kinetic_fe_journal : 0.5 * m_J * d_rate_new * d_rate_new;
+        const double strain = strain_total - strain_j;
+        const double strain_old = ledger.work_internal;
+        ledger.add_step(kinetic_b + kinetic_j, strain_total - strain_old, w_bodies + w_journal);
+        t += dt;
+        u = u_new;
+        v = v_new;
+        a = a_new;
+        lambda = lambda_new;
+        d = d_new;
+        d_rate = d_rate_new;
+        d_acc = d_acc_new;
+        F = F_new;
+        for (auto &cn : nodes_)
+          cn.relative_converged = cn.relative;
+
+        rec.time = t;
+        rec.time_step = dt;
+        rec.delta = d;
+        rec.delta_rate = d_rate;
+        rec.force = F;
+        rec.force_support = inc.force_support / (1.0 + I.alpha);
+        rec.kinetic_journal = kinetic_j;
+        rec.kinetic_bearing = kinetic_b;
+        rec.strain_bearing = strain;
+        rec.strain_journal = strain_j;
+        rec.work_contact = work_contact;
+        rec.numerical_dissipation = ledger.dissipation;
+        rec.n_active = inc.n_active;
+        rec.wall_time = seconds();
+        result.dynamic_steps.push_back(rec);
+        if (F > S.peak_force)
+          {
+            S.peak_force = F;
+            S.time_of_peak = t;
+            S.delta_at_peak = d;
+            u_peak = u;
+            have_peak = true;
+          }
+        S.delta_max = std::max(S.delta_max, d);
+        if (options_.on_dynamic_step)
+          options_.on_dynamic_step(rec);
+        if (rank_ == 0)
+          {
+            char buf[300];
+            std::snprintf(buf, sizeof(buf),
+                          "fe_stage: step %u  t %.4g us  dt %.3g us  delta %.4g um  rate %.4g "
+                          "m/s  F %.6g N  journal its %u  contact its %u  active %u  %s",
+                          rec.step, t * 1e6, dt * 1e6, d * 1e6, d_rate, F,
+                          rec.journal_iterations, rec.contact_iterations, rec.n_active,
+                          log::format_duration(rec.wall_time).c_str());
+            log::info(buf);
+          }
+        // Separation: out of contact for a tenth of the contact period (a momentary opening
+        // of the contact inside the impact does not end it) and moving away.
+        if (inc.n_active > 0)
+          {
+            in_contact = true;
+            free_steps = 0;
+          }
+        else if (in_contact)
+          {
+            if (free_steps == 0)
+              {
+                // the contact ended inside this step: where the line through the last two
+                // forces reaches zero, within this step
+                const auto &steps = result.dynamic_steps;
+                contact_end = t - dt;
+                if (steps.size() >= 3)
+                  {
+                    const auto &p1 = steps[steps.size() - 2], &p0 = steps[steps.size() - 3];
+                    const double slope = (p1.force - p0.force) / (p1.time - p0.time);
+                    if (slope < 0.0)
+                      contact_end = std::min(t, p1.time - p1.force / slope);
+                  }
+              }
+            ++free_steps;
+          }
+        // (in whole steps, with a margin: T_c/dt differs between rank counts by round-off)
+        const double free_needed = std::max(2.0, std::ceil(0.1 * S.contact_period / dt - 1e-6));
+        const bool last = !S.separated && in_contact && inc.n_active == 0 && d_rate < 0.0 &&
+                          free_steps >= free_needed;
+        if (fields && (rec.step % I.field_stride == 0 || last))
+          write_fields(rec.step, t);
+        if (last && !S.separated)
+          {
+            S.separated = true;
+            S.contact_duration = contact_end;
+            S.velocity_out = -d_rate;
+            if (I.end_time == 0.0)  // a given end time is run to (the bearing's vibration)
+              break;
+          }
+      }
+    if (step >= I.max_steps && !S.separated && t < t_end * (1.0 - 1e-12))
+      {
+        result.message = "impact.max_steps = " + std::to_string(I.max_steps) +
+                         " reached at t = " + format_value(t) + " s before the end time";
+        result.wall_time = seconds();
+        result.field_files = field_files_;
+        return result;
+      }
+    S.n_steps = static_cast<unsigned int>(result.dynamic_steps.size());
+    if (S.separated)
+      S.restitution = S.velocity_out / I.velocity;
+    S.numerical_dissipation = ledger.dissipation;
+    S.work_contact = work_contact;
+    if (!result.dynamic_steps.empty())
+      {
+        const auto &e = result.dynamic_steps.back();
+        S.bearing_energy_left = e.kinetic_bearing + e.strain_bearing;
+      }
+    S.quasi_static_force_at_peak_delta = interpolate_curve(result.increments, S.delta_at_peak);
+    S.dynamic_gap = S.quasi_static_force_at_peak_delta > 0.0 ?
+                      S.peak_force / S.quasi_static_force_at_peak_delta - 1.0 :
+                      0.0;
+    if (rank_ == 0)
+      log::info("fe_stage: impact: peak force " + format_value(S.peak_force) + " N at t = " +
+                format_value(S.time_of_peak) + " s, delta_max " + format_value(S.delta_max) +
+                " m, " +
+                (S.separated ? "contact duration " + format_value(S.contact_duration) +
+                                 " s, restitution " + format_value(S.restitution) :
+                               std::string("still in contact at the end time")) +
+                "; quasi-static F at the peak's delta " +
+                format_value(S.quasi_static_force_at_peak_delta) + " N (dynamic " +
+                format_value(100.0 * S.dynamic_gap) + " % above)");
+    // the yield check where the force peaked
+    if (have_peak)
+      {
+        solution_owned_ = u_peak;
+        solution_ = solution_owned_;
+        result.yield_check = check_yield(nullptr);
+        log_yield_check(result.yield_check);
+      }
+    result.complete = true;
+    result.wall_time = seconds();
+    result.field_files = field_files_;
+    if (rank_ == 0 && fields)
+      result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
+    return result;
+  }
+} // namespace clearjoint::fe::detail

@@ -1,0 +1,214 @@
+// Verification of the impact study (issue 12 item 3): the HHT-α integrator's energy behaviour
+// (free vibration, the balance with contact), Δt convergence of the peak force and the
+// restitution, and 1 vs 2 MPI ranks. A coarse quarter joint (8.6 k DoFs, frictionless, ~2–10 s
+// per run) keeps the suite affordable; the same code runs the default mesh.
+#include "fe_test_util.h"
+
+#include <algorithm>
+#include <cstdio>
+
+using namespace clearjoint::fe;
+using namespace clearjoint::fe::test;
+
+namespace
+{
+  // frictionless: the energy checks are about the integrator, not about Coulomb's dissipation
+  std::string coarse_impact(const std::string &impact_keys, const std::string &journal = "rigid")
+  {
+    return "study: impact\ncontact: {mu: 0}\nloading: {journal: " + journal + "}\n"
+           "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 1}\n"
+           "impact: {" + impact_keys + "}\n";
+  }
+
+  RunResult run_impact(const std::string &impact_keys, const std::string &journal = "rigid")
+  {
+    const RunResult r = run(scene(coarse_impact(impact_keys, journal)));
+    EXPECT_TRUE(r.complete) << r.message;
+    return r;
+  }
+} // namespace
+
+// α = 0 is the trapezoidal rule: no numerical dissipation on a linear system. With contact the
+// ledger's D = W_c − ΔT − ΔU must stay at round-off, and after the journal has left, the
+// bearing vibrates freely: its kinetic + strain energy must stay constant. α < 0 must dissipate
+// (D > 0, the free vibration's energy falling).
+TEST(FeImpact, TrapezoidalRuleConservesEnergyAndHhtDissipates)
+{
+  // end_time 2.5 T_c (T_c ≈ 64 µs on this mesh): the contact lasts ~33 µs, then ~130 µs of
+  // free vibration
+  const RunResult r = run_impact("velocity: 0.1, alpha: 0.0, steps_per_period: 40, "
+                                 "end_time: 1.6e-4");
+  ASSERT_TRUE(r.impact.separated);
+  const double T0 = r.impact.kinetic_initial;
+  double max_d = 0.0;
+  for (const auto &s : r.dynamic_steps)
+    max_d = std::max(max_d, std::abs(s.numerical_dissipation));
+  // 1e-8 T0: the linear solves' 1e-10 relative residual, summed over ~100 steps, with margin
+  EXPECT_LT(max_d, 1e-8 * T0);
+  // free vibration after the separation: no contact force does work any more
+  const auto first_free =
+    std::find_if(r.dynamic_steps.begin(), r.dynamic_steps.end(),
+                 [&](const DynamicStepRecord &s) { return s.time > r.impact.contact_duration; });
+  ASSERT_NE(first_free, r.dynamic_steps.end());
+  const auto free_steps = std::distance(first_free, r.dynamic_steps.end());
+  ASSERT_GT(free_steps, 20);
+  const double E_start = first_free->kinetic_bearing + first_free->strain_bearing;
+  ASSERT_GT(E_start, 1e-4 * T0);  // the impact left some energy in the bearing
+  for (auto s = first_free; s != r.dynamic_steps.end(); ++s)
+    if (s->n_active == 0)
+      // 1e-6 of the bearing's energy: the trapezoidal rule conserves it exactly; the solves'
+      // tolerance (1e-10 of the right-hand side) is what is left
+      EXPECT_NEAR((s->kinetic_bearing + s->strain_bearing) / E_start, 1.0, 1e-6)
+        << "t = " << s->time;
+  // the balance: T + U + D − W_c = T0, with W_c the contact work lost where nodes close
+  const auto &e = r.dynamic_steps.back();
+  std::printf("alpha 0: restitution %.6f, bearing energy left %.4g of T0, contact work %.3g "
+              "of T0, max |D| %.3g of T0\n",
+              r.impact.restitution, (e.kinetic_bearing + e.strain_bearing) / T0,
+              e.work_contact / T0, max_d / T0);
+
+  const RunResult d = run_impact("velocity: 0.1, alpha: -0.1, steps_per_period: 40, "
+                                 "end_time: 1.6e-4");
+  ASSERT_TRUE(d.impact.separated);
+  EXPECT_GT(d.impact.numerical_dissipation, 0.0);
+  const auto &de = d.dynamic_steps.back();
+  const double left_alpha = de.kinetic_bearing + de.strain_bearing;
+  // α = −0.1 damps the bearing's modes that T_c/40 resolves poorly: less energy left
+  EXPECT_LT(left_alpha, e.kinetic_bearing + e.strain_bearing);
+  std::printf("alpha -0.1: numerical dissipation %.4g of T0, bearing energy left %.4g of T0\n",
+              d.impact.numerical_dissipation / T0, left_alpha / T0);
+}
+
+// Δt → 0: the peak force, δ_max and the restitution converge (steps_per_period 40, 80, 160:
+// three halvings), and the energy lost to the contact's closing inside a step falls. The
+// observed order of the peak force is printed (it is low: the peak samples an oscillating
+// force, docs/fe.md).
+TEST(FeImpact, PeakForceConvergesWithTheTimeStep)
+{
+  std::vector<RunResult> r;
+  for (const int n : {40, 80, 160})
+    r.push_back(run_impact("velocity: 0.1, alpha: 0.0, steps_per_period: " + std::to_string(n)));
+  for (const auto &x : r)
+    ASSERT_TRUE(x.impact.separated);
+  const double F0 = r[0].impact.peak_force, F1 = r[1].impact.peak_force,
+               F2 = r[2].impact.peak_force;
+  const double e01 = std::abs(F1 - F0), e12 = std::abs(F2 - F1);
+  EXPECT_LT(e12, e01);  // the changes shrink: converging
+  const double order = std::log2(e01 / e12);
+  std::printf("peak force %.6g / %.6g / %.6g N (T_c/40, /80, /160), observed order %.2f; "
+              "delta_max %.6g / %.6g / %.6g m; restitution %.5f / %.5f / %.5f\n",
+              F0, F1, F2, order, r[0].impact.delta_max, r[1].impact.delta_max,
+              r[2].impact.delta_max, r[0].impact.restitution, r[1].impact.restitution,
+              r[2].impact.restitution);
+  // δ_max is an integral of the force: it converges faster; 1e-3 between the two finest
+  EXPECT_NEAR(r[2].impact.delta_max / r[1].impact.delta_max, 1.0, 1e-3);
+  EXPECT_LT(std::abs(r[2].impact.restitution - r[1].impact.restitution),
+            std::abs(r[1].impact.restitution - r[0].impact.restitution) + 1e-3);
+  // the energy lost where nodes close inside a step shrinks with Δt
+  EXPECT_LT(std::abs(r[2].dynamic_steps.back().work_contact),
+            std::abs(r[0].dynamic_steps.back().work_contact));
+  // the peak is near the deepest penetration, above the quasi-static force there (the ring's
+  // inertia: the impact sees it stiffer than a slow push)
+  EXPECT_GT(r[2].impact.dynamic_gap, 0.0);
+}
+
+// Linear elasticity with an active set that hardly changes: halving the velocity halves the
+// peak force and δ_max (to the change of the contact patch), and the restitution stays.
+TEST(FeImpact, ResponseScalesWithTheImpactVelocity)
+{
+  const RunResult slow = run_impact("velocity: 0.05, alpha: 0.0, steps_per_period: 40");
+  const RunResult fast = run_impact("velocity: 0.10, alpha: 0.0, steps_per_period: 40");
+  ASSERT_TRUE(slow.impact.separated && fast.impact.separated);
+  // 2 %: the contact patch (a line of nodes here) and the secant stiffness change a little
+  // between δ_max ≈ 0.5 and 1 µm (n ≈ 1.06 on this mesh)
+  EXPECT_NEAR(fast.impact.peak_force / slow.impact.peak_force, 2.0, 0.04);
+  EXPECT_NEAR(fast.impact.delta_max / slow.impact.delta_max, 2.0, 0.04);
+  EXPECT_NEAR(fast.impact.restitution, slow.impact.restitution, 0.02);
+  EXPECT_NEAR(fast.impact.journal_mass, 7800.0 * M_PI * 9.5e-3 * 9.5e-3 * 18e-3, 1e-12);
+}
+
+// The time history's first row and the records are consistent: the journal starts at v_in,
+// slows down while in contact, and leaves at v_out = e·v_in.
+TEST(FeImpact, JournalSlowsDownReversesAndLeaves)
+{
+  const RunResult r = run_impact("velocity: 0.08, alpha: -0.05");
+  ASSERT_TRUE(r.impact.separated);
+  ASSERT_FALSE(r.dynamic_steps.empty());
+  EXPECT_LT(r.dynamic_steps.front().delta_rate, 0.08);
+  EXPECT_LT(r.dynamic_steps.back().delta_rate, 0.0);
+  EXPECT_NEAR(r.impact.velocity_out, -r.dynamic_steps.back().delta_rate, 1e-12);
+  EXPECT_GT(r.impact.restitution, 0.5);
+  EXPECT_LT(r.impact.restitution, 1.0);  // energy left in the bearing and dissipated by α
+  EXPECT_GT(r.impact.contact_duration, 0.0);
+  EXPECT_LT(r.impact.contact_duration, r.dynamic_steps.back().time);
+  // the quasi-static reference curve of the same mesh reaches past δ_max
+  ASSERT_FALSE(r.increments.empty());
+  EXPECT_GT(r.increments.back().delta, r.impact.delta_max);
+}
+
+// A deformable journal (free, dual mortar against the bore; its quasi-static reference curve
+// pushed at its end faces): the FE mass is the journal's, the trapezoidal rule keeps the energy
+// ledger at round-off, the journal bounces off, and part of the energy stays in the two bodies'
+// vibration.
+TEST(FeImpact, DeformableJournalBouncesOffWithTheEnergyBalanced)
+{
+  const RunResult r = run_impact("velocity: 0.1, alpha: 0.0, steps_per_period: 40", "end_faces");
+  ASSERT_TRUE(r.impact.separated);
+  // the curved mapping integrates the journal's volume to ~1e-6 on this mesh
+  EXPECT_NEAR(r.impact.journal_mass / (7800.0 * M_PI * 9.5e-3 * 9.5e-3 * 18e-3), 1.0, 1e-4);
+  const double T0 = r.impact.kinetic_initial;
+  double max_d = 0.0, max_strain_journal = 0.0;
+  for (const auto &s : r.dynamic_steps)
+    {
+      max_d = std::max(max_d, std::abs(s.numerical_dissipation));
+      max_strain_journal = std::max(max_strain_journal, s.strain_journal);
+    }
+  EXPECT_LT(max_d, 1e-8 * T0);  // as for the rigid journal: the solves' tolerance
+  EXPECT_GT(max_strain_journal, 0.05 * T0);  // the journal deforms: a real share of the energy
+  EXPECT_GT(r.impact.restitution, 0.8);
+  EXPECT_LT(r.impact.restitution, 1.0);
+  EXPECT_GT(r.impact.peak_force, 0.0);
+  const auto &e = r.dynamic_steps.back();
+  std::printf("deformable journal: peak %.6g N, delta_max %.4g m, restitution %.5f, journal "
+              "strain at most %.3g of T0, contact work %.3g of T0\n",
+              r.impact.peak_force, r.impact.delta_max, r.impact.restitution,
+              max_strain_journal / T0, e.work_contact / T0);
+}
+
+// Results do not depend on the number of ranks (SPEC §2): the whole time history, rigid and
+// deformable journal.
+TEST(FeMpi, ImpactTwoRanksMatchOneRank)
+{
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size < 2)
+    GTEST_SKIP() << "needs mpirun -np 2";
+  for (const std::string journal : {"rigid", "end_faces"})
+  {
+  FeScene s = scene(coarse_impact("velocity: 0.1, steps_per_period: 20", journal));
+  s.solver.linear = LinearSolver::cg_amg;
+  const RunResult parallel = run(s, MPI_COMM_WORLD);
+  ASSERT_TRUE(parallel.complete) << parallel.message;
+  MPI_Comm self;
+  MPI_Comm_split(MPI_COMM_WORLD, rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
+  if (rank() == 0)
+    {
+      const RunResult serial = run(s, self);
+      ASSERT_TRUE(serial.complete);
+      ASSERT_EQ(serial.dynamic_steps.size(), parallel.dynamic_steps.size());
+      for (std::size_t i = 0; i < serial.dynamic_steps.size(); ++i)
+        {
+          const auto &a = serial.dynamic_steps[i], &b = parallel.dynamic_steps[i];
+          // 1e-6 of the peak: both solve to 1e-10; the partition changes only the order of
+          // the sums (forces near zero at the ends of the contact compare absolutely)
+          EXPECT_NEAR(a.force, b.force, 1e-6 * serial.impact.peak_force) << "step " << i;
+          EXPECT_NEAR(a.delta, b.delta, 1e-6 * serial.impact.delta_max) << "step " << i;
+          EXPECT_EQ(a.n_active, b.n_active) << "step " << i;
+        }
+      EXPECT_NEAR(parallel.impact.restitution, serial.impact.restitution, 1e-6);
+      std::printf("impact (%s journal): np=1 peak %.12g N, np=%d peak %.12g N\n",
+                  journal.c_str(), serial.impact.peak_force, size, parallel.impact.peak_force);
+      MPI_Comm_free(&self);
+    }
+  }
+}
