@@ -18,7 +18,8 @@
 //      g(δ) = m_J c_m (δ − δ̂) + (1+α)F_{n+1}(δ) − αF_n increases with δ, so the position is
 //      found by regula falsi (Illinois) on a bracket that always exists: [δ̂ − g(δ̂)/(m_J c_m),
 //      δ̂] (F ≥ 0 and grows with δ). A step that fails is halved (at most loading.max_cuts
-//      times; the smaller Δt is kept), state restored, as the quasi-static increments are.
+//      times), state restored, as the quasi-static increments are; Δt grows back after four
+//      easy steps.
 //   3. the run stops when the journal has left the bearing (out of contact for T_c/10 after
 //      contact, moving away) or at the end time.
 #include "fe_stage/core/contact_model.h"
@@ -118,7 +119,10 @@ namespace clearjoint::fe::detail
       }
     S.contact_stiffness = interpolate_curve(result.increments, delta_estimate) / delta_estimate;
     S.contact_period = 2.0 * numbers::PI * std::sqrt(m_J / S.contact_stiffness);
-    double dt = I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
+    const double dt_nominal =
+      I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
+    double dt = dt_nominal;
+    unsigned int easy_steps = 0;  // converged without a cut since the last change of Δt
     S.time_step = dt;
     const double t_end = I.end_time > 0.0 ? I.end_time : 4.0 * S.contact_period;
     if (rank_ == 0)
@@ -368,9 +372,20 @@ namespace clearjoint::fe::detail
         F = F_new;
         for (auto &cn : nodes_)
           cn.relative_converged = cn.relative;
+        // after a cut, Δt grows back (doubling, up to its nominal value) once four steps in a
+        // row have converged without one, as Abaqus/Standard's automatic incrementation does
+        const double dt_step = dt;
+        if (rec.cuts > 0)
+          easy_steps = 0;
+        else if (dt < dt_nominal && ++easy_steps >= 4)
+          {
+            dt = std::min(2.0 * dt, dt_nominal);
+            set_dynamic_operator(hht.coefficients(dt));
+            easy_steps = 0;
+          }
 
         rec.time = t;
-        rec.time_step = dt;
+        rec.time_step = dt_step;
         rec.delta = d;
         rec.delta_rate = d_rate;
         rec.force = F;
@@ -420,7 +435,7 @@ namespace clearjoint::fe::detail
                 // the contact ended inside this step: where the line through the last two
                 // forces reaches zero, within this step
                 const auto &steps = result.dynamic_steps;
-                contact_end = t - dt;
+                contact_end = t - dt_step;
                 if (steps.size() >= 3)
                   {
                     const auto &p1 = steps[steps.size() - 2], &p0 = steps[steps.size() - 3];
