@@ -266,6 +266,20 @@ namespace clearjoint::pipeline
       }
     }
 
+    if (config_.impact)
+    {
+      const nlohmann::json scene = compose_scene(config_, config_.impact->scene, "fe", {});
+      const std::string file = scratch.file("fe_impact.yaml");
+      write_file_atomically(file, scene.dump(2) + "\n");
+      std::vector<Origin> origins;
+      preset_origins("fe", origins);
+      run_check("fe_stage", file, origins, "impact.scene",
+                "FE impact study (scene " + config_.impact->scene + ")");
+      const nlohmann::json *study = find_key_path(scene, "study");
+      if (!study || !study->is_string() || study->get<std::string>() != "impact")
+        throw InputError(src, "impact.scene", config_.impact->scene, "a scene with study: impact");
+    }
+
     // Fitted laws do not exist before the run: the MBD scenes are checked with a stand-in (the
     // paper's law for t_B = 4 mm, and a two-member family of it over the study's parameter),
     // which validates every other key; the fitted law itself is checked when mbd_stage runs.

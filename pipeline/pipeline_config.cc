@@ -180,10 +180,14 @@ namespace clearjoint::pipeline
       return f;
     }
 
-    LawChoice read_law_choice(StrictObject &l, const std::vector<FeStudy> &studies)
+    /// `with_key`: the law goes into a scene at `key` (MBD runs); the impact comparison takes
+    /// the law file itself.
+    LawChoice read_law_choice(StrictObject &l, const std::vector<FeStudy> &studies,
+                              const bool with_key = true)
     {
       LawChoice choice;
-      choice.key = l.string("key");
+      if (with_key)
+        choice.key = l.string("key");
       if (l.has("file"))
         choice.file = l.string("file");
       if (l.has("study"))
@@ -316,6 +320,19 @@ namespace clearjoint::pipeline
                "a confidence band varies one fitted law");
       m.finish();
       c.mbd_runs.push_back(r);
+    }
+    if (top.has("impact"))
+    {
+      auto m = top.object("impact");
+      ImpactStudy impact;
+      impact.scene = m.string("scene");
+      auto law = m.object("law");
+      impact.law = read_law_choice(law, c.fe_studies, false);
+      if (impact.law.study && !impact.law.value && impact.law.value_keyword.empty())
+        law.fail("study", *impact.law.study, "one law: give 'value' too",
+                 "the impact comparison uses the law of one geometry");
+      m.finish();
+      c.impact = impact;
     }
     top.finish();
     return c;

@@ -60,6 +60,14 @@ namespace clearjoint::pipeline
     bool band = false;
   };
 
+  /// The FE impact study (issue 12): one fe_stage run of an impact scene (its sweep.velocity
+  /// lists the velocities), compared with the MBD contact law `law` (impact_compare).
+  struct ImpactStudy
+  {
+    std::string scene;                  ///< FE scene file with study: impact
+    LawChoice law;                      ///< the law of the same geometry (key unused)
+  };
+
   /// A preset's measured estimated error of F(δ_max) for one FE study.
   struct PresetError
   {
@@ -92,6 +100,7 @@ namespace clearjoint::pipeline
     /// fit_stage --family-out-of-range: what a law family does for a parameter outside its values.
     std::string family_out_of_range = "error";
     std::vector<MbdRun> mbd_runs;
+    std::optional<ImpactStudy> impact;  ///< absent: no impact study
     bool report = true;
   };
 

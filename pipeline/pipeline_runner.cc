@@ -114,6 +114,8 @@ namespace clearjoint::pipeline
       n["fe_stage"] += values;
       n["fit_stage"] += values + (values >= 2 ? 1 : 0);  // one law per value, and the family
     }
+    if (config_.impact)
+      n["fe_stage"] += 1;
     for (const auto &m : config_.mbd_runs)
     {
       n["mbd_stage"] += 1;
@@ -175,6 +177,41 @@ namespace clearjoint::pipeline
                                  {"output_dir", task.output_dir},
                                  {"identity", r.identity}});
     return r;
+  }
+
+  /// The FE impact sweep (one fe_stage run: the scene's sweep.velocity), and, where the MBD
+  /// half is built, its comparison with the law of the same geometry (impact_compare).
+  void PipelineRunner::run_impact(const std::map<std::string, std::map<std::string, Done>> &laws)
+  {
+    const ImpactStudy &impact = *config_.impact;
+    const std::string run = run_dir();
+    log::info("FE impact study: " + impact.scene);
+    Task fe;
+    const nlohmann::json scene_json = compose_scene(config_, impact.scene, "fe", {});
+    const std::string scene = write_scene(scene_json, impact.scene, "fe_impact");
+    fe.name = "fe/impact";
+    fe.stage = "fe_stage";
+    if (config_.mpi_ranks > 1)
+      fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
+                     std::to_string(config_.mpi_ranks)};
+    fe.executable = stage_executable("fe_stage");
+    fe.args = {scene, "--output", "{out}"};
+    if (!options_.plots)
+      fe.args.push_back("--no-plots");
+    fe.input_files = {scene};
+    for (const auto &f : files_named_in(scene_json))
+      fe.input_files.push_back(f);
+    fe.output_dir = run + "/fe/impact";
+    execute(fe, "fe");
+    std::string law;
+    if (impact.law.file)
+      law = fs::absolute(*impact.law.file).string();
+    else
+      law = laws.at(*impact.law.study).at(value_label(*impact.law.value)).path;
+    summary_["impact"] = {{"scene", scene},
+                          {"fe_dir", fe.output_dir},
+                          {"sweep", fe.output_dir + "/impact_sweep.csv"},
+                          {"law", law}};
   }
 
   nlohmann::json PipelineRunner::run()
@@ -297,6 +334,9 @@ namespace clearjoint::pipeline
       }
       summary_["studies"].push_back(s);
     }
+
+    if (config_.impact)
+      run_impact(laws);
 
     for (const auto &m : config_.mbd_runs)
     {

@@ -48,6 +48,8 @@ namespace clearjoint::pipeline
     /// .geo in geometry.mesh replaced by the mesh its task writes (dry_run: checked only).
     nlohmann::json fe_case_scene(const FeStudy &study, double value, bool dry_run,
                                  std::vector<std::string> &depends_on);
+    /// The FE impact sweep and its comparison with the MBD law (config_.impact).
+    void run_impact(const std::map<std::string, std::map<std::string, Done>> &laws);
     /// Writes a composed scene to <run>/scenes/<name>.yaml.
     std::string write_scene(const nlohmann::json &scene, const std::string &base,
                             const std::string &name);

@@ -3,6 +3,7 @@ resources) that leads with the answer — a summary of what ran, the headline la
 paper's, the MBD headline numbers and every warning of the run — then a table of contents, one
 section per FE study (what was modelled, how it differs from the paper, F–δ with the paper's law,
 F_ref and n against the parameter, the paper's claims beside ours, pictures of the fields), the
+FE impact sweep beside the quasi-static curves (and the MBD laws where compared), the
 multibody results (all contact models overlaid, energy, the response band split into regression
 and mesh error), the presets' measured cost and error, and stage wall times. Per-run plots are
 folded away under each run (<details>).
@@ -18,6 +19,7 @@ import os
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
 from plotting._report_fe import f_ref_interval, mesh_error, study_section, trend_finding
+from plotting._report_impact import impact_section
 from plotting._report_mbd import headline_table, mbd_section
 
 
@@ -180,10 +182,12 @@ def summary_section(summary, studies, runs, warnings, has_band):
     return "".join(parts)
 
 
-def toc(studies, has_mbd, has_band):
+def toc(studies, has_mbd, has_band, has_impact=False):
     items = ["<li><a href='#summary'>Summary</a> (<a href='#warnings'>warnings</a>)</li>"]
     for fs in studies:
         items.append(f"<li><a href='#{esc(fs.anchor)}'>FE study “{esc(fs.study['name'])}”</a></li>")
+    if has_impact:
+        items.append("<li><a href='#impact'>FE impact study</a></li>")
     if has_mbd:
         items.append("<li><a href='#mbd'>Multibody simulations</a>" +
                      (" (<a href='#band'>uncertainty of the response</a>)" if has_band else "") +
@@ -217,6 +221,7 @@ def main(argv):
         html_, fs = study_section(st, base, warnings)
         study_html.append(html_)
         studies.append(fs)
+    impact_html = impact_section(summary.get("impact"), base, warnings)
     mbd_html, runs = ("", [])
     if summary.get("mbd_runs"):
         mbd_html, runs = mbd_section(summary["mbd_runs"], base, warnings)
@@ -227,8 +232,9 @@ def main(argv):
              f"<p>Pipeline file: {esc(summary['pipeline_file'])}. Laws are shown in SI "
              f"(δ in m, F in N) and in the paper's units (δ in mm, F in N).</p>",
              summary_section(summary, studies, runs, warnings, "id='band'" in mbd_html),
-             toc(studies, bool(runs), "id='band'" in mbd_html)]
+             toc(studies, bool(runs), "id='band'" in mbd_html, bool(impact_html))]
     parts += study_html
+    parts.append(impact_html)
     parts.append(mbd_html)
     parts.append(preset_section(summary))
     parts.append(timing_section(summary))

@@ -189,3 +189,36 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
   EXPECT_EQ(mesh.second.get<std::string>(),
             std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/flanged_bearing.geo");
 }
+
+// The impact study (issue 12 item 4): a scene and one law of the same geometry, fitted here
+// (study + value) or given as a file; a family, an unknown study or a missing scene are errors
+// naming the key.
+TEST(PipelineConfig, ImpactStudy)
+{
+  const std::string impact =
+    "impact:\n  scene: i.yaml\n  law: {study: thickness, value: 0.004}\nmbd_runs:";
+  EXPECT_EQ(error_for("mbd_runs:", impact), "(accepted)");
+  {
+    test_support::ScratchDir dir("pipeline_config_impact");
+    std::string text = good;
+    text.replace(text.find("mbd_runs:"), 9, impact);
+    test_support::write_text(dir.file("p.yaml"), text);
+    const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
+    ASSERT_TRUE(c.impact.has_value());
+    EXPECT_EQ(c.impact->scene, "i.yaml");
+    EXPECT_EQ(*c.impact->law.study, "thickness");
+    EXPECT_DOUBLE_EQ(*c.impact->law.value, 0.004);
+  }
+  EXPECT_NE(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {study: thickness}\n"
+                                   "mbd_runs:")
+              .find("impact.law.study"),
+            std::string::npos);
+  EXPECT_NE(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {study: wear, value: 1}\n"
+                                   "mbd_runs:")
+              .find("thickness"),
+            std::string::npos);
+  EXPECT_NE(error_for("mbd_runs:", "impact:\n  law: {file: l.json}\nmbd_runs:").find("impact.scene"),
+            std::string::npos);
+  EXPECT_EQ(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {file: l.json}\nmbd_runs:"),
+            "(accepted)");
+}

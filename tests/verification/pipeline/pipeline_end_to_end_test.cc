@@ -1,5 +1,6 @@
 // The default pipeline.yaml with the fast preset, end to end: FE thickness and misalignment
 // sweeps, fits, law families, MBD scenes (the tilted one on the misalignment family), report. Then a second run must do no FE or fit work.
+#include "common/csv.h"
 #include "common/strict_reader.h"
 #include "laws/law_family.h"
 #include "test_support.h"
@@ -47,6 +48,16 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
   const auto tilted = read_json_file((run / "mbd/tilted_1deg/summary.json").string());
   EXPECT_EQ(tilted["clearance_joints"][0]["normal_model"]["name"], "law_family");
 
+  // The impact study (issue 12): one sweep table with the five velocities, every journal left
+  // the bearing, and the report has its section.
+  const CsvTable sweep = read_csv((run / "fe/impact/impact_sweep.csv").string());
+  EXPECT_EQ(sweep.status, "complete");
+  ASSERT_EQ(sweep.rows.size(), 5u);
+  for (const double s : sweep.column("separated"))
+    EXPECT_EQ(s, 1.0);
+  for (const double e : sweep.column("restitution"))
+    EXPECT_TRUE(e > 0.5 && e < 1.0) << e;
+
   for (const auto &name : {"fe_law", "johnson", "ideal", "tilted_1deg", "fe_law_damped_paper"})
     EXPECT_TRUE(fs::exists(run / "mbd" / name / "timeseries.csv")) << name;
 
@@ -90,7 +101,7 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
   for (const char *part : {"id='summary'", "id='warnings'", "<nav>", "<details>",
                            "Headline law beside the paper", "id='band'",
                            // item 3: the VTK pictures were rendered (else a warning says why)
-                           "rendered off-screen with VTK"})
+                           "rendered off-screen with VTK", "id='impact'"})
     EXPECT_NE(report.find(part), std::string::npos) << part;
   EXPECT_EQ(report.find(".partial"), std::string::npos);
   EXPECT_EQ(test_support::run_command(std::string("/usr/bin/python3 ") + CLEARJOINT_SOURCE_DIR +
