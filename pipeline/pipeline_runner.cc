@@ -115,7 +115,10 @@ namespace clearjoint::pipeline
       n["fit_stage"] += values + (values >= 2 ? 1 : 0);  // one law per value, and the family
     }
     if (config_.impact)
+    {
       n["fe_stage"] += 1;
+      n["impact_compare"] += 1;
+    }
     for (const auto &m : config_.mbd_runs)
     {
       n["mbd_stage"] += 1;
@@ -202,7 +205,7 @@ namespace clearjoint::pipeline
     for (const auto &f : files_named_in(scene_json))
       fe.input_files.push_back(f);
     fe.output_dir = run + "/fe/impact";
-    execute(fe, "fe");
+    const TaskResult fe_result = execute(fe, "fe");
     std::string law;
     if (impact.law.file)
       law = fs::absolute(*impact.law.file).string();
@@ -212,6 +215,26 @@ namespace clearjoint::pipeline
                           {"fe_dir", fe.output_dir},
                           {"sweep", fe.output_dir + "/impact_sweep.csv"},
                           {"law", law}};
+    // The same impacts with the MBD law and each damping model (mbd_stage's impact_compare).
+    Task cmp;
+    cmp.name = "impact/compare";
+    cmp.stage = "impact_compare";
+    cmp.executable = (fs::path(options_.build_dir) / "mbd_stage" / "impact_compare").string();
+    if (!fs::is_regular_file(cmp.executable))
+      throw InputError(config_.source, "impact", cmp.executable, "a built impact_compare",
+                       "build it first (scripts/build), or remove the impact section");
+    const std::string sweep = fe.output_dir + "/impact_sweep.csv";
+    cmp.args = {"--law", law, "--fe-sweep", sweep, "--output", "{out}"};
+    if (!options_.plots)
+      cmp.args.push_back("--no-plots");
+    cmp.input_files = {law, sweep};
+    cmp.depends_on = {fe_result.identity};
+    if (impact.law.study)
+      cmp.depends_on.push_back(
+        laws.at(*impact.law.study).at(value_label(*impact.law.value)).identity);
+    cmp.output_dir = run + "/impact/compare";
+    execute(cmp, "mbd");
+    summary_["impact"]["compare_dir"] = cmp.output_dir;
   }
 
   nlohmann::json PipelineRunner::run()

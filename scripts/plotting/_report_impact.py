@@ -70,4 +70,17 @@ def impact_section(impact, base, warnings):
         man = load_or_none(os.path.join(compare, "manifest.json"))
         if man is None:
             warnings.add("impact comparison", "no manifest in " + esc(compare), "impact")
+            return "\n".join(parts)
+        fits = man.get("extra", {}).get("fitted_restitution_coefficient", {})
+        if fits:
+            rows = ["<p>The c_e with which each damping model's single impact (the journal's "
+                    "mass on the MBD law, bearing rigid) returns the FE restitution:</p><table>"
+                    "<tr><th>damping model</th><th>c_e (mean over v)</th><th>spread over v</th>"
+                    "<th>depends on v?</th></tr>"]
+            for name, f in sorted(fits.items()):
+                rows.append(f"<tr><td>{esc(name)}</td><td>{f['c_e_mean']:.5f}</td>"
+                            f"<td>{f['spread_over_v']:.2g}</td>"
+                            f"<td>{'yes' if f['depends_on_v'] else 'no'}</td></tr>")
+            rows.append("</table>")
+            parts.append("".join(rows))
     return "\n".join(parts)

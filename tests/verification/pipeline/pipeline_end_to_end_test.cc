@@ -57,6 +57,12 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
     EXPECT_EQ(s, 1.0);
   for (const double e : sweep.column("restitution"))
     EXPECT_TRUE(e > 0.5 && e < 1.0) << e;
+  // ... compared with the law fitted for t_B = 4 mm: every damping model's c_e found
+  const CsvTable fits = read_csv((run / "impact/compare/restitution_fit.csv").string());
+  ASSERT_EQ(fits.rows.size(), 5u);
+  for (const char *m : {"lankarani_nikravesh", "hunt_crossley", "flores", "gonthier"})
+    for (const double c : fits.column(std::string("c_e_") + m))
+      EXPECT_TRUE(c > 0.0 && c <= 1.0) << m << " " << c;
 
   for (const auto &name : {"fe_law", "johnson", "ideal", "tilted_1deg", "fe_law_damped_paper"})
     EXPECT_TRUE(fs::exists(run / "mbd" / name / "timeseries.csv")) << name;
