@@ -278,22 +278,6 @@ namespace clearjoint::pipeline
     for (auto &s : top.object_array("fe_studies"))
       c.fe_studies.push_back(read_study(s, c.fe_studies));
 
-    // A preset's errors are per FE study: each name must be one of them.
-    for (const auto &[preset, measured] : c.preset_measured)
-      for (const auto &[study, error] : measured.error_F_max)
-      {
-        std::string names;
-        bool found = false;
-        for (const auto &f : c.fe_studies)
-        {
-          names += (names.empty() ? "" : "|") + f.name;
-          found = found || f.name == study;
-        }
-        if (!found)
-          throw InputError(path, "presets." + preset + ".measured.error_F_max." + study, study,
-                           "one of the fe_studies: " + names);
-      }
-
     auto fit = top.object("fit");
     c.fit_weighting = fit.string_or("weighting", "absolute", {"absolute", "relative"});
     c.family_out_of_range =
@@ -334,6 +318,23 @@ namespace clearjoint::pipeline
       m.finish();
       c.impact = impact;
     }
+    // A preset's errors are per FE study: each name must be one of them (or `impact`, the
+    // impact study's peak force, when there is one).
+    for (const auto &[preset, measured] : c.preset_measured)
+      for (const auto &[study, error] : measured.error_F_max)
+      {
+        std::string names;
+        bool found = study == "impact" && c.impact.has_value();
+        for (const auto &f : c.fe_studies)
+        {
+          names += (names.empty() ? "" : "|") + f.name;
+          found = found || f.name == study;
+        }
+        if (!found)
+          throw InputError(path, "presets." + preset + ".measured.error_F_max." + study, study,
+                           "one of the fe_studies: " + names);
+      }
+
     top.finish();
     return c;
   }
