@@ -75,6 +75,7 @@ namespace clearjoint::pipeline
       r.fe_dofs = optional_number(m, "fe_dofs", Range::positive("1"));
       r.fe_case_time = optional_number(m, "fe_case_time", Range::positive("s"));
       r.pipeline_time = optional_number(m, "pipeline_time", Range::positive("s"));
+      r.impact_time = optional_number(m, "impact_time", Range::positive("s"));
       const auto &map = m.raw("error_F_max");
       if (!map.is_object())
         m.fail("error_F_max", map.dump(), "a mapping of FE study names to {percent, where}");

@@ -116,7 +116,7 @@ namespace clearjoint::pipeline
     }
     if (config_.impact)
     {
-      n["fe_stage"] += 1;
+      n["fe_impact"] += 1;
       n["impact_compare"] += 1;
     }
     for (const auto &m : config_.mbd_runs)
@@ -134,6 +134,8 @@ namespace clearjoint::pipeline
     const auto m = config_.preset_measured.find(config_.preset);
     if (m == config_.preset_measured.end())
       return std::nullopt;
+    if (which == "impact_time")
+      return m->second.impact_time;
     return which == "fe_case_time" ? m->second.fe_case_time : m->second.pipeline_time;
   }
 
@@ -193,7 +195,7 @@ namespace clearjoint::pipeline
     const nlohmann::json scene_json = compose_scene(config_, impact.scene, "fe", {});
     const std::string scene = write_scene(scene_json, impact.scene, "fe_impact");
     fe.name = "fe/impact";
-    fe.stage = "fe_stage";
+    fe.stage = "fe_impact";  // its own time in the ETA: five impacts, not one FE curve
     if (config_.mpi_ranks > 1)
       fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
                      std::to_string(config_.mpi_ranks)};
@@ -259,7 +261,7 @@ namespace clearjoint::pipeline
       }
     fs::create_directories(run);
     eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
-                                    preset_time("pipeline_time"));
+                                    preset_time("pipeline_time"), preset_time("impact_time"));
 
     std::map<std::string, std::map<std::string, Done>> laws;  // study → value label → law
     std::map<std::string, Done> families;

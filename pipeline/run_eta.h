@@ -21,8 +21,9 @@ namespace clearjoint::pipeline
   public:
     /// planned: number of tasks per stage ("fe_stage", "fit_stage", "mbd_stage", "mesh").
     /// fe_case_time, pipeline_time: the preset's measured times [s], when measured.
+    /// impact_time: the FE impact sweep's measured time [s] (stage "fe_impact"), if measured.
     RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
-           std::optional<double> pipeline_time);
+           std::optional<double> pipeline_time, std::optional<double> impact_time = std::nullopt);
 
     /// Records a finished task; `ran` false for a reused one (its wall_time is then ignored).
     void finished(const std::string &stage, bool ran, double wall_time_s);
@@ -49,7 +50,7 @@ namespace clearjoint::pipeline
     std::optional<double> prior_seconds(const std::string &stage) const;
 
     std::map<std::string, Stage> stages_;
-    std::optional<double> fe_case_time_, pipeline_time_;
+    std::optional<double> fe_case_time_, pipeline_time_, impact_time_;
     int n_done_ = 0;
   };
 } // namespace clearjoint::pipeline

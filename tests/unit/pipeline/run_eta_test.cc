@@ -60,3 +60,18 @@ TEST(RunEta, MoreTasksThanPlannedRaiseTheTotal)
   EXPECT_EQ(eta.n_total(), 2);
   EXPECT_EQ(eta.time_left()->seconds, 0.0);
 }
+
+// The FE impact sweep is one task of several impacts: its own measured time, not an FE curve's,
+// and it is taken out of the pipeline time that the other tasks share.
+TEST(RunEta, TheImpactSweepHasItsOwnTime)
+{
+  // others: (200 − 10·10 − 60)/4 = 10 s each
+  const RunEta eta({{"fe_stage", 10}, {"fe_impact", 1}, {"fit_stage", 4}}, 10.0, 200.0, 60.0);
+  ASSERT_TRUE(eta.time_left().has_value());
+  EXPECT_NEAR(eta.time_left()->seconds, 10 * 10.0 + 60.0 + 4 * 10.0, 1e-9);
+  EXPECT_FALSE(eta.time_left()->lower_bound);
+  // not measured: a lower bound (the impact's share unknown)
+  const RunEta unknown({{"fe_stage", 2}, {"fe_impact", 1}}, 10.0, 50.0);
+  ASSERT_TRUE(unknown.time_left().has_value());
+  EXPECT_TRUE(unknown.time_left()->lower_bound);
+}
