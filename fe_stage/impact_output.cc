@@ -67,8 +67,7 @@ namespace clearjoint::fe
 
   std::vector<double> impact_history_start(const FeScene &scene)
   {
-    const double R_J = scene.geometry.R_J(), L_J = scene.geometry.L_J();
-    const double m_J = scene.material.rho * 3.14159265358979323846 * R_J * R_J * L_J;
+    const double m_J = rigid_journal_mass(scene);
     const double v = scene.impact.velocity;
     std::vector<double> row(impact_history_columns().size(), 0.0);
     row[3] = v;

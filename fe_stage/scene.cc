@@ -236,6 +236,8 @@ namespace clearjoint::fe
           I.time_step = o.number("time_step", Range::positive("s"));
         if (o.has("end_time"))
           I.end_time = o.number("end_time", Range::positive("s"));
+        if (o.has("journal_mass"))
+          I.journal_mass = o.number("journal_mass", Range::positive("kg"));
         I.max_steps = uint_or(o, "max_steps", I.max_steps, 1, 1000000);
         I.field_stride = uint_or(o, "field_stride", I.field_stride, 1, 1000000);
         const std::string mass =
@@ -329,6 +331,12 @@ namespace clearjoint::fe
         if (s.mesh.adaptive_cycles > 0)
           throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
                            "0 for study impact", "the impact runs on one mesh");
+        if (!(I.journal_mass >= 0.0))
+          throw InputError(f, "impact.journal_mass", format_value(I.journal_mass), "(0, inf) kg");
+        if (I.journal_mass > 0.0 && s.loading.journal != JournalLoading::rigid)
+          throw InputError(f, "impact.journal_mass", format_value(I.journal_mass),
+                           "only with loading.journal: rigid",
+                           "a deformable journal's mass is its mesh's (material.rho)");
       }
     for (const double v : s.sweep_velocity)
       if (!(v > 0.0 && v < 100.0))
@@ -463,6 +471,14 @@ namespace clearjoint::fe
                        "the tilted journal breaks the z = 0 symmetry (mesh with quarter = 0)");
   }
 
+  double rigid_journal_mass(const FeScene &scene)
+  {
+    if (scene.impact.journal_mass > 0.0)
+      return scene.impact.journal_mass;
+    const double R_J = scene.geometry.R_J(), L_J = scene.geometry.L_J();
+    return scene.material.rho * 3.14159265358979323846 * R_J * R_J * L_J;
+  }
+
   FeScene read_scene(const std::string &path)
   {
     return scene_from_json(read_structured_file(path), path);
@@ -561,6 +577,7 @@ namespace clearjoint::fe
       << "  # time_step: 1.0e-6   # [s] > 0: a fixed dt instead\n"
       << "  # end_time: 1.0e-3    # [s] > 0: run to this time, past the separation (default:\n"
       << "                      #   stop once the journal has left, at the latest at 4 T_c)\n"
+      << "  # journal_mass: 0.5     # [kg] > 0: the rigid journal's mass instead of rho*pi*R_J^2*L_J\n"
       << "  max_steps: " << d.impact.max_steps << "      # time steps at most\n"
       << "  field_stride: " << d.impact.field_stride << "       # VTU fields every this many steps\n"
       << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | consistent\n"
@@ -635,6 +652,8 @@ namespace clearjoint::fe
           j["impact"]["time_step"] = s.impact.time_step;
         if (s.impact.end_time > 0.0)
           j["impact"]["end_time"] = s.impact.end_time;
+        if (s.impact.journal_mass > 0.0)
+          j["impact"]["journal_mass"] = s.impact.journal_mass;
       }
     return j;
   }

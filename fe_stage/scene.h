@@ -155,6 +155,9 @@ namespace clearjoint::fe
     double end_time = 0.0;    // [s] > 0: run to this time (past the separation: the bearing's
                               //   free vibration); 0: stop once the journal has left, at the
                               //   latest at 4 T_c (twice a linear contact's duration)
+    /// [kg] > 0: the rigid journal's mass instead of ρ π R_J² L_J (0: that) — e.g. the mass
+    /// that meets the bearing in a mechanism, the pin with the links it carries
+    double journal_mass = 0.0;
     unsigned int max_steps = 5000;  // time steps at most (a bound on the loop)
     unsigned int field_stride = 5;  // VTU fields every this many steps (and the last)
     /// The mass matrix: `redistributed` (row-sum lumped, the contact surface's nodes massless,
@@ -198,6 +201,9 @@ namespace clearjoint::fe
   /// journal, the bore radius equal to R_B, the whole length for the misalignment study.
   /// Part of validate_scene, so a bad mesh stops the run before any output. Throws InputError.
   void check_mesh_against_scene(const FeScene &scene);
+
+  /// [kg] the impact study's rigid journal mass: impact.journal_mass, or ρ π R_J² L_J.
+  double rigid_journal_mass(const FeScene &scene);
 
   /// The joint's dimensions for the geometry library (θ_max, tilt checks).
   geometry::JointGeometry joint_geometry(const Geometry &g);

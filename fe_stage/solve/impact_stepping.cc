@@ -62,9 +62,8 @@ namespace clearjoint::fe::detail
     result.symmetry_factor = symmetry_factor_;
     result.h_min = h_min_;
     result.setup_time = seconds();
-    const double R_J = scene_.geometry.R_J(), L_J = scene_.geometry.L_J();
     S.velocity_in = I.velocity;
-    S.journal_mass = scene_.material.rho * numbers::PI * R_J * R_J * L_J;
+    S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, below
     S.alpha = I.alpha;
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
     const double m_J = S.journal_mass;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -278,6 +279,12 @@ TEST(FeScene, ImpactStudy)
   expect_error(head + "impact: {end_time: 0}\n", {"impact.end_time", "s"});
   expect_error(head + "impact: {steps_per_period: 5}\n", {"impact.steps_per_period", "10"});
   expect_error(head + "impact: {mass: heavy}\n", {"impact.mass", "redistributed"});
+  EXPECT_DOUBLE_EQ(parse(head + "impact: {journal_mass: 2.5}\n").impact.journal_mass, 2.5);
+  EXPECT_DOUBLE_EQ(rigid_journal_mass(parse(head + "impact: {journal_mass: 2.5}\n")), 2.5);
+  EXPECT_NEAR(rigid_journal_mass(parse(head)), 7800.0 * M_PI * 9.5e-3 * 9.5e-3 * 18e-3, 1e-12);
+  expect_error(head + "impact: {journal_mass: 0}\n", {"impact.journal_mass", "kg"});
+  expect_error(head + "loading: {journal: end_faces}\nimpact: {journal_mass: 1}\n",
+               {"impact.journal_mass", "rigid"});
   EXPECT_EQ(parse(head + "loading: {journal: end_faces}\n").loading.journal,
             JournalLoading::end_faces);  // a deformable journal
   expect_error(head + "sweep: {velocity: [0.1, 0]}\n", {"sweep.velocity"});
