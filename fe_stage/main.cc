@@ -528,8 +528,12 @@ int main(int argc, char **argv)
                                            (by_theta ? "misalignment" : "thickness") +
                                            " sweep; one folder per case"});
             }
-          for (auto &c : cases)
+          for (std::size_t k = 0; k < cases.size(); ++k)
             {
+              auto &c = cases[k];
+              if (root)
+                log::info("fe_stage: case " + std::to_string(k + 1) + " of " +
+                          std::to_string(cases.size()) + ": " + shown(c.folder));
               c.scene.sweep_t_B.clear();
               c.scene.sweep_theta_deg.clear();
               c.scene.sweep_velocity.clear();

@@ -217,6 +217,7 @@ namespace clearjoint::fe::detail
         evaluate_contact(0.0);
         write_fields(0, 0.0);
       }
+    const double wall_dynamic_start = seconds();
     unsigned int step = 0;
     for (; step < I.max_steps && t < t_end * (1.0 - 1e-12); ++step)
       {
@@ -411,13 +412,23 @@ namespace clearjoint::fe::detail
           options_.on_dynamic_step(rec);
         if (rank_ == 0)
           {
-            char buf[300];
+            // ETA: the simulated time still to go at the wall time per simulated second so far.
+            // Without an end time the run ends when the journal has left: about 0.6 T_c for a
+            // linear contact (T_c/2 and the T_c/10 out of contact), later if the contact lasts.
+            const double t_expected =
+              I.end_time > 0.0 ? t_end : std::min(t_end, std::max(0.6 * S.contact_period, t));
+            const double per_second = (rec.wall_time - wall_dynamic_start) / t;
+            std::string eta = "";
+            if (t_expected > t)
+              eta = "  ETA " + log::format_duration(per_second * (t_expected - t)) +
+                    (I.end_time > 0.0 ? "" : " (if the journal leaves at 0.6 T_c)");
+            char buf[360];
             std::snprintf(buf, sizeof(buf),
                           "fe_stage: step %u  t %.4g us  dt %.3g us  delta %.4g um  rate %.4g "
-                          "m/s  F %.6g N  journal its %u  contact its %u  active %u  %s",
+                          "m/s  F %.6g N  journal its %u  contact its %u  active %u  %s%s",
                           rec.step, t * 1e6, dt * 1e6, d * 1e6, d_rate, F,
                           rec.journal_iterations, rec.contact_iterations, rec.n_active,
-                          log::format_duration(rec.wall_time).c_str());
+                          log::format_duration(rec.wall_time).c_str(), eta.c_str());
             log::info(buf);
           }
         // Separation: out of contact for a tenth of the contact period (a momentary opening
