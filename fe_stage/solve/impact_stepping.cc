@@ -223,6 +223,12 @@ namespace clearjoint::fe::detail
       {
         DynamicStepRecord rec;
         rec.step = step + 1;
+        // a given end time is reached exactly: the last step is shortened to it
+        if (I.end_time > 0.0 && t + dt > t_end * (1.0 + 1e-12))
+          {
+            dt = t_end - t;
+            set_dynamic_operator(hht.coefficients(dt));
+          }
         const TrilinosWrappers::MPI::Vector saved = u;
         const std::vector<ContactNode> saved_nodes = nodes_;
         IncrementRecord inc;

@@ -199,6 +199,23 @@ TEST(FeImpact, DeformableJournalBouncesOffWithTheEnergyBalanced)
               max_strain_journal / T0, e.work_contact / T0);
 }
 
+// Extremes of the integrator's keys: the most damping HHT allows with the coarsest step the
+// scene accepts still runs the impact to the separation; an end time inside the first step ends
+// the run there, exactly, complete but not separated.
+TEST(FeImpact, ExtremeAlphaStepAndEndTime)
+{
+  const RunResult damped = run_impact("velocity: 0.1, alpha: -0.3333333333, steps_per_period: 10");
+  ASSERT_TRUE(damped.impact.separated);
+  EXPECT_GT(damped.impact.numerical_dissipation, 0.0);
+  EXPECT_GT(damped.impact.restitution, 0.5);
+  const RunResult brief = run_impact("velocity: 0.1, end_time: 1.0e-7");
+  ASSERT_TRUE(brief.complete) << brief.message;
+  EXPECT_FALSE(brief.impact.separated);
+  ASSERT_EQ(brief.dynamic_steps.size(), 1u);
+  EXPECT_DOUBLE_EQ(brief.dynamic_steps.back().time, 1.0e-7);
+  EXPECT_EQ(brief.impact.restitution, 0.0);  // not separated: no restitution
+}
+
 // Results do not depend on the number of ranks (SPEC §2): the whole time history, rigid and
 // deformable journal.
 TEST(FeMpi, ImpactTwoRanksMatchOneRank)
