@@ -54,6 +54,19 @@ def impact_section(impact, base, warnings):
                                           "restitution against the impact velocity"))
     cases = sorted(d for d in os.listdir(fe_dir) if d.startswith("v_"))
     for c in cases:
+        # the linear-elastic model's validity at the peak force (its yield check)
+        man = load_or_none(os.path.join(fe_dir, c, "manifest.json")) or {}
+        yc = man.get("extra", {}).get("yield_check", {})
+        if yc.get("exceeded"):
+            worst = max(yc.get("bodies", []), key=lambda b: b["max_von_mises"]["value"],
+                        default=None)
+            if worst:
+                warnings.add(f"impact at v = {esc(c[2:].replace('mps', ''))} m/s",
+                             f"von Mises reaches {worst['max_von_mises']['value'] / 1e6:.4g} MPa "
+                             f"in the {esc(worst['body'])} at the peak force, above the yield "
+                             f"stress {yc['yield_stress']['value'] / 1e6:.4g} MPa: the linear-"
+                             "elastic result is not valid there", "impact")
+    for c in cases:
         img = os.path.join(fe_dir, c, "impact.png")
         if os.path.exists(img):
             parts.append(details(f"v = {esc(c[2:].replace('mps', ''))} m/s: F(t), δ(t), F(δ), "
