@@ -151,8 +151,8 @@ namespace clearjoint::fe::detail
   /// Massless contact nodes are the mass redistribution of Khenous, Laborde and Renard (Eur. J.
   /// Mech. A 27, 2008): with mass on the nodes whose displacement the contact prescribes, each
   /// closing node receives an impulse over one time step, so the contact force oscillates and
-  /// its peak grows without bound as Δt → 0 (measured: docs/fe.md); without it the semi-discrete
-  /// problem is well posed and the force converges with Δt.
+  /// its peak keeps growing as Δt falls (measured from T_c/20 to T_c/160: docs/fe.md); without
+  /// it the semi-discrete problem is well posed and the force converges with Δt.
   void ContactModel::lump_and_redistribute(FullMatrix<double> &cell_mass,
                                            const std::vector<types::global_dof_index> &dofs,
                                            const std::set<types::global_dof_index> &surface) const
