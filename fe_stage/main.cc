@@ -8,7 +8,9 @@
 // Writes DIR/force_penetration.csv (delta, force, solver statistics per increment),
 // DIR/fields/ (VTU/PVTU + PVD), DIR/force_penetration.png and DIR/manifest.json; with a `sweep`
 // block, one such folder per swept value under DIR plus DIR/manifest.json, DIR/sweep.csv and
-// DIR/sweep.png (every case's curve).
+// DIR/sweep.png (every case's curve). Study impact: force_penetration.csv is the quasi-static
+// reference curve, and DIR/impact_history.csv (one row per time step) and DIR/impact.png are
+// added; a sweep over impact.velocity writes DIR/impact_sweep.csv and DIR/impact_sweep.png.
 // Everything is written into DIR.tmp.<pid> and renamed to DIR at the end (an earlier DIR is
 // replaced as a whole).
 // Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete),
@@ -374,7 +376,9 @@ int main(int argc, char **argv)
   if (!root)
     log::set_level(log::Level::error);
 
-  CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint).\n"
+  CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint): "
+               "force-penetration curves (study radial, misalignment, hertz, patch) and the "
+               "journal's impact (study impact, HHT-alpha dynamics).\n"
                "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted "
                "by SIGINT/SIGTERM."};
   std::string scene_path, output_dir, final_dir;
