@@ -97,3 +97,36 @@ def impact_section(impact, base, warnings):
             rows.append("</table>")
             parts.append("".join(rows))
     return "\n".join(parts)
+
+
+def impact_headline(impact):
+    """One sentence for the report's summary: the dynamic peak against the quasi-static force,
+    the restitution, and the c_e that reproduces it; "" without an impact study."""
+    if not impact or not impact.get("sweep") or not os.path.exists(impact["sweep"]):
+        return ""
+    _, _, s = read_table(impact["sweep"])
+    v = s["v_in_m_per_s"]
+    gaps = [100 * g for g in s["dynamic_gap"]]
+    e = s["restitution"]
+    def span(values, fmt):
+        """'a–b', or 'a' at every v when they agree to the digits shown."""
+        lo, hi = fmt.format(min(values)), fmt.format(max(values))
+        return lo if lo == hi else f"{lo} to {hi}"
+
+    slow, fast = gaps[v.index(min(v))], gaps[v.index(max(v))]
+    if abs(slow) < 0.5 * abs(fast):
+        trend = "it shrinks as v falls, as the paper reports"
+    else:
+        trend = ("the bearing's inertia: it does not shrink as v falls, unlike the paper's "
+                 "claim (docs/fe.md)")
+    text = (f"<p>Impact (<a href='#impact'>FE impact study</a>), v = {min(v):.3g}–{max(v):.3g} m/s: "
+            f"peak force {min(s['peak_force_N']):.4g}–{max(s['peak_force_N']):.4g} N, "
+            f"<strong>{span(gaps, '{:+.1f}')} % above the quasi-static force at the same δ"
+            f"</strong> ({trend}), restitution {span(e, '{:.4f}')}")
+    man = load_or_none(os.path.join(impact.get("compare_dir", ""), "manifest.json")) or {}
+    fits = man.get("extra", {}).get("fitted_restitution_coefficient", {})
+    if fits:
+        text += ("; the damping models return it with c_e = " +
+                 ", ".join(f"{f['c_e_mean']:.4f} ({esc(n.replace('_', ' '))})"
+                           for n, f in sorted(fits.items())))
+    return text + ".</p>"

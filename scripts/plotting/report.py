@@ -19,7 +19,7 @@ import os
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
 from plotting._report_fe import f_ref_interval, mesh_error, study_section, trend_finding
-from plotting._report_impact import impact_section
+from plotting._report_impact import impact_headline, impact_section
 from plotting._report_mbd import headline_table, mbd_section
 
 
@@ -167,6 +167,7 @@ def summary_section(summary, studies, runs, warnings, has_band):
                      f"{value_of(get(runs[0].summary, 'duration'), 0):.3g} s, {len(runs)} runs "
                      f"(contact models, the ideal joint, the tilted crank); joint friction μ ∈ "
                      f"{{{', '.join(f'{m:g}' for m in mus)}}}.</p>")
+    parts.append(impact_headline(summary.get("impact")))
     parts.append("<h3>Headline law beside the paper's</h3>")
     parts.append(headline_laws(studies, has_band))
     findings = [t for t in (trend_finding(fs) for fs in studies if fs.cases) if t]
