@@ -278,6 +278,17 @@ namespace clearjoint::pipeline
       const nlohmann::json *study = find_key_path(scene, "study");
       if (!study || !study->is_string() || study->get<std::string>() != "impact")
         throw InputError(src, "impact.scene", config_.impact->scene, "a scene with study: impact");
+      // a law given as a file is read now (a fitted one is checked when impact_compare runs)
+      if (config_.impact->law.file)
+        try
+        {
+          laws::read_law_file(*config_.impact->law.file);
+        }
+        catch (const InputError &e)
+        {
+          throw InputError(src, "impact.law.file", *config_.impact->law.file,
+                           "a readable law file (clearjoint.law/1)", e.what());
+        }
     }
 
     // Fitted laws do not exist before the run: the MBD scenes are checked with a stand-in (the

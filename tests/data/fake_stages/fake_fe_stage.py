@@ -8,6 +8,7 @@ F = K·δ^n without any FE. Not a physics model.
 
 What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - study radial (default): K grows with geometry.t_B.
+- study impact: accepted by --check only (the impact study runs with the real fe_stage).
 - study misalignment: needs misalignment.theta_deg [deg] and loading.journal: rigid; rejects
   θ > θ_max (paper Eq. 3, the closed form of docs/geometry.md) with exit 1, as fe_stage does
   (only round-off, 1e-12 relative, is forgiven). K falls with θ.
@@ -50,8 +51,12 @@ if study == "misalignment":
     if not 0 <= theta <= theta_max * (1 + 1e-12):
         input_error("misalignment.theta_deg", theta, f"0 <= theta <= theta_max = {theta_max!r} deg")
     K *= 1.0 - 0.2 * theta / theta_max
+elif study == "impact":
+    if check:  # only its scene is checked here (the impact tests run the real fe_stage)
+        sys.exit(0)
+    input_error("study", study, "radial|misalignment (the fake stage does not run impacts)")
 elif study != "radial":
-    input_error("study", study, "radial|misalignment")
+    input_error("study", study, "radial|misalignment|impact")
 
 mesh = scene.get("geometry", {}).get("mesh")
 if mesh is not None:

@@ -159,3 +159,37 @@ TEST(PipelineInterrupt, SigintDuringTheReportStopsPlotPyAndExits130)
     gone = kill(report, 0) != 0;
   EXPECT_TRUE(gone) << "the report's plot.py was stopped";
 }
+
+// The impact section is checked with the rest: its scene must be an impact study, and a law
+// given as a file must read; each is an input error naming the key, nothing written.
+TEST(PipelineCheck, TheImpactSectionIsChecked)
+{
+  test_support::ScratchDir dir("pipeline_check_impact");
+  const Build b(dir);
+  test_support::write_text(dir.file("impact.yaml"), "{\"study\": \"impact\"}\n");
+  test_support::write_text(dir.file("radial.yaml"), "{\"study\": \"radial\"}\n");
+  test_support::write_text(dir.file("bad_law.json"), "{\"schema\": \"clearjoint.law/1\"}\n");
+  const std::string law_ok = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  for (const auto &[section, key] : std::vector<std::pair<std::string, std::string>>{
+         {"impact: {scene: " + dir.file("radial.yaml") + ", law: {file: " + law_ok + "}}\n",
+          "impact.scene"},
+         {"impact: {scene: " + dir.file("impact.yaml") + ", law: {file: " +
+            dir.file("bad_law.json") + "}}\n",
+          "impact.law.file"}})
+  {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("report: false"), 13, section + "report: false");
+    test_support::write_text(dir.file("p.yaml"), text);
+    std::string log;
+    EXPECT_EQ(run_pipeline(dir, b, "--check", log), 1) << log;
+    EXPECT_NE(log.find("key '" + key + "'"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(dir.file("out")));
+  }
+  std::string text = test_support::read_text(pipeline(dir));
+  text.replace(text.find("report: false"), 13,
+               "impact: {scene: " + dir.file("impact.yaml") + ", law: {file: " + law_ok +
+                 "}}\nreport: false");
+  test_support::write_text(dir.file("p.yaml"), text);
+  std::string log;
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+}
