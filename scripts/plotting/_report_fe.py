@@ -301,7 +301,7 @@ def claim_table(fs):
                 e = mesh_error(law)
                 rows.append(
                     f"<tr><td>F at δ = 0.05 mm, t_B = 4 mm</td><td>{pf:,.0f} N</td>"
-                    f"<td>{f:,.0f} N ({100 * (f - pf) / pf:+.1f} %; fit ±{hw or 0:,.0f} N"
+                    f"<td>{f:,.0f} N ({round(100 * (f - pf) / pf, 1) + 0.0:+.1f} %; fit ±{hw or 0:,.0f} N"
                     f"{f', mesh ±{100 * e:.3g} %' if e else ''})</td>"
                     f"<td>{'within the error' if abs(f - pf) <= (hw or 0) + (e or 0) * f else 'no'}</td>"
                     f"<td>paper: axis-line loading (its force falls with refinement, docs/fe.md: "
@@ -452,6 +452,13 @@ def contact_field_notes(stats, mu, label, warnings, anchor):
         ". These fields do not yet mean what CSHEAR/CSTATUS/CSLIP mean in Abaqus.</p>"
 
 
+def scene_yield_stress(man):
+    """The yield stress the case is checked against [Pa]: the one its scene names
+    (material.yield_stress; fe_stage writes its default there too), else SPEC §2's."""
+    ys = value_of(get(man, "extra", "scene", "material", "yield_stress"))
+    return ys if isinstance(ys, (int, float)) and ys > 0 else _paper.YIELD_STRESS
+
+
 _FIELD_STATS = {}
 
 
@@ -465,8 +472,8 @@ def cached_field_stats(case, man, warnings, anchor, stick_code=2):
         mu = get(man, "extra", "scene", "contact", "mu")
         R_B = get(man, "extra", "scene", "geometry", "R_B")
         try:
-            _FIELD_STATS[key] = fields.field_stats(case["fe_dir"], _paper.YIELD_STRESS, sym, mu,
-                                                   stick_code, R_B)
+            _FIELD_STATS[key] = fields.field_stats(case["fe_dir"], scene_yield_stress(man), sym,
+                                                   mu, stick_code, R_B)
         except Exception as e:  # a broken VTU must not take the report down: say so instead
             warnings.add(f"FE fields, {case['fe_dir']}", f"could not be read ({esc(str(e))})", anchor)
             _FIELD_STATS[key] = None
@@ -477,7 +484,7 @@ def yield_section(fs, warnings):
     """Every case's largest von Mises stress and volume above the yield stress (fe_stage's
     manifest block when present, else the report's own from the VTU), and one warning for the
     study when any case exceeds it."""
-    rows, above = [], []
+    rows, above, limits = [], [], set()
     for case, law, man in fs.cases:
         stats = None if isinstance(get(man, "extra", "yield_check"), dict) else \
             cached_field_stats(case, man, warnings, fs.anchor)
@@ -486,7 +493,8 @@ def yield_section(fs, warnings):
             rows.append(f"<tr><td>{esc(case_label(fs.study, case))}</td><td colspan='5'>no fields, "
                         f"no yield check in the manifest</td></tr>")
             continue
-        ys = y["yield_stress"] or _paper.YIELD_STRESS
+        ys = y["yield_stress"] or scene_yield_stress(man)
+        limits.add(ys)
         vm, vol, frac = y["max_von_mises"], y.get("volume_above_yield"), y.get("volume_fraction_above_yield")
         vb = y.get("volume_above_yield_bearing")
         if vm > ys:
@@ -510,8 +518,13 @@ def yield_section(fs, warnings):
                      + (f", up to {max(vols) * 1e9:.4g} mm³ of the joint above it" if vols else "")
                      + "; the model is linear elastic, so the force there is an upper bound",
                      fs.anchor)
-    return ("<h4>Yield check</h4><p>The FE model is linear elastic; the paper's steel yields at "
-            f"{_paper.YIELD_STRESS / 1e6:.4g} MPa (SPEC §2, first point of the hardening table). "
+    own = sorted(y for y in limits if abs(y - _paper.YIELD_STRESS) > 1e-6 * _paper.YIELD_STRESS)
+    limit_txt = (f"the paper's steel yields at {_paper.YIELD_STRESS / 1e6:.4g} MPa (SPEC §2, first "
+                 f"point of the hardening table)")
+    if own:
+        limit_txt += (f"; these cases were checked against the yield stress their scene names "
+                      f"(material.yield_stress): {' / '.join(f'{y / 1e6:.4g}' for y in sorted(limits))} MPa")
+    return ("<h4>Yield check</h4><p>The FE model is linear elastic; " + limit_txt + ". "
             "Where von Mises exceeds it the real joint would yield and carry less force: the laws "
             "hold only while that zone stays small.</p>"
             "<table><tr><th>case</th><th>largest von Mises [MPa]</th><th>volume above yield, "
@@ -551,6 +564,9 @@ def pictures_and_checks(fs, run_dir, warnings):
         plot_py = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plot.py")
         r = subprocess.run([sys.executable, plot_py, "fields", case["fe_dir"], "--output", png,
                             "--bore-radius", repr(R_B),
+                            "--yield-stress", repr(value_of(get(man, "extra", "yield_check",
+                                                                "yield_stress")) or
+                                                   scene_yield_stress(man)),
                             # VTK's default font has no Greek letters
                             "--title", f"{fs.study['name']}: {label.replace('θ', 'theta').replace('°', ' deg')}"],
                            capture_output=True, text=True)
@@ -558,6 +574,9 @@ def pictures_and_checks(fs, run_dir, warnings):
         if not rendered:
             warnings.add(f"pictures, {label}", "not rendered: " + esc((r.stderr or "").strip()[-300:]),
                          fs.anchor)
+    else:
+        warnings.add(f"pictures, {label}", "not rendered: the FE manifest's scene names no "
+                                           "geometry.R_B (the bore, where the contact is)", fs.anchor)
     if rendered:
         out.append(image_file_html(
             png, f"{esc(fs.study['name'])}, {esc(label)}, δ = "
@@ -569,12 +588,15 @@ def pictures_and_checks(fs, run_dir, warnings):
                  f"component), contact pressure on the bore."))
     y, source = yield_check(case, man, stats)
     if y and y.get("max_von_mises") is not None:
-        ys = y["yield_stress"] or _paper.YIELD_STRESS
+        ys = y["yield_stress"] or scene_yield_stress(man)
         vm = y["max_von_mises"]
         vol = y.get("volume_above_yield")
         frac = y.get("volume_fraction_above_yield")
+        source_of_ys = ("SPEC §2, first point of the hardening table"
+                        if abs(ys - _paper.YIELD_STRESS) <= 1e-6 * _paper.YIELD_STRESS
+                        else "the scene's material.yield_stress")
         text = (f"largest von Mises stress {vm / 1e6:,.0f} MPa against the yield stress "
-                f"{ys / 1e6:.4g} MPa (SPEC §2, first point of the hardening table)").replace(",", " ")
+                f"{ys / 1e6:.4g} MPa ({source_of_ys})").replace(",", " ")
         if vm > ys:
             extra = ""
             if vol is not None:

@@ -303,6 +303,33 @@ def band_section(runs):
     return "<h3 id='band'>Uncertainty of the response</h3>" + "".join(out)
 
 
+# What each of mbd_stage's per-run plots (scripts/plotting/mbd.py) shows: the caption, never the
+# file name alone.
+RUN_PLOT_CAPTIONS = {
+    "slider_motion": "slider velocity and acceleration over time (the paper's Figs. 14–15)",
+    "phase_portrait": "phase portrait: slider velocity over slider position (the paper's Fig. 16)",
+    "energy": "kinetic, potential and contact-elastic energy, friction and damping work, and the "
+              "energy balance error E − W − E(0) (the paper's Fig. 17)",
+    "ground_reactions": "reaction forces of the ground joints on the moving bodies",
+    "constraint_drift": "constraint drift: largest |Φ| and Euler-parameter norm error (accuracy "
+                        "of the integration)",
+}
+RUN_PLOT_SUFFIX_CAPTIONS = {
+    "_orbit": "journal centre's orbit in the clearance circle of joint {}",
+    "_contact": "penetration, normal and friction force, and axial (end-face) forces of joint {}",
+}
+
+
+def run_plot_caption(png):
+    stem = os.path.splitext(os.path.basename(png))[0]
+    if stem in RUN_PLOT_CAPTIONS:
+        return RUN_PLOT_CAPTIONS[stem]
+    for suffix, text in RUN_PLOT_SUFFIX_CAPTIONS.items():
+        if stem.endswith(suffix):
+            return text.format(stem[:-len(suffix)])
+    return stem.replace("_", " ")
+
+
 def per_run_details(runs, base):
     out = []
     for r in runs:
@@ -312,7 +339,8 @@ def per_run_details(runs, base):
                  if os.path.exists(p)]
         body.append(" · ".join(links) + "</p>")
         for png in sorted(glob.glob(os.path.join(r.dir, "plots", "*.png"))):
-            body.append(image_file_html(png, f"{esc(r.name)}: {esc(os.path.basename(png))}"))
+            body.append(image_file_html(png, f"{esc(r.name)}: {esc(run_plot_caption(png))} "
+                                             f"({rel_link(png, base, os.path.basename(png))})"))
         out.append(f"<div id='mbd-run-{esc(r.name)}'>" +
                    details(f"{esc(r.name)} ({esc(r.model_words())}): plots and files",
                            "".join(body)) + "</div>")

@@ -115,8 +115,9 @@ def what_ran(summary, studies):
             f"{'frictionless' if mu == 0 else f'μ = {mu:g}' if mu is not None else 'friction not stated'}; "
             f"measured error of F(δ_max) with this preset: "
             f"{f'{e:.3g} %' if e is not None else 'not measured'}</li>")
+    settings = ", ".join(f"{k} = {v}" for k, v in sorted((get(preset, "fe", default={}) or {}).items()))
     return (f"<p>Preset <strong>{esc(summary['preset'])}</strong> "
-            f"({esc(', '.join(f'{k} = {v}' for k, v in sorted((get(preset, 'fe', default={}) or {}).items())))})."
+            f"({esc(settings or 'the scenes as they are')})."
             f" FE studies:</p><ul>{''.join(items)}</ul>")
 
 
@@ -142,9 +143,10 @@ def headline_laws(studies, has_band):
             unc = f"fit 95 %: ±{100 * (hw or 0) / f:.2g} %; mesh: " + \
                 (f"±{100 * e:.3g} %" if e else "not measured")
             rows.append(f"<tr><td>this run, t_B = 4 mm</td><td>F = {law['mm_N']['K']:.6g}·δ^{n:.4f}</td>"
-                        f"<td>{K:.5g}</td><td>{n:.4f}</td><td>{f:.0f} ({100 * (f - pf) / pf:+.1f} % "
+                        f"<td>{K:.5g}</td><td>{n:.4f}</td><td>{f:.0f} ({round(100 * (f - pf) / pf, 1) + 0.0:+.1f} % "
                         f"against the paper)</td><td>{unc}</td></tr>")
-            if e and hw:
+            # hw is 0 when the data follow one power law exactly: the mesh error still dominates
+            if e and hw is not None:
                 dom = "the mesh (discretisation) error" if e > hw / f else "the regression interval"
                 verdict = (f"<p>Uncertainty of our t_B = 4 mm law at 0.05 mm: the fit's 95 % "
                            f"interval is ±{100 * hw / f:.2g} %, the preset's measured mesh error "

@@ -486,3 +486,146 @@ TEST(RunPipeline, PresetErrorReachesTheLawAndTheBandTasksAreCountedLogsNameFinal
       EXPECT_EQ(text.substr(0, note).find(".partial"), std::string::npos) << entry.path();
     }
 }
+
+namespace
+{
+  /// The report without its figures' and tables' insides: every <details>…</details> removed
+  /// (what a reader sees before unfolding anything).
+  std::string unfolded_only(std::string html)
+  {
+    for (auto open = html.find("<details"); open != std::string::npos; open = html.find("<details"))
+    {
+      const auto close = html.find("</details>", open);
+      if (close == std::string::npos)
+        break;
+      html.erase(open, close + 10 - open);
+    }
+    return html;
+  }
+
+  std::size_t count_of(const std::string &text, const std::string &what)
+  {
+    std::size_t n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+      ++n;
+    return n;
+  }
+} // namespace
+
+// Issue 15 items 1-3, 5 (the report's part), 6, 8, 9 without the FE build: the stand-in FE stage
+// writes fields (CLEARJOINT_FAKE_FIELDS=1: von Mises above the yield stress near the contact,
+// contact fields in Abaqus's meaning), the real fit and MBD stages run on its laws, and the report
+// must lead with the answer: summary (what ran, our t_B = 4 mm law beside the paper's, trends
+// beside the paper's claims, MBD headline numbers, every warning), contents, one section per
+// study with VTK pictures, the yield check against the yield stress the scene names, contact-field
+// checks (fe_stage's old fields — shear and 'stick' without friction, slip off contact — are
+// flagged), all models overlaid, the band split into regression and mesh with the dominant part
+// named, per-run plots folded away and captioned by what they show; and in headless Chromium
+// every image loads and nothing refers to the network.
+TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
+{
+  test_support::ScratchDir dir("pipeline_report");
+  FakeBuild build(dir, /*real_mbd=*/true);
+  const std::string src = CLEARJOINT_SOURCE_DIR;
+  const std::string mbd = src + "/mbd_stage/scenes/slider_crank_";
+  test_support::write_text(
+    dir.file("p.yaml"),
+    "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir.file("out") + "\npreset: fast\n"
+    "presets:\n"
+    "  fast: {fe: null, mbd: null, measured: {note: test, fe_dofs: null, fe_case_time: 1.0,\n"
+    "         pipeline_time: 60.0, error_F_max: {thickness: {percent: 4.8, where: made up},\n"
+    "         misalignment: {percent: null, where: not measured}}}}\n"
+    "  standard: {fe: null, mbd: null}\n  accurate: {fe: null, mbd: null}\n"
+    "fe_studies:\n"
+    "  - name: thickness\n    scene: " + src + "/fe_stage/scenes/radial.yaml\n"
+    "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004, 0.006]\n"
+    // frictionless, fields as fe_stage wrote them before issue 15, and its own yield stress
+    // (above the stand-in's 600 MPa: no yield warning for this study)
+    "  - name: misalignment\n    scene: " + src + "/fe_stage/scenes/misalignment.yaml\n"
+    "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
+    "    values: [1.0, 2.5, theta_max]\n"
+    "    overrides: {contact.mu: 0.0, fake_old_contact_fields: true, material.yield_stress: 1.0e9}\n"
+    "fit: {weighting: absolute, family_out_of_range: clamp}\n"
+    "mbd_runs:\n"
+    "  - {name: fe_law, scene: " + mbd + "fe_law.yaml, laws: [{key: clearance_joints.0.normal.law_file, study: thickness, value: 0.004}], band: true}\n"
+    "  - {name: paper_law, scene: " + mbd + "fe_law_damped.yaml, laws: [{key: clearance_joints.0.normal.law_file, file: " + src + "/laws/paper_tB4.json}]}\n"
+    "  - {name: johnson, scene: " + mbd + "johnson.yaml}\n"
+    "  - {name: ideal, scene: " + mbd + "ideal.yaml}\n"
+    "  - {name: tilted_1deg, scene: " + mbd + "tilted_1deg.yaml, overrides: {clearance_joints.0.normal.model: law_family}, laws: [{key: clearance_joints.0.normal.law_file, study: misalignment}]}\n"
+    "report: true\n");
+  const int rc = test_support::run_command("CLEARJOINT_FAKE_FIELDS=1 " + std::string(RUN_PIPELINE_EXE) +
+                                             " " + dir.file("p.yaml") + " --build-dir " + build.root,
+                                           dir.file("log.txt"));
+  const std::string log = test_support::read_text(dir.file("log.txt"));
+  ASSERT_EQ(rc, 0) << log;
+  const fs::path run = dir.file("out/r");
+  const std::string report = test_support::read_text((run / "report.html").string());
+  const auto at = [&](const std::string &what) {
+    const auto p = report.find(what);
+    EXPECT_NE(p, std::string::npos) << "report.html lacks: " << what;
+    return p;
+  };
+
+  // Item 1: summary, then contents, then one section per study, then the multibody part.
+  const auto summary = at("id='summary'"), contents = at("<nav>"), thickness = at("id='study-thickness'"),
+             misalignment = at("id='study-misalignment'"), multibody = at("id='mbd'");
+  EXPECT_LT(summary, contents);
+  EXPECT_LT(contents, thickness);
+  EXPECT_LT(thickness, misalignment);
+  EXPECT_LT(misalignment, multibody);
+  const std::string head = report.substr(summary, contents - summary);
+  for (const char *part :
+       {"Preset <strong>fast</strong>", "μ = 0.1", "frictionless", "4.8 %",  // what ran
+        "paper, t_B = 4 mm", "338240", "16344", "this run, t_B = 4 mm",      // law beside the paper's
+        "+0.0 % against the paper",  // the stand-in's t_B = 4 mm law is the paper's
+        "<strong>the mesh (discretisation) error dominates</strong>",  // item 6: which part dominates
+        "grows monotonically over t_B", "as the paper says",   // trends beside the claims
+        "mbd-run-fe_law", "mbd-run-johnson", "mbd-run-ideal",  // MBD headline numbers
+        "id='warnings'"})
+    EXPECT_NE(head.find(part), std::string::npos) << "summary lacks: " << part;
+  // Every warning of the run is in the summary: the thickness cases' stress above the default
+  // yield stress, none for the misalignment cases (their scene names 1 GPa), and the old
+  // contact fields of the frictionless misalignment run.
+  EXPECT_NE(head.find("<strong>FE thickness</strong>: stress above the yield stress 168.2 MPa in 3 of "
+                      "3 cases"),
+            std::string::npos)
+    << head;
+  EXPECT_EQ(head.find("<strong>FE misalignment</strong>: stress above"), std::string::npos) << head;
+  for (const char *part : {"in a frictionless run", "contact_status = stick at",
+                           "contact_slip is non-zero at"})
+    EXPECT_NE(head.find(part), std::string::npos) << "summary lacks the field warning: " << part;
+  EXPECT_EQ(count_of(head, "<strong>FE fields, t_B"), 0u) << "the thickness fields are consistent";
+  at("Contact fields: consistent (friction within Coulomb's cone");
+  at("against the yield stress 1000 MPa (the scene's material.yield_stress)");
+
+  // Items 2 and 3: the paper's law over our curves, F_ref (not K) over the parameter, the
+  // paper's claims beside ours, the fields rendered with VTK for each study.
+  at("with the paper's t_B = 4 mm law (dashed)");
+  at("K is not plotted");
+  at("The paper's claims beside ours");
+  EXPECT_EQ(count_of(report, "rendered off-screen with VTK"), 4u);  // caption and alt text, twice
+  EXPECT_TRUE(fs::exists(run / "pictures" / "thickness_fields.png"));
+  EXPECT_TRUE(fs::exists(run / "pictures" / "misalignment_fields.png"));
+  at("Every contact model overlaid");
+  at("a zoom on the first 10 ms (the paper's Fig. 17b)");
+  at("id='band'");
+
+  // Per-run plots folded away and captioned by what they show, not by their file name. Unfolded:
+  // per study F–δ, F_ref and n, the fields picture; for the multibody runs the two overlays and
+  // the band.
+  EXPECT_EQ(count_of(unfolded_only(report), "<img"), 3u * 2u + 2u + 1u);
+  EXPECT_GE(count_of(report, "<details>"), 3u + 3u + 5u);
+  at("fe_law: phase portrait: slider velocity over slider position");
+  EXPECT_EQ(report.find("phase_portrait.png</figcaption>"), std::string::npos);
+
+  // Item 8: no temporary folder named anywhere in the report.
+  EXPECT_EQ(report.find(".partial"), std::string::npos);
+
+  // Item 9: in headless Chromium every image loads and nothing refers to the network.
+  EXPECT_EQ(test_support::run_command("/usr/bin/python3 " + src +
+                                        "/tests/unit/report/check_report_html.py " +
+                                        (run / "report.html").string(),
+                                      dir.file("browser.txt")),
+            0)
+    << test_support::read_text(dir.file("browser.txt"));
+}
