@@ -158,17 +158,20 @@ def overlay_figures(runs):
     if not have:
         return ""
     out = []
+    # one colour per run in every panel and figure (each axes' own colour cycle would give the
+    # journal orbit, which the ideal joint lacks, other colours than the legend's)
+    colour = {r.name: f"C{i % 10}" for i, r in enumerate(have)}
     fig, ax = plt.subplots(2, 2, figsize=(13, 8.5))
     for r in have:
-        d = r.data
+        d, c = r.data, colour[r.name]
         if "slider_velocity" in d:
-            ax[0][0].plot(d["t"], d["slider_velocity"], lw=0.8, label=r.name)
-            ax[1][0].plot(d["slider_position"], d["slider_velocity"], lw=0.6, label=r.name)
+            ax[0][0].plot(d["t"], d["slider_velocity"], lw=0.8, color=c, label=r.name)
+            ax[1][0].plot(d["slider_position"], d["slider_velocity"], lw=0.6, color=c, label=r.name)
         if "slider_acceleration" in d:
-            ax[0][1].plot(d["t"], d["slider_acceleration"], lw=0.5, label=r.name)
+            ax[0][1].plot(d["t"], d["slider_acceleration"], lw=0.5, color=c, label=r.name)
         e1, e2 = r.joint_col("ecc_1"), r.joint_col("ecc_2")
         if e1 and e2:
-            ax[1][1].plot([1e3 * x for x in e1], [1e3 * y for y in e2], lw=0.5, label=r.name)
+            ax[1][1].plot([1e3 * x for x in e1], [1e3 * y for y in e2], lw=0.5, color=c, label=r.name)
     ax[0][0].set(xlabel="time t [s]", ylabel="slider velocity [m/s]", title="Fig. 14: slider velocity")
     ax[0][1].set(xlabel="time t [s]", ylabel="slider acceleration [m/s²]",
                  title="Fig. 15: slider acceleration")
@@ -180,6 +183,8 @@ def overlay_figures(runs):
     for a in ax.flat:
         a.grid(True, alpha=0.3)
     ax[0][0].legend(fontsize=7, ncol=2)
+    if ax[1][1].lines:
+        ax[1][1].legend(fontsize=7, ncol=2)
     fig.tight_layout()
     out.append(figure_html(fig, "Every contact model overlaid: slider velocity, acceleration, "
                                 "phase portrait and journal orbit (the paper's Figs. 14–16)."))
@@ -192,10 +197,10 @@ def overlay_figures(runs):
             continue
         E0 = d["E_total"][0]
         dE = [1e3 * (e - E0) for e in d["E_total"]]
-        line, = ax[0].plot(d["t"], dE, lw=0.9, label=r.name)
+        ax[0].plot(d["t"], dE, lw=0.9, color=colour[r.name], label=r.name)
         idx = [i for i, t in enumerate(d["t"]) if t <= 0.010]
         ax[1].plot([d["t"][i] * 1e3 for i in idx], [dE[i] for i in idx], lw=1.0,
-                   color=line.get_color(), label=r.name)
+                   color=colour[r.name], label=r.name)
     ax[0].set(xlabel="time t [s]", ylabel="E_total(t) − E(0) [mJ]",
               title="Fig. 17a: mechanical energy change")
     ax[1].set(xlabel="time t [ms]", ylabel="E_total(t) − E(0) [mJ]",
