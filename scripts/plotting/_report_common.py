@@ -87,6 +87,12 @@ def shown(value, unit):
     return value, unit
 
 
+def thousands(x):
+    """A whole number with its thousands apart as the SI brochure writes them: 16 344. Only the
+    number: replacing commas in a whole sentence would take its commas out too."""
+    return f"{x:,.0f}".replace(",", " ")
+
+
 def readable_log_axis(axis):
     """Log axis ticks at 1, 2, 5 × 10^k, labelled in plain numbers: a decade of data (δ from
     0.005 to 0.05 mm) would otherwise carry one labelled tick."""

@@ -10,7 +10,8 @@ import matplotlib.pyplot as plt
 
 from plotting import _paper
 from plotting._report_common import (details, esc, figure_html, get, image_file_html,
-                                     load_or_none, readable_log_axis, rel_link, shown, value_of)
+                                     load_or_none, readable_log_axis, rel_link, shown, thousands,
+                                     value_of)
 
 LOADING_WORDS = {
     "end_faces": "a deformable journal pushed at its two end faces (every point of both end "
@@ -137,7 +138,7 @@ def modelled_paragraph(fs):
                      f"{mesh.get('global_refinements')} global and {mesh.get('contact_refinements')} "
                      f"contact-zone refinements")
     if dofs:
-        parts.append(f" ({dofs:,.0f} DoFs for the first case)".replace(",", " "))
+        parts.append(f" ({thousands(dofs)} DoFs for the first case)")
     parts.append(".</p>")
     diffs = []
     if loading != _paper.MODEL["loading"]:
@@ -277,9 +278,9 @@ def claim_table(fs):
     change = 100 * (last - first) / first
     errs = [mesh_error(l) for _, l, _ in fs.cases]
     e = max([x for x in errs if x] or [0.0])
-    ours = (f"F_ref {words} from {first:,.0f} N to {last:,.0f} N ({change:+.1f} %) over "
+    ours = (f"F_ref {words} from {thousands(first)} N to {thousands(last)} N ({change:+.1f} %) over "
             f"{esc(param_axis_label(study))} = {fs.values_shown()[0]:.4g} … "
-            f"{fs.values_shown()[-1]:.4g}").replace(",", " ")
+            f"{fs.values_shown()[-1]:.4g}")
     if e:
         steps = [abs(b - a) / a for a, b in zip(Fs, Fs[1:])]
         small = sum(1 for s in steps if s < 2 * e)
@@ -300,15 +301,15 @@ def claim_table(fs):
                 pf = _paper.tb4_force(_paper.DELTA_MAX)
                 e = mesh_error(law)
                 rows.append(
-                    f"<tr><td>F at δ = 0.05 mm, t_B = 4 mm</td><td>{pf:,.0f} N</td>"
-                    f"<td>{f:,.0f} N ({round(100 * (f - pf) / pf, 1) + 0.0:+.1f} %; fit ±{hw or 0:,.0f} N"
+                    f"<tr><td>F at δ = 0.05 mm, t_B = 4 mm</td><td>{thousands(pf)} N</td>"
+                    f"<td>{thousands(f)} N ({round(100 * (f - pf) / pf, 1) + 0.0:+.1f} %; fit ±{thousands(hw or 0)} N"
                     f"{f', mesh ±{100 * e:.3g} %' if e else ''})</td>"
                     f"<td>{'within the error' if abs(f - pf) <= (hw or 0) + (e or 0) * f else 'no'}</td>"
                     f"<td>paper: axis-line loading (its force falls with refinement, docs/fe.md: "
                     f"our axis_line gives +3.9 % on the default mesh), μ = 0.1 (+0.3–0.5 %), its "
                     f"own 3.12 % mesh error; ours: "
                     f"{esc(get(fs.first_scene(), 'loading', 'journal', default='?'))} loading, "
-                    f"stiffer than a driven line</td></tr>".replace(",", " "))
+                    f"stiffer than a driven line</td></tr>")
                 ci = get(law, "diagnostics", "n_ci95", default=[None, None])
                 ci_txt = f" (95 %: {ci[0]:.4f} … {ci[1]:.4f})" if ci[0] is not None else ""
                 rows.append(
@@ -595,8 +596,8 @@ def pictures_and_checks(fs, run_dir, warnings):
         source_of_ys = ("SPEC §2, first point of the hardening table"
                         if abs(ys - _paper.YIELD_STRESS) <= 1e-6 * _paper.YIELD_STRESS
                         else "the scene's material.yield_stress")
-        text = (f"largest von Mises stress {vm / 1e6:,.0f} MPa against the yield stress "
-                f"{ys / 1e6:.4g} MPa ({source_of_ys})").replace(",", " ")
+        text = (f"largest von Mises stress {thousands(vm / 1e6)} MPa against the yield stress "
+                f"{ys / 1e6:.4g} MPa ({source_of_ys})")
         if vm > ys:
             extra = ""
             if vol is not None:
@@ -634,8 +635,8 @@ def per_case_details(fs, base):
                     else "fit: data, law and residuals"
                 body.append(image_file_html(png, f"{esc(label)}: {kind}"))
         out.append(details(f"{esc(label)}: F(δ_max) = "
-                           f"{value_of(get(man, 'extra', 'force_at_delta_max'), float('nan')):,.0f} N, "
-                           f"n = {law['law']['n']:.4f} — per-case plots and files".replace(",", " "),
+                           f"{thousands(value_of(get(man, 'extra', 'force_at_delta_max'), float('nan')))} N, "
+                           f"n = {law['law']['n']:.4f} — per-case plots and files",
                            "".join(body)))
     fam_png = os.path.splitext(fs.study.get("family") or "")[0] + ".png"
     if fs.study.get("family") and os.path.exists(fam_png):
