@@ -302,6 +302,7 @@ namespace clearjoint::mbd
                             {"n_error_test_failures", st.n_error_test_failures},
                             {"n_restarts_at_contact_events", st.n_restarts},
                             {"n_root_returns", st.n_roots},
+                            {"n_event_state_steps", st.n_event_resteps},
                             {"n_jacobian_evaluations", st.n_jacobians},
                             {"n_nonlinear_convergence_failures", st.n_nonlinear_failures},
                             {"h_min", st.h_min},
