@@ -383,7 +383,7 @@ namespace clearjoint::mbd
         m.check(flag, erk ? "ERKStepEvolve" : "CVode");
       }
       // Accepted state: law-range counters (and "error"), the allowances of the depth guard.
-      system_.observe_accepted(yp);
+      system_.observe_accepted(yp, settings_.depth_guard);
       update_allowances();
       // Step size of the last accepted step.
       double h_last = 0.0;

@@ -386,10 +386,16 @@ namespace clearjoint::mbd
                           {"max_delta_any_stage", {{"radial", cj.max_delta_any_stage(0)},
                                                    {"axial_pos", cj.max_delta_any_stage(1)},
                                                    {"axial_neg", cj.max_delta_any_stage(2)}}},
+                          {"n_evaluations_beyond_allowance",
+                           {{"radial", cj.n_evaluations_beyond_allowance(0)},
+                            {"axial_pos", cj.n_evaluations_beyond_allowance(1)},
+                            {"axial_neg", cj.n_evaluations_beyond_allowance(2)}}},
                           {"units", {{"allowance", "m"}, {"max_delta_any_stage", "m"}}},
                           {"note", "max_delta_any_stage includes the trial stages of every "
                                    "step; a step may reach max(allowance, accepted delta + "
-                                   "allowance/2)"}};
+                                   "allowance/2); n_evaluations_beyond_allowance counts "
+                                   "evaluations (trial stages included) that went deeper than "
+                                   "that"}};
       cjs.push_back(j);
     }
     s["clearance_joints"] = cjs;

@@ -33,6 +33,8 @@ TEST(AcceptedStates, ErrorPolicyRunsThePaperScenesToTheEnd)
     const double D = cj["depth_guard"]["allowance"].get<double>();
     EXPECT_NEAR(D, 0.1 * 5e-4, 1e-12) << name;
     EXPECT_LE(cj["depth_guard"]["max_delta_any_stage"]["radial"].get<double>(), D) << name;
+    for (const char *c : {"radial", "axial_pos", "axial_neg"})  // and none beyond the allowance
+      EXPECT_EQ(cj["depth_guard"]["n_evaluations_beyond_allowance"][c].get<long>(), 0) << name;
     EXPECT_LT(cj["normal_model"]["out_of_range"]["max_delta_accepted"].get<double>(), 0.5 * D)
       << name;
   }
@@ -75,7 +77,10 @@ TEST(AcceptedStates, DepthGuardHoldsForTheOtherLawsAndTheFaceContacts)
     const double D = g["allowance"].get<double>();
     EXPECT_NEAR(D, 0.1 * 5e-4, 1e-12) << name;
     for (const char *c : {"radial", "axial_pos", "axial_neg"})
+    {
       EXPECT_LE(g["max_delta_any_stage"][c].get<double>(), D) << name << " " << c;
+      EXPECT_EQ(g["n_evaluations_beyond_allowance"][c].get<long>(), 0) << name << " " << c;
+    }
     if (std::string(name) == "slider_crank_floating_pin")  // it does reach a face (else the
       EXPECT_GT(g["max_delta_any_stage"]["axial_neg"].get<double>(), 1e-6);  // bound says nothing)
   }
