@@ -447,7 +447,9 @@ namespace clearjoint::mbd
             will_change = will_change || (found[i] > 0 && !cj->state(c).active) ||
                           (found[i] < 0 && cj->state(c).active);
       }
-      if (erk && will_change && t > t_step_start)
+      // (A root within 1e-12 s of the step's start is left as interpolated: the interpolant's
+      // error vanishes there like (t − t_n)², and ARKODE refuses a stop time that close.)
+      if (erk && will_change && t - t_step_start > 1e-12 * std::max(1.0, std::abs(t)))
       {
         // ARKODE returns the state at the root from its dense output (cubic Hermite here, error
         // O(h^4) over the whole step), and the integrator restarts from that state: every event
