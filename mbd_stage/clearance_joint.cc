@@ -173,12 +173,16 @@ namespace clearjoint::mbd
     return r;
   }
 
-  void ClearanceJoint::observe_accepted(const KinematicsView &k) const
+  void ClearanceJoint::observe_accepted(const KinematicsView &k, const double D) const
   {
     const Placement p = place(k);
     for (int c = 0; c < n_contacts; ++c)
+    {
       if (states_[c].active)
         (c == 0 ? radial_ : axial_).observe_accepted(p.delta[c], c == 0 ? p.theta : 0.0);
+      if (D > 0.0)  // the same allowance as guard_step()
+        allowance_[c] = std::max(D, p.delta[c] + 0.5 * D);
+    }
   }
 
   double ClearanceJoint::guard_step(
@@ -288,6 +292,8 @@ namespace clearjoint::mbd
     {
       results[c] = evaluate_contact(k, c, p, Q);
       max_delta_any_[c] = std::max(max_delta_any_[c], p.delta[c]);
+      if (p.delta[c] > allowance_[c])
+        ++n_beyond_[c];
     }
     if (out)
     {

@@ -32,6 +32,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace clearjoint::mbd
@@ -112,7 +113,9 @@ namespace clearjoint::mbd
     std::array<double, 3> rates(const KinematicsView &k) const;
     /// An accepted state: the law-range counters and checks of the active contacts
     /// (ContactForceModel::observe_accepted; throws laws::LawRangeError under "error").
-    void observe_accepted(const KinematicsView &k) const;
+    /// With D > 0 [m] (the depth guard's depth_guard·c_r) it also sets each contact's allowance
+    /// max(D, δ + D/2) that evaluations until the next accepted state should not exceed.
+    void observe_accepted(const KinematicsView &k, double D = 0.0) const;
     /// The depth guard (docs/mbd.md §5) as a step bound [s] at an accepted state: (a) a
     /// contact approaching at δ̇ > 0 may not, at that rate, pass its allowance
     /// max(D, δ + D/2) within the step; (b) an active contact bounds the step by 1/ω, ω² =
@@ -132,6 +135,10 @@ namespace clearjoint::mbd
     /// [m] deepest radial and axial penetration of any evaluation, trial stages included
     /// (the depth guard keeps it below a fraction of the clearance; reported in the summary).
     double max_delta_any_stage(int contact) const { return max_delta_any_[contact]; }
+    /// Evaluations (trial stages included) deeper than the allowance of the last accepted
+    /// state: the explicit methods' guard is a step-size bound, not a rejection, so this counts
+    /// where it fell short (0 on every shipped scene).
+    long n_evaluations_beyond_allowance(int contact) const { return n_beyond_[contact]; }
 
     ContactState &state(int contact) { return states_[contact]; }
     const ContactState &state(int contact) const { return states_[contact]; }
@@ -165,5 +172,9 @@ namespace clearjoint::mbd
     CoulombFriction friction_;
     std::array<ContactState, 3> states_;
     mutable std::array<double, 3> max_delta_any_{0.0, 0.0, 0.0};
+    mutable std::array<double, 3> allowance_{std::numeric_limits<double>::infinity(),
+                                             std::numeric_limits<double>::infinity(),
+                                             std::numeric_limits<double>::infinity()};  // [m]
+    mutable std::array<long, 3> n_beyond_{0, 0, 0};
   };
 } // namespace clearjoint::mbd

@@ -63,6 +63,9 @@ namespace clearjoint::mbd
   struct StepStatistics
   {
     long n_steps = 0, n_rhs = 0, n_error_test_failures = 0, n_restarts = 0, n_roots = 0;
+    /// Explicit methods: steps that recomputed the state at an event from its step's start
+    /// (included in n_steps and n_rhs).
+    long n_event_resteps = 0;
     long n_jacobians = 0, n_nonlinear_failures = 0;
     double h_min = 0.0, h_max = 0.0;  ///< [s] smallest and largest accepted step
   };

@@ -428,12 +428,12 @@ namespace clearjoint::mbd
     return out;
   }
 
-  void MultibodySystem::observe_accepted(const double *y) const
+  void MultibodySystem::observe_accepted(const double *y, const double guard_fraction) const
   {
     std::vector<BodyKinematics> kin = unpack(y);
     const KinematicsView k(&kin);
     for (const auto &c : clearance_)
-      c->observe_accepted(k);
+      c->observe_accepted(k, guard_fraction * c->geometry().c_r());
   }
 
   double MultibodySystem::guard_step(const double *y, const double fraction,

@@ -104,7 +104,8 @@ namespace clearjoint::mbd
     std::vector<double> radial_forces(const double *y) const;
     /// An accepted state y: law-range counters of every clearance joint (see
     /// ClearanceJoint::observe_accepted).
-    void observe_accepted(const double *y) const;
+    /// guard_fraction > 0: the depth guard's fraction of c_r, for the allowance check.
+    void observe_accepted(const double *y, double guard_fraction = 0.0) const;
     /// The depth guard's step bound [s] at an accepted state y, with allowance D = fraction·c_r
     /// per clearance joint (ClearanceJoint::guard_step); ∞ if nothing bounds the step.
     /// `accel`: optional δ̈ estimates, one per contact (n_gaps()).

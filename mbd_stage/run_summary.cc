@@ -1,5 +1,6 @@
 #include "mbd_stage/run_summary.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace clearjoint::mbd
@@ -58,6 +59,23 @@ namespace clearjoint::mbd
                                "(policy " + o.value("policy", std::string("?")) +
                                ", deepest accepted " +
                                fmt("%.3g", 1e3 * num(o, "max_delta_accepted")) + " mm)");
+      }
+      if (const auto g = cj.find("depth_guard"); g != cj.end() && g->contains("n_evaluations_beyond_allowance"))
+      {
+        long n_beyond = 0;
+        double deepest = 0.0;
+        for (const auto &[c, v] : (*g)["n_evaluations_beyond_allowance"].items())
+          n_beyond += v.get<long>();
+        const nlohmann::json stages = g->value("max_delta_any_stage", nlohmann::json::object());
+        for (const auto &[c, v] : stages.items())  // (not on the temporary: items() refers to it)
+          deepest = std::max(deepest, v.get<double>());
+        if (n_beyond > 0)
+          out.warnings.push_back(
+            "  " + cj.value("name", std::string()) + ": " + std::to_string(n_beyond) +
+            " force evaluations (trial stages included) deeper than the depth guard allows (" +
+            fmt("%.3g", 1e6 * num(*g, "allowance")) + " um, or the accepted depth + half of it; " +
+            "deepest " + fmt("%.3g", 1e6 * deepest) + " um): a smaller integrator.max_step keeps " +
+            "the steps shorter");
       }
       const nlohmann::json &fl = cj.at("impact_velocity_floor");
       const nlohmann::json &nf = fl.at("n_onsets_floored");

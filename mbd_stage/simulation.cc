@@ -302,6 +302,7 @@ namespace clearjoint::mbd
                             {"n_error_test_failures", st.n_error_test_failures},
                             {"n_restarts_at_contact_events", st.n_restarts},
                             {"n_root_returns", st.n_roots},
+                            {"n_event_state_steps", st.n_event_resteps},
                             {"n_jacobian_evaluations", st.n_jacobians},
                             {"n_nonlinear_convergence_failures", st.n_nonlinear_failures},
                             {"h_min", st.h_min},
@@ -385,10 +386,16 @@ namespace clearjoint::mbd
                           {"max_delta_any_stage", {{"radial", cj.max_delta_any_stage(0)},
                                                    {"axial_pos", cj.max_delta_any_stage(1)},
                                                    {"axial_neg", cj.max_delta_any_stage(2)}}},
+                          {"n_evaluations_beyond_allowance",
+                           {{"radial", cj.n_evaluations_beyond_allowance(0)},
+                            {"axial_pos", cj.n_evaluations_beyond_allowance(1)},
+                            {"axial_neg", cj.n_evaluations_beyond_allowance(2)}}},
                           {"units", {{"allowance", "m"}, {"max_delta_any_stage", "m"}}},
                           {"note", "max_delta_any_stage includes the trial stages of every "
                                    "step; a step may reach max(allowance, accepted delta + "
-                                   "allowance/2)"}};
+                                   "allowance/2); n_evaluations_beyond_allowance counts "
+                                   "evaluations (trial stages included) that went deeper than "
+                                   "that"}};
       cjs.push_back(j);
     }
     s["clearance_joints"] = cjs;

@@ -181,3 +181,36 @@ TEST(ClearanceJoint, RateEqualsTimeDerivativeOfPenetrationAndPowerBalances)
     EXPECT_LT(c.P_friction, 0.0);  // friction dissipates
   }
 }
+
+TEST(ClearanceJoint, EvaluationsBeyondTheDepthAllowanceAreCounted)
+{
+  // Issue 14 item 2: after an accepted state at penetration δ_a the allowance is
+  // max(D, δ_a + D/2); evaluations deeper than that are counted (and the deepest is kept).
+  Rig r;
+  const double D = 0.1 * G.c_r();  // m, the default depth guard
+  r.b[1].r = Vector3(0.0, G.c_r() + 0.2 * D, 0.0);  // accepted: δ = D/5, allowance D
+  r.joint->observe_accepted(r.view(), D);
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(12);
+  r.b[1].r = Vector3(0.0, G.c_r() + 0.9 * D, 0.0);  // within the allowance
+  r.joint->apply(r.view(), Q, nullptr);
+  EXPECT_EQ(r.joint->n_evaluations_beyond_allowance(0), 0);
+  r.b[1].r = Vector3(0.0, G.c_r() + 1.1 * D, 0.0);  // beyond it
+  r.joint->apply(r.view(), Q, nullptr);
+  EXPECT_EQ(r.joint->n_evaluations_beyond_allowance(0), 1);
+  // A deeper accepted state raises the allowance to δ_a + D/2.
+  r.b[1].r = Vector3(0.0, G.c_r() + 2.0 * D, 0.0);
+  r.joint->observe_accepted(r.view(), D);
+  r.b[1].r = Vector3(0.0, G.c_r() + 2.4 * D, 0.0);
+  r.joint->apply(r.view(), Q, nullptr);
+  EXPECT_EQ(r.joint->n_evaluations_beyond_allowance(0), 1);
+  r.b[1].r = Vector3(0.0, G.c_r() + 2.6 * D, 0.0);
+  r.joint->apply(r.view(), Q, nullptr);
+  EXPECT_EQ(r.joint->n_evaluations_beyond_allowance(0), 2);
+  EXPECT_NEAR(r.joint->max_delta_any_stage(0), 2.6 * D + bias, 1e-15);
+  // Without a guard (D = 0) nothing is counted.
+  Rig off;
+  off.joint->observe_accepted(off.view(), 0.0);
+  off.b[1].r = Vector3(0.0, G.c_r() + 5.0 * D, 0.0);
+  off.joint->apply(off.view(), Q, nullptr);
+  EXPECT_EQ(off.joint->n_evaluations_beyond_allowance(0), 0);
+}

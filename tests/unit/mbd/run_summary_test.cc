@@ -10,7 +10,7 @@ using namespace clearjoint::mbd;
 
 namespace
 {
-  nlohmann::json summary(const long n_range, const long n_floored)
+  nlohmann::json summary(const long n_range, const long n_floored, const long n_beyond = 0)
   {
     nlohmann::json s;
     s["scene"] = "demo";
@@ -33,6 +33,11 @@ namespace
     cj["impact_velocity_floor"] = {
       {"radial", 1e-4}, {"axial", 1e-4},
       {"n_onsets_floored", {{"radial", n_floored}, {"axial_pos", 0}, {"axial_neg", 0}}}};
+    cj["depth_guard"] = {
+      {"allowance", 5e-5},
+      {"max_delta_any_stage", {{"radial", 6.2e-5}, {"axial_pos", 0.0}, {"axial_neg", 1e-5}}},
+      {"n_evaluations_beyond_allowance",
+       {{"radial", n_beyond}, {"axial_pos", 0}, {"axial_neg", 0}}}};
     s["clearance_joints"] = nlohmann::json::array({cj});
     return s;
   }
@@ -70,4 +75,15 @@ TEST(RunSummary, NonZeroCountersArePrinted)
   const std::string text = join(l.info);
   EXPECT_NE(text.find("used at 2 of 48 onsets"), std::string::npos) << text;
   EXPECT_NE(text.find("plots/}"), std::string::npos) << text;
+}
+
+TEST(RunSummary, EvaluationsBeyondTheDepthGuardAreAWarning)
+{
+  // Issue 14 item 2: the explicit methods' depth guard bounds the step size; where it falls
+  // short the run says so at the end.
+  const RunSummaryLines l = make_run_summary(summary(0, 0, 5), "out/x", false);
+  ASSERT_EQ(l.warnings.size(), 1u);
+  EXPECT_NE(l.warnings[0].find("5 force evaluations"), std::string::npos) << l.warnings[0];
+  EXPECT_NE(l.warnings[0].find("50 um"), std::string::npos) << l.warnings[0];
+  EXPECT_NE(l.warnings[0].find("deepest 62 um"), std::string::npos) << l.warnings[0];
 }
