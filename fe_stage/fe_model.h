@@ -130,6 +130,71 @@ namespace clearjoint::fe
     unsigned int n_steps = 0;
   };
 
+  /// One converged time step of the rolling study (study rolling). Forces, torques and
+  /// energies are of the FULL bodies (symmetry factor applied); angles in the fixed frame,
+  /// counter-clockwise about +z.
+  struct RollingStepRecord
+  {
+    unsigned int step = 0;
+    double time = 0.0;              // [s]
+    double delta = 0.0;             // [m] push of the journal's axis beyond first touch
+    double force_normal = 0.0;      // [N] contact force on the journal along the push (+y)
+    double force_tangential = 0.0;  // [N] its component along +x (friction at the bottom)
+    double phi = 0.0;               // [rad] bearing angle ω_B t (prescribed)
+    double gamma = 0.0;             // [rad] journal angle
+    double phi_rate = 0.0;          // [rad/s] ω_B
+    double gamma_rate = 0.0;        // [rad/s] journal spin rate
+    double slip_speed = 0.0;        // [m/s] ω_B R_B − γ̇ R_J: the bore's surface speed over
+                                    //       the journal's (0: rolling without slip)
+    double torque_drive = 0.0;      // [N m] the support's torque on the bearing about +z
+    double torque_journal = 0.0;    // [N m] the contact's torque on the journal about its axis
+    double work_drive = 0.0;        // [J] ∫ torque_drive dφ (trapezoidal)
+    double work_push = 0.0;         // [J] ∫ F dδ of the journal's push (trapezoidal)
+    double elastic_energy = 0.0;    // [J] stored in the bearing, ½ (ε−ε_p):C:(ε−ε_p)
+    double plastic_dissipation = 0.0;  // [J] ∫ σ:dε_p since t = 0
+    double friction_dissipation = 0.0; // [J] Σ −t_T·Δs_T over the contact nodes since t = 0
+    double kinetic_energy = 0.0;    // [J] ½ I γ̇² of the journal's spin
+    double energy_balance_error = 0.0;  // [J] work_drive + work_push − the four above
+    double max_plastic_strain = 0.0;    // [1] largest equivalent plastic strain
+    double max_strain = 0.0;            // [1] largest principal total strain magnitude
+    double plastic_volume = 0.0;        // [m^3] where ε_p > 0 (full body)
+    unsigned int n_active = 0, n_slip = 0;
+    unsigned int spin_iterations = 0;    // torque-balance evaluations
+    unsigned int newton_iterations = 0;  // material Newton iterations over those
+    unsigned int contact_iterations = 0, linear_iterations = 0;
+    unsigned int cuts = 0;
+    // the paper's Eqs. 4–8 on the bore node and the journal point that touch at t = 0
+    // (bottom, mid-plane): angles from their displacement vectors, and the rates φ/t, γ/t
+    double phi_paper = 0.0, gamma_paper = 0.0;          // [rad]
+    double phi_rate_paper = 0.0, gamma_rate_paper = 0.0;  // [rad/s]
+    double wall_time = 0.0;         // [s] since the start of the run
+  };
+
+  /// The rolling study's strain profile across the contact zone at the end (the paper's Fig.
+  /// 12): one point of the bore at the axial mid-plane.
+  struct StrainProfilePoint
+  {
+    double angle = 0.0;        // [rad] from the contact point (fixed frame, + counter-clockwise)
+    double arc = 0.0;          // [m] R_B · angle
+    double strain_radial = 0.0, strain_tangential = 0.0, strain_axial = 0.0;  // [1] total
+    double plastic_strain = 0.0;  // [1] equivalent
+    double von_mises = 0.0;       // [Pa]
+  };
+
+  struct RollingSummary
+  {
+    double journal_inertia = 0.0;   // [kg m^2]
+    double rolling_rate = 0.0;      // [rad/s] ω_B (R_B + δ_max) / R_J
+    double time_step = 0.0;         // [s] nominal
+    bool stages_found = false;
+    double slip_speed_max = 0.0;    // [m/s]
+    double end_of_slip = 0.0;       // [s] stage (i) ends
+    double settled = 0.0;           // [s] stage (iii) starts
+    double slip_speed_final = 0.0;  // [m/s]
+    double max_plastic_strain = 0.0, max_strain = 0.0;
+    double energy_balance_error = 0.0;  // [1] |error| / work put in, at the end
+  };
+
   struct RunResult
   {
     std::vector<IncrementRecord> increments;  // without the origin row
@@ -155,6 +220,10 @@ namespace clearjoint::fe
     /// the dynamic path is compared with), these the time steps.
     std::vector<DynamicStepRecord> dynamic_steps;
     ImpactSummary impact;
+    /// Study rolling: `increments` hold F(δ) per time step, these the time steps.
+    std::vector<RollingStepRecord> rolling_steps;
+    std::vector<StrainProfilePoint> strain_profile;
+    RollingSummary rolling;
   };
 
   struct RunOptions
@@ -166,6 +235,8 @@ namespace clearjoint::fe
     std::function<void(const IncrementRecord &)> on_increment;
     /// Study impact: called on every rank after each converged time step.
     std::function<void(const DynamicStepRecord &)> on_dynamic_step;
+    /// Study rolling: called on every rank after each converged time step.
+    std::function<void(const RollingStepRecord &)> on_rolling_step;
   };
 
   /// Runs one scene (no sweep). Throws InputError for scene problems found late; numerical

@@ -27,6 +27,7 @@
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/impact_output.h"
+#include "fe_stage/rolling_output.h"
 #include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
 
@@ -233,6 +234,17 @@ namespace
                                               fe::impact_history_comments(scene));
         history->write_row(fe::impact_history_start(scene));
       }
+    // Study rolling: the time history and, at the end, the strain profile.
+    const bool is_rolling = scene.study == fe::Study::rolling;
+    std::unique_ptr<CsvWriter> rolling_history;
+    const std::string rolling_path = dir + "/rolling_history.csv";
+    if (root && is_rolling)
+      {
+        const auto table = fe::rolling_history_table();
+        rolling_history = std::make_unique<CsvWriter>(rolling_path, table.columns, table.units,
+                                                      fe::rolling_history_comments(scene));
+        rolling_history->write_row(fe::rolling_history_start());
+      }
     fe::RunOptions options;
     options.output_dir = dir;
     options.write_fields = scene.output.fields;
@@ -252,6 +264,10 @@ namespace
         history->write_row(fe::impact_history_row(r));
       if ((signal_seen = interrupted_anywhere()) != 0)
         throw interrupt::Interrupted("after the time step to t = " + format_value(r.time) + " s");
+    };
+    options.on_rolling_step = [&](const fe::RollingStepRecord &r) {
+      if (rolling_history)
+        rolling_history->write_row(fe::rolling_history_row(r));
     };
     fe::RunResult result = fe::run_scene(scene, options);
     if (impact)
@@ -286,6 +302,34 @@ namespace
             if (plots && !result.dynamic_steps.empty() &&
                 run_plot_script("fe_impact", {dir + "/impact.png", dir}))
               manifest->add_output(dir + "/impact.png");
+          }
+        if (rolling_history)
+          {
+            if (result.complete)
+              rolling_history->commit();
+            else
+              rolling_history->commit_incomplete(result.message);
+            manifest->add_output(rolling_path);
+            const std::string profile_path = dir + "/rolling_strain_profile.csv";
+            const auto table = fe::strain_profile_table();
+            CsvWriter profile(profile_path, table.columns, table.units,
+                              {"clearjoint fe_stage: the bore's strains across the contact zone "
+                               "at the end of the rolling study (paper Fig. 12), axial "
+                               "mid-plane, angle from the contact point (counter-clockwise, "
+                               "fixed frame); strains are total, von_mises from the cell's "
+                               "mean plastic strain"});
+            for (const auto &p : result.strain_profile)
+              profile.write_row(fe::strain_profile_row(p));
+            if (result.complete)
+              profile.commit();
+            else
+              profile.commit_incomplete(result.message);
+            manifest->add_output(profile_path);
+            manifest->extra()["rolling"] = fe::rolling_summary_json(
+              result.rolling, result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
+            if (plots && !result.rolling_steps.empty() &&
+                run_plot_script("fe_rolling", {dir + "/rolling.png", dir}))
+              manifest->add_output(dir + "/rolling.png");
           }
         for (const auto &f : result.field_files)
           manifest->add_output(f);
@@ -359,9 +403,13 @@ namespace
                   log::format_duration(result.wall_time));
         if (!result.field_files.empty())
           log::info("fe_stage: fields: open " + shown(dir) +
-                    "/fields/solution.pvd in ParaView (displacement, stress, von_mises_stress, "
-                    "plastic_zone, contact_pressure, contact_status, contact_shear, "
-                    "contact_slip; one step per increment)");
+                    "/fields/solution.pvd in ParaView (displacement, stress, von_mises_stress, " +
+                    (scene.study == fe::Study::rolling ?
+                       "principal strains, equivalent_plastic_strain, von_mises_stress_max, "
+                       "contact fields; the bearing's co-rotating frame, every " +
+                         std::to_string(scene.rolling.field_stride) + " steps and at the end)" :
+                       std::string("plastic_zone, contact_pressure, contact_status, "
+                                   "contact_shear, contact_slip; one step per increment)")));
       }
     return result.complete;
   }

@@ -22,6 +22,7 @@ namespace clearjoint::fe
         case Study::hertz: return "hertz";
         case Study::patch: return "patch";
         case Study::impact: return "impact";
+        case Study::rolling: return "rolling";
       }
     return "?";
   }
@@ -65,11 +66,13 @@ namespace clearjoint::fe
     top.expect_schema("clearjoint.fe/1");
 
     const std::string study =
-      top.string_or("study", "radial", {"radial", "misalignment", "hertz", "patch", "impact"});
+      top.string_or("study", "radial",
+                    {"radial", "misalignment", "hertz", "patch", "impact", "rolling"});
     s.study = study == "radial"       ? Study::radial :
               study == "misalignment" ? Study::misalignment :
               study == "hertz"        ? Study::hertz :
               study == "impact"       ? Study::impact :
+              study == "rolling"      ? Study::rolling :
                                         Study::patch;
     // The misalignment study's journal is rigid unless the scene says otherwise (SPEC §2: the
     // end-face loading drives the contact rim); validate_scene rejects any other choice.
@@ -78,6 +81,15 @@ namespace clearjoint::fe
     // that way (the thickness study's loading).
     if (s.study == Study::misalignment || s.study == Study::impact)
       s.loading.journal = JournalLoading::rigid;
+    // The rolling study's defaults are the paper's §3.4 (SPEC §2): elastoplastic steel,
+    // μ = 0.3, a push of 1 mm; its journal is rigid (the deformable one is not built yet).
+    if (s.study == Study::rolling)
+      {
+        s.loading.journal = JournalLoading::rigid;
+        s.loading.delta_max = 1.0e-3;
+        s.contact.mu = 0.3;
+        s.material.model = Material::Model::elastoplastic;
+      }
     s.full_model = top.boolean_or("full_model", false);
 
     if (top.has("geometry"))
@@ -118,6 +130,27 @@ namespace clearjoint::fe
         M.nu = m.number_or("nu", M.nu, Range::open(-1.0, 0.5, ""));
         M.rho = m.number_or("rho", M.rho, Range::positive("kg/m^3"));
         M.yield_stress = m.number_or("yield_stress", M.yield_stress, Range::positive("Pa"));
+        if (m.has("model"))
+          M.model = m.string("model", {"elastic", "elastoplastic"}) == "elastoplastic" ?
+                      Material::Model::elastoplastic :
+                      Material::Model::elastic;
+        if (m.has("hardening"))
+          {
+            const std::string key = m.path_of("hardening");
+            const auto &raw = m.raw("hardening");
+            if (!raw.is_array() || raw.empty())
+              m.fail("hardening", raw.dump(),
+                     "a non-empty list of [eps_p, sigma_y] points (eps_p [-], sigma_y [Pa])");
+            for (std::size_t i = 0; i < raw.size(); ++i)
+              {
+                const auto &pt = raw[i];
+                if (!pt.is_array() || pt.size() != 2 || !pt[0].is_number() || !pt[1].is_number())
+                  throw InputError(source, key + "[" + std::to_string(i) + "]", pt.dump(),
+                                   "a pair [eps_p, sigma_y] of numbers (eps_p [-], sigma_y [Pa])");
+                M.hardening.push_back({pt[0].get<double>(), pt[1].get<double>()});
+              }
+            hardening_table(s.material, source, key);  // the table's own checks
+          }
         m.finish();
       }
     if (top.has("contact"))
@@ -247,6 +280,27 @@ namespace clearjoint::fe
                                         Impact::Mass::redistributed;
         o.finish();
       }
+    if (top.has("rolling"))
+      {
+        auto o = top.object("rolling");
+        auto &R = s.rolling;
+        R.omega_B = o.number_or("omega_B", R.omega_B, Range::open(0.0, 1.0e4, "rad/s"));
+        R.ramp_time = o.number_or("ramp_time", R.ramp_time, Range::open(0.0, 1.0e6, "s"));
+        if (o.has("end_time"))
+          R.end_time = o.number("end_time", Range::open(0.0, 1.0e6, "s"));
+        R.n_steps = uint_or(o, "n_steps", R.n_steps, 4, 1000000);
+        R.support = o.string_or("support", "outer_surface", {"outer_surface", "upper_half"}) ==
+                        "upper_half" ?
+                      Rolling::Support::upper_half :
+                      Rolling::Support::outer_surface;
+        if (o.has("journal_inertia"))
+          R.journal_inertia = o.number("journal_inertia", Range::open(0.0, 1.0e6, "kg m^2"));
+        R.max_spin_iterations = uint_or(o, "max_spin_iterations", R.max_spin_iterations, 1, 10000);
+        R.max_newton_iterations =
+          uint_or(o, "max_newton_iterations", R.max_newton_iterations, 1, 1000);
+        R.field_stride = uint_or(o, "field_stride", R.field_stride, 1, 1000000);
+        o.finish();
+      }
     if (top.has("sweep"))
       {
         auto w = top.object("sweep");
@@ -338,6 +392,42 @@ namespace clearjoint::fe
                            "only with loading.journal: rigid",
                            "a deformable journal's mass is its mesh's (material.rho)");
       }
+    if (s.study == Study::rolling)
+      {
+        const auto &R = s.rolling;
+        if (!(R.omega_B > 0.0 && R.omega_B < 1.0e4))
+          throw InputError(f, "rolling.omega_B", format_value(R.omega_B), "(0, 1e4) rad/s");
+        if (!(R.ramp_time > 0.0))
+          throw InputError(f, "rolling.ramp_time", format_value(R.ramp_time), "(0, inf) s");
+        if (R.end_time != 0.0 && !(R.end_time >= R.ramp_time))
+          throw InputError(f, "rolling.end_time", format_value(R.end_time),
+                           "[ramp_time, inf) s = [" + format_value(R.ramp_time) + ", inf) s",
+                           "the run holds delta_max after the ramp; it cannot stop inside it");
+        if (s.loading.journal != JournalLoading::rigid)
+          throw InputError(f, "loading.journal", to_string(s.loading.journal),
+                           "rigid for study rolling",
+                           "the deformable elastoplastic journal needs contact search over "
+                           "large sliding between two turning meshes, which is not built yet "
+                           "(docs/fe.md)");
+        if (s.material.model != Material::Model::elastoplastic)
+          throw InputError(f, "material.model", "elastic", "elastoplastic for study rolling");
+        if (s.mesh.adaptive_cycles > 0)
+          throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
+                           "0 for study rolling", "the rolling study runs on one mesh");
+        if (!G.mesh.empty())
+          throw InputError(f, "geometry.mesh", G.mesh, "no mesh file for study rolling",
+                           "the rolling study generates the whole ring (the contact zone "
+                           "travels half way round the bore)");
+        if (s.full_model)
+          throw InputError(f, "full_model", "true", "false for study rolling",
+                           "the rolling study always models the whole ring and uses the axial "
+                           "mid-plane");
+      }
+    else if (s.material.model == Material::Model::elastoplastic)
+      throw InputError(f, "material.model", "elastoplastic", "elastic for study " +
+                                                               to_string(s.study),
+                       "only the rolling study integrates plasticity; the others report where "
+                       "von Mises exceeds material.yield_stress");
     for (const double v : s.sweep_velocity)
       if (!(v > 0.0 && v < 100.0))
         throw InputError(f, "sweep.velocity", format_value(v), "(0, 100) m/s");
@@ -389,6 +479,31 @@ namespace clearjoint::fe
     if (joint && s.loading.delta_max >= G.R_J())
       throw InputError(f, "loading.delta_max", format_value(s.loading.delta_max),
                        "(0, R_J) m", "the push must be smaller than the journal radius");
+  }
+
+  double rolling_journal_inertia(const FeScene &scene)
+  {
+    if (scene.rolling.journal_inertia > 0.0)
+      return scene.rolling.journal_inertia;
+    const double R = scene.geometry.R_J();
+    const double m = scene.material.rho * units::pi * R * R * scene.geometry.L_J();
+    return 0.5 * m * R * R;
+  }
+
+  double rolling_end_time(const FeScene &scene)
+  {
+    return scene.rolling.end_time > 0.0 ? scene.rolling.end_time : scene.rolling.ramp_time;
+  }
+
+  HardeningTable hardening_table(const Material &m, const std::string &file,
+                                 const std::string &key_path)
+  {
+    if (m.hardening.empty())
+      return HardeningTable::spec_default();
+    std::vector<HardeningPoint> pts;
+    for (const auto &p : m.hardening)
+      pts.push_back({p[0], p[1]});
+    return HardeningTable(std::move(pts), key_path, file);
   }
 
   geometry::JointGeometry joint_geometry(const Geometry &g)
@@ -492,7 +607,10 @@ namespace clearjoint::fe
     o << "# fe_stage scene, schema clearjoint.fe/1. SI units everywhere (m, Pa, kg/m^3).\n"
       << "# Every key is optional except schema; shown here with its default.\n"
       << "schema: clearjoint.fe/1\n"
-      << "study: radial            # radial | misalignment | impact | hertz | patch (verification)\n"
+      << "study: radial            # radial | misalignment | impact | rolling | hertz | patch\n"
+      << "                         #   (verification); rolling changes the defaults of\n"
+      << "                         #   material.model (elastoplastic), contact.mu (0.3) and\n"
+      << "                         #   loading.delta_max (1.0e-3)\n"
       << "full_model: false        # false: symmetry planes (radial: x = 0 and z = 0, quarter\n"
       << "                         #   model; misalignment: x = 0 only, half model)\n"
       << "geometry:\n"
@@ -511,6 +629,11 @@ namespace clearjoint::fe
       << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
       << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
       << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
+      << "  model: elastic      # elastic | elastoplastic (study rolling only: von Mises,\n"
+      << "                      #   isotropic hardening, radial return)\n"
+      << "  # hardening: [[0, 168.2e6], [0.1, 196.225e6], ...]  # [eps_p, sigma_y Pa] points,\n"
+      << "                      #   linear between, extended beyond the last; default SPEC 2:\n"
+      << "                      #   168.2 + 280.25 eps_p MPa at eps_p = 0, 0.1, ..., 1.0\n"
       << "  yield_stress: " << d.material.yield_stress
       << " # [Pa] (0, inf): the yield check reports where von Mises exceeds it\n"
       << "contact:\n"
@@ -581,6 +704,20 @@ namespace clearjoint::fe
       << "  max_steps: " << d.impact.max_steps << "      # time steps at most\n"
       << "  field_stride: " << d.impact.field_stride << "       # VTU fields every this many steps\n"
       << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | consistent\n"
+      << "rolling:              # study rolling (paper 3.4): the bearing turns, the rigid journal is\n"
+      << "                      #   pushed to loading.delta_max and spun by friction alone\n"
+      << "  omega_B: " << d.rolling.omega_B << "       # [rad/s] the bearing's spin, (0, 1e4)\n"
+      << "  ramp_time: " << d.rolling.ramp_time << "      # [s] the push reaches delta_max at this time\n"
+      << "  # end_time: 0.3       # [s] >= ramp_time: hold delta_max until then (default ramp_time)\n"
+      << "  n_steps: " << d.rolling.n_steps << "          # time steps over the run, >= 4\n"
+      << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
+      << "                      #   radial study's support, turning with the bearing)\n"
+      << "  # journal_inertia: 1.8e-6  # [kg m^2] > 0: instead of 1/2 m R_J^2 of the journal\n"
+      << "  max_spin_iterations: " << d.rolling.max_spin_iterations
+      << "   # torque-balance evaluations per step at most\n"
+      << "  max_newton_iterations: " << d.rolling.max_newton_iterations
+      << " # material Newton iterations per evaluation at most\n"
+      << "  field_stride: " << d.rolling.field_stride << "     # VTU fields every this many steps\n"
       << "output:\n"
       << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
       << "# sweep:              # optional: one run (and output folder) per value\n"
@@ -603,7 +740,28 @@ namespace clearjoint::fe
     if (s.study == Study::misalignment)
       j["misalignment"] = {{"theta_deg", s.misalignment.theta_deg}};
     j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho},
-                     {"yield_stress", s.material.yield_stress}};
+                     {"yield_stress", s.material.yield_stress},
+                     {"model", s.material.model == Material::Model::elastoplastic ?
+                                 "elastoplastic" : "elastic"}};
+    if (s.material.model == Material::Model::elastoplastic)
+      {
+        nlohmann::json h = nlohmann::json::array();
+        const HardeningTable table = hardening_table(s.material, s.source_file);
+        for (const auto &p : table.points())  // (a named table: points() is a reference)
+          h.push_back({p.eps_p, p.sigma_y});
+        j["material"]["hardening"] = h;
+      }
+    if (s.study == Study::rolling)
+      j["rolling"] = {{"omega_B", s.rolling.omega_B},
+                      {"ramp_time", s.rolling.ramp_time},
+                      {"end_time", rolling_end_time(s)},
+                      {"n_steps", s.rolling.n_steps},
+                      {"support", s.rolling.support == Rolling::Support::upper_half ?
+                                    "upper_half" : "outer_surface"},
+                      {"journal_inertia", rolling_journal_inertia(s)},
+                      {"max_spin_iterations", s.rolling.max_spin_iterations},
+                      {"max_newton_iterations", s.rolling.max_newton_iterations},
+                      {"field_stride", s.rolling.field_stride}};
     j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
                     {"max_iterations", s.contact.max_iterations},
                     {"tangential_scale", s.contact.tangential_scale},

@@ -6,10 +6,12 @@
 // All lengths are in metres, moduli in pascals, densities in kg/m³ (SI in every file, SPEC §1).
 #pragma once
 
+#include "fe_stage/material/hardening_table.h"
 #include "geometry/joint_geometry.h"
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -20,12 +22,15 @@ namespace clearjoint::fe
   /// of SPEC §2 (a rigid sphere / a rigid flat pressed onto an elastic block).
   /// `impact` is the paper's §3.2 study: the journal launched into the bearing, implicit
   /// dynamics (Hilber–Hughes–Taylor α).
-  enum class Study { radial, misalignment, hertz, patch, impact };
+  /// `rolling` is its §3.4 study: both bodies' steel elastoplastic, the bearing turning at ω_B,
+  /// the journal pushed radially and spun by friction alone (docs/fe.md "Rolling study").
+  enum class Study { radial, misalignment, hertz, patch, impact, rolling };
 
   /// The studies that model the joint (bearing and journal), not a verification block.
   inline bool is_joint_study(Study s)
   {
-    return s == Study::radial || s == Study::misalignment || s == Study::impact;
+    return s == Study::radial || s == Study::misalignment || s == Study::impact ||
+           s == Study::rolling;
   }
 
   /// How the journal is loaded (SPEC §2): `end_faces` (default) drives u_y = −δ on the journal's
@@ -66,6 +71,13 @@ namespace clearjoint::fe
     /// [Pa] the yield check's limit: the model stays linear elastic, the run reports where von
     /// Mises exceeds this (SPEC §2's hardening table starts at 168.2 MPa, the paper's steel).
     double yield_stress = 168.2e6;
+    /// The constitutive law: `elastic` (every study but rolling) or `elastoplastic` (von Mises
+    /// with isotropic hardening from `hardening`, radial return with the consistent tangent;
+    /// the rolling study's default and only choice).
+    enum class Model { elastic, elastoplastic } model = Model::elastic;
+    /// (ε_p [-], σ_y [Pa]) points, linear between them (material/hardening_table.h); empty:
+    /// SPEC §2's default table 168.2 + 280.25·ε_p MPa at ε_p = 0, 0.1, …, 1.0.
+    std::vector<std::array<double, 2>> hardening;
   };
 
   struct Contact
@@ -166,6 +178,29 @@ namespace clearjoint::fe
     enum class Mass { redistributed, lumped, consistent } mass = Mass::redistributed;
   };
 
+  /// Rolling study (paper §3.4): the bearing turns about its axis (+z) at omega_B; the rigid
+  /// journal's axis is pushed radially (−y in the fixed frame) from first touch to
+  /// loading.delta_max along a linear ramp reaching it at ramp_time, then held to end_time;
+  /// the journal turns freely about its axis, driven by friction only (spin inertia included).
+  /// The bearing is computed in its co-rotating frame (docs/fe.md).
+  struct Rolling
+  {
+    double omega_B = 12.56;   // [rad/s] the bearing's spin, (0, 1e4)
+    double ramp_time = 0.25;  // [s] the push reaches δ_max at this time, > 0
+    double end_time = 0.0;    // [s] ≥ ramp_time: run to this time (0: ramp_time)
+    unsigned int n_steps = 40;  // time steps over end_time (≥ 4)
+    /// The bearing's support, turning with it: `outer_surface` (its whole outer surface, a
+    /// bearing pressed into a rotating housing) or `upper_half` (the outer surface's nodes at
+    /// y ≥ 0 at t = 0, the radial study's support: for comparisons at small ω_B).
+    enum class Support { outer_surface, upper_half } support = Support::outer_surface;
+    /// [kg m²] > 0: the journal's spin inertia about its axis instead of ½ m R_J² with
+    /// m = ρ π R_J² L_J (0: that)
+    double journal_inertia = 0.0;
+    unsigned int max_spin_iterations = 60;  // torque-balance iterations per step at most
+    unsigned int max_newton_iterations = 25;  // material Newton iterations per solve at most
+    unsigned int field_stride = 10;  // VTU fields every this many steps (and the last)
+  };
+
   struct Output
   {
     bool fields = true;  // write VTU/PVTU + PVD fields
@@ -184,6 +219,7 @@ namespace clearjoint::fe
     Misalignment misalignment;
     Output output;
     Impact impact;
+    Rolling rolling;
     bool full_model = false;  // false: the symmetry planes the scene allows (quarter model)
     std::vector<double> sweep_t_B;  // [m] if non-empty, one run per value, one folder each
     std::vector<double> sweep_theta_deg;  // [deg] the same for the misalignment angle
@@ -204,6 +240,14 @@ namespace clearjoint::fe
 
   /// [kg] the impact study's rigid journal mass: impact.journal_mass, or ρ π R_J² L_J.
   double rigid_journal_mass(const FeScene &scene);
+  /// [kg m²] the rolling study's journal spin inertia: rolling.journal_inertia, or ½ m R_J²
+  /// with m = ρ π R_J² L_J (the full journal).
+  double rolling_journal_inertia(const FeScene &scene);
+  /// The material's hardening table (checked; InputError names `key_path`).
+  HardeningTable hardening_table(const Material &m, const std::string &file,
+                                 const std::string &key_path = "material.hardening");
+  /// [s] the rolling study's end time: rolling.end_time, or ramp_time.
+  double rolling_end_time(const FeScene &scene);
 
   /// The joint's dimensions for the geometry library (θ_max, tilt checks).
   geometry::JointGeometry joint_geometry(const Geometry &g);

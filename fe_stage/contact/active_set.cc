@@ -29,7 +29,7 @@ namespace clearjoint::fe::detail
           {
             const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
             const Tensor<1, dim> w =
-              t - scene_.contact.tangential_scale * c * contact_slip_increment(cn);
+              t - tangential_scale_ * c * contact_slip_increment(cn);
             stick = w.norm() <= mu * xi + c * eps_g;
             if (!stick)
               {

@@ -51,6 +51,12 @@ namespace clearjoint::fe::detail
     double kappa = 0.0;          // [1] μξ/|w| < 1 of the slipping node's linearisation
     Tensor<1, dim> relative;     // [m] u − u_partner (rigid obstacle: − its translation)
     Tensor<1, dim> relative_converged;  // [m] the same at the last converged increment
+    /// [m] the rigid obstacle's surface point facing the node: its displacement since the
+    /// start (radial: (0, −δ, 0); rolling: accumulated step by step), now and at the last
+    /// converged step. relative = u − obstacle_u.
+    Tensor<1, dim> obstacle_u, obstacle_u_converged;
+    /// [N] elastoplastic: the linearisation's load b at the node's DoFs (traction = K u − b)
+    Tensor<1, dim> load_offset;
   };
 
   /// The part of v tangential to the unit normal n: (I − n nᵀ) v.

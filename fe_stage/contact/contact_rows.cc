@@ -34,11 +34,27 @@ namespace clearjoint::fe::detail
       cn.weight = wg[cn.dofs[0]];
   }
 
+  /// The rigid obstacle at δ: each node's gap g0, normal n and the displacement of the
+  /// obstacle's surface point facing it (a translation by −δ e_y; the rolling study: the
+  /// turning journal seen from the bearing's co-rotating frame, accumulated step by step).
   void ContactModel::set_obstacle_position(const double delta)
   {
+    if (rolling_)
+      obstacle_.frame_angle = rolling_phi_;
     for (auto &cn : nodes_)
       if (!cn.two_body)
-        obstacle_gap(cn.X, delta, cn.g0, cn.n);
+        {
+          obstacle_gap(cn.X, delta, cn.g0, cn.n);
+          if (!rolling_)
+            cn.obstacle_u = Tensor<1, dim>({0.0, -delta, 0.0});
+          else
+            {
+              const auto d = rolling::journal_surface_step(
+                rolling_centre_previous_, rolling_centre_, scene_.geometry.R_J(),
+                {cn.n[0], cn.n[1], cn.n[2]}, rolling_delta_psi_);
+              cn.obstacle_u = cn.obstacle_u_converged + Tensor<1, dim>({d[0], d[1], d[2]});
+            }
+        }
   }
 
   /// The friction force on a slipping node s, linearised about the last iterate (semi-smooth
@@ -141,7 +157,7 @@ namespace clearjoint::fe::detail
   /// −w_p κ c Q (D u + b); the constant part goes to the right-hand side. Added once per node
   /// (by the rank that owns it).
   void ContactModel::friction_node_matrix(const ContactNode &cn, const double c,
-                                          const double delta, FullMatrix<double> &M,
+                                          const double /*delta*/, FullMatrix<double> &M,
                                           Vector<double> &rhs,
                                           std::vector<types::global_dof_index> &ext) const
   {
@@ -159,7 +175,7 @@ namespace clearjoint::fe::detail
       tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
     Tensor<1, dim> b = -cn.relative_converged;
     if (!cn.two_body)
-      b[1] += delta;  // the rigid obstacle moves by −δ e_y
+      b -= cn.obstacle_u;  // the rigid obstacle's surface point moved
     const Tensor<1, dim> Qb = Q * held_components(cn, b);
     const double kc = cn.kappa * c;
     // row of body point r, component a: (its D weight) · κc Σ_b Q_ab (D u + b)_b; the node's
@@ -174,12 +190,23 @@ namespace clearjoint::fe::detail
                 M(r * dim + a, q * dim + bb) += wr * kc * Q[a][bb] * points[q].second;
           rhs(r * dim + a) = -wr * kc * Qb[a];
         }
+    // Elastoplastic: the traction is K u − b, so F(u) has the constant part
+    // F_b = −μŵ (n·b_s) − κ Q M b_s (b_s the load at the node), moved to the right-hand side
+    // of the node's rows (+) and its partners' (−w_p).
+    if (plastic_)
+      {
+        const Tensor<1, dim> Fb = -scene_.contact.mu * (cn.n * cn.load_offset) * cn.slip_direction -
+                                  cn.kappa * (Q * held_components(cn, cn.load_offset));
+        for (unsigned int r = 0; r < points.size(); ++r)
+          for (unsigned int a = 0; a < dim; ++a)
+            rhs(r * dim + a) += points[r].second * Fb[a];
+      }
   }
 
   /// The constraints of this iteration: the active nodes' lines (a sticking node: no new
   /// tangential slip, all its free components; otherwise its normal gap on the constrained
   /// component), then the fixed constraints at δ.
-  void ContactModel::build_contact_constraints(const double delta)
+  void ContactModel::build_contact_constraints(const double /*delta: in each node's g0, obstacle_u*/)
   {
     constraints_.clear();
     constraints_.reinit(relevant_);
@@ -191,7 +218,7 @@ namespace clearjoint::fe::detail
           // (the normal part is ĝ = 0). Components fixed by symmetry stay as they are.
           Tensor<1, dim> target = cn.relative_converged;
           if (!cn.two_body)
-            target[1] -= delta;
+            target += cn.obstacle_u;
           target = tangential(target, cn.n) - cn.g0 * cn.n;  // (a rigid obstacle's g0 holds its motion already)
           for (unsigned int k = 0; k < dim; ++k)
             if (!fixed_delta_.is_constrained(cn.dofs[k]))

@@ -24,7 +24,13 @@ namespace clearjoint::fe
           {
             if (std::abs(X[2]) > half_length * (1.0 + 1e-10))
               return false;
-            const Vec3 C = {0.0, -offset - delta, X[2]};
+            Vec3 C = {0.0, -offset - delta, X[2]};
+            if (frame_angle != 0.0)
+              {
+                const double y = C[1];
+                C[0] = std::sin(frame_angle) * y;  // R(−a)·(0, y) = (y sin a, y cos a)
+                C[1] = std::cos(frame_angle) * y;
+              }
             Vec3 d = minus(X, C);
             d[2] = 0.0;
             const double r = norm(d);

@@ -23,6 +23,9 @@ namespace clearjoint::fe
     double offset = 0.0;      // [m] cylinders: centre at y = −offset − δ; sphere: y = radius − δ
     double half_length = std::numeric_limits<double>::infinity();  // [m] cylinder half length
     double tilt = 0.0;        // [rad] tilted_cylinder: θ
+    /// [rad] cylinder: the obstacle seen from a frame turned by this angle about +z (the
+    /// rolling study's co-rotating bearing frame): its axis at R(−frame_angle)·(0, −offset − δ)
+    double frame_angle = 0.0;
 
     /// Returns false if X can never touch the obstacle (beyond the aligned cylinder's end).
     bool gap(const Vec3 &X, double delta, double &g0, Vec3 &n) const;

@@ -133,7 +133,7 @@ namespace clearjoint::fe::detail
     for (const auto &[x_dof, i] : slipping_)
       if (nodes_[i].owned)  // once per node over all ranks
         {
-          friction_node_matrix(nodes_[i], scene_.contact.tangential_scale * c, delta,
+          friction_node_matrix(nodes_[i], tangential_scale_ * c, delta,
                                friction_matrix, node_rhs, friction_dofs);
           constraints_.distribute_local_to_global(friction_matrix, node_rhs, friction_dofs, A_,
                                                   rhs_);
@@ -141,7 +141,7 @@ namespace clearjoint::fe::detail
     A_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
     rhs_.add(delta, rhs_static_unit_);
-    if (dynamic_)
+    if (dynamic_ || plastic_)
       add_condensed(dynamic_load_, rhs_);
   }
 

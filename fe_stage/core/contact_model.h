@@ -23,9 +23,11 @@
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
+#include "fe_stage/material/j2_plasticity.h"
 #include "fe_stage/material/linear_elastic.h"
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/solve/hht.h"
+#include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/study/study.h"
 
 #include "common/error.h"
@@ -99,6 +101,9 @@ namespace clearjoint::fe::detail
     void make_radial_grid();
     void make_gmsh_grid();
     void refine_joint_mesh();
+    /// Study rolling: the angle [rad] from a bore point at frame angle `angle` to the arc of
+    /// frame angles the contact point passes over the run (0 on it).
+    double rolling_path_distance(double angle) const;
     template <typename CellIterator>
     bool bore_gap_below(const CellIterator &cell, double limit) const;
     void make_block_grid();
@@ -124,6 +129,35 @@ namespace clearjoint::fe::detail
     void lump_and_redistribute(FullMatrix<double> &cell_mass,
                                const std::vector<types::global_dof_index> &dofs,
                                const std::set<types::global_dof_index> &surface) const;
+    /// Study rolling (solve/rolling_stepping.cc): the bearing turning, the journal's spin from
+    /// its torque balance, elastoplastic (core/plastic_assembly.cc).
+    RunResult run_rolling();
+    void init_plasticity();
+    struct PlasticAssembly
+    {
+      unsigned int n_plastic_points = 0;  // quadrature points yielding in this iteration
+    };
+    PlasticAssembly assemble_plastic();
+    struct PlasticEnergies
+    {
+      double plastic_work_step = 0.0;  // [J] full body
+      double elastic_energy = 0.0;     // [J]
+      double plastic_volume = 0.0;     // [m^3]
+      double max_plastic_strain = 0.0, max_strain = 0.0;
+    };
+    PlasticEnergies commit_plasticity();
+    void plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
+                             Vector<float> &alpha_max, Vector<float> &vm_max) const;
+    std::vector<StrainProfilePoint> bore_strain_profile(double phi, double half_angle) const;
+    /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
+    /// Newton on the material around the active-set contact solve. Throws StepFailure.
+    struct RollingSolve
+    {
+      double torque_journal = 0.0;  // [N m] full body, on the journal about +z
+      unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
+      IncrementRecord record;
+    };
+    RollingSolve solve_rolling_state(double delta);
     void refine_adaptively();
     void estimate_adaptive_error(RunResult &result) const;
     /// One increment to `delta` from the current state; throws StepFailure.
@@ -139,6 +173,9 @@ namespace clearjoint::fe::detail
       double force_scale = 0.0;    // [N] largest normal nodal force λ (all ranks)
     };
     ActiveSetChange update_active_set(double c, double eps_g);
+    // c_T / c of this increment's iterations: contact.tangential_scale, lowered when the
+    // stick/slip decisions cycle (solve/contact_iteration.cc)
+    double tangential_scale_ = 1.0;
     void record_forces(double delta, IncrementRecord &rec);
     void record_coulomb_check(IncrementRecord &rec) const;
     /// Whether the contact holds DoF k of the node: a DoF fixed by a symmetry plane carries
@@ -249,6 +286,20 @@ namespace clearjoint::fe::detail
     // Implicit dynamics (study impact): the operator K_ and the condensed matrices hold
     // c_m M + c_k K; the residual K_ u − dynamic_load_ is then the constraint forces.
     bool dynamic_ = false;
+    // Elastoplastic (study rolling): K_ holds the tangent, dynamic_load_ the linearisation's
+    // load, so that K_ u − dynamic_load_ is again the constraint forces.
+    bool plastic_ = false;
+    std::unique_ptr<J2Plasticity> j2_;
+    std::vector<J2History> qp_history_;  // [active_cell_index · n_q_ + q]
+    unsigned int n_q_ = 0;
+    TrilinosWrappers::SparseMatrix K_el_, A_static_el_;  // the elastic operator, kept
+    std::vector<FullMatrix<double>> contact_cell_elastic_;
+    // The rolling study's pose of the rigid journal for set_obstacle_position: the frame angle
+    // φ of the bearing, the journal's axis in the frame at the last converged step and now,
+    // and its turn relative to the frame since then.
+    bool rolling_ = false;
+    double rolling_phi_ = 0.0, rolling_delta_psi_ = 0.0;
+    std::array<double, 3> rolling_centre_previous_{}, rolling_centre_{};
     MatrixCoefficients operator_coefficients_;      // {mass 0, stiffness 1}: quasi-static
     TrilinosWrappers::SparseMatrix M_, K_elastic_;  // mass, stiffness (unconstrained; dynamic)
     TrilinosWrappers::MPI::Vector dynamic_load_;    // owned: the known part of the step's rhs

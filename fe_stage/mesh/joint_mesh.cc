@@ -15,8 +15,9 @@ namespace clearjoint::fe::detail
     // full: no x = 0 symmetry plane (φ over 360°); full_z: no z = 0 plane (the whole length:
     // the tilted journal of the misalignment study breaks the axial symmetry).
     const bool misaligned = plan_.tilted;
-    const bool full = scene_.full_model;
-    const bool full_z = full || misaligned;
+    // the rolling study: the whole ring (the contact travels round it), the mid-plane kept
+    const bool full = scene_.full_model || plan_.rolling;
+    const bool full_z = scene_.full_model || misaligned;
     const bool journal = scene_.loading.journal != JournalLoading::rigid;
     const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
     const unsigned int n_r =
@@ -256,7 +257,10 @@ namespace clearjoint::fe::detail
             else if (on_inner)
               id = bid_contact;
             else if (on_outer)
-              id = (c[1] > 0.0) ? bid_fixed : bid_free;
+              id = (c[1] > 0.0 || (plan_.rolling && scene_.rolling.support ==
+                                                      Rolling::Support::outer_surface)) ?
+                     bid_fixed :
+                     bid_free;
             else if (!full && on_x0)
               id = bid_sym_x;
             else if (!full_z && std::abs(c[2]) < tol)
@@ -306,12 +310,26 @@ namespace clearjoint::fe::detail
     return false;
   }
 
+  double ContactModel::rolling_path_distance(const double angle) const
+  {
+    const double sweep = scene_.rolling.omega_B * rolling_end_time(scene_);
+    if (sweep >= 2.0 * units::pi)
+      return 0.0;
+    // the frame angles the contact point passes: [−sweep, 0] (mod 2π)
+    const double a = std::remainder(angle, 2.0 * units::pi);  // (−π, π]
+    if ((a <= 0.0 && a >= -sweep) || a - 2.0 * units::pi >= -sweep)
+      return 0.0;
+    return std::min(std::abs(std::remainder(a, 2.0 * units::pi)),
+                    std::abs(std::remainder(a + sweep, 2.0 * units::pi)));
+  }
+
   /// Global refinements, then `contact_refinements` rounds near the contact: the radial study
   /// refines the cells within contact_window_deg of the bottom (the mean vertex angle is the
   /// same for a bearing cell and the journal cell on the same rays); the misalignment study,
   /// whose contact is a small patch under one rim, the cells that hold contact candidates
   /// (a vertex within 2 δ_max of the journal pushed to δ_max; hanging nodes in the contact
-  /// zone pass their force to their masters, see condense_hanging).
+  /// zone pass their force to their masters, see condense_hanging); the rolling study, the
+  /// cells within the window of the arc the contact point travels over in the frame.
   void ContactModel::refine_joint_mesh()
   {
     const auto &M = scene_.mesh;
@@ -327,6 +345,14 @@ namespace clearjoint::fe::detail
               if (by_gap)
                 {
                   if (bore_gap_below(cell, 2.0 * scene_.loading.delta_max))
+                    cell->set_refine_flag();
+                  continue;
+                }
+              if (plan_.rolling)
+                {
+                  // the contact point travels from frame angle 0 to −ω_B t_end
+                  const Point<dim> c = cell->center();
+                  if (rolling_path_distance(std::atan2(c[0], -c[1])) < window)
                     cell->set_refine_flag();
                   continue;
                 }

@@ -12,7 +12,13 @@ namespace clearjoint::fe::detail
   class StressPostprocessor : public DataPostprocessor<dim>
   {
   public:
-    explicit StressPostprocessor(const LinearElastic &material) : material_(material) {}
+    /// mean_eps_p (elastoplastic, by active cell index): the stress is C (ε − ε̄_p), ε̄_p the
+    /// cell's mean plastic strain over its quadrature points; nullptr: elastic, C ε.
+    StressPostprocessor(const LinearElastic &material,
+                        const std::vector<SymmetricTensor<2, dim>> *mean_eps_p = nullptr)
+      : material_(material)
+      , mean_eps_p_(mean_eps_p)
+    {}
 
     void evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &in,
                                std::vector<Vector<double>> &out) const override
@@ -23,7 +29,10 @@ namespace clearjoint::fe::detail
           for (unsigned int i = 0; i < dim; ++i)
             grad[i] = in.solution_gradients[q][i];
           const SymmetricTensor<2, dim> eps = symmetrize(grad);
-          const SymmetricTensor<2, dim> sig = material_.stress(eps);
+          SymmetricTensor<2, dim> elastic = eps;
+          if (mean_eps_p_)
+            elastic -= (*mean_eps_p_)[in.template get_cell<dim>()->active_cell_index()];
+          const SymmetricTensor<2, dim> sig = material_.stress(elastic);
           unsigned int k = 0;
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
@@ -62,6 +71,7 @@ namespace clearjoint::fe::detail
 
   private:
     LinearElastic material_;
+    const std::vector<SymmetricTensor<2, dim>> *mean_eps_p_;
   };
 
   void ContactModel::write_fields(const unsigned int counter, const double delta)
@@ -91,7 +101,11 @@ namespace clearjoint::fe::detail
     cf = cf_owned;
     ff = ff_owned;
 
-    StressPostprocessor post(material_);
+    std::vector<SymmetricTensor<2, dim>> mean_eps_p;
+    Vector<float> alpha_max, vm_max;
+    if (plastic_)
+      plastic_cell_fields(mean_eps_p, alpha_max, vm_max);
+    StressPostprocessor post(material_, plastic_ ? &mean_eps_p : nullptr);
     DataOut<dim> out;
     out.attach_dof_handler(dof_handler_);
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
@@ -112,8 +126,17 @@ namespace clearjoint::fe::detail
       s = static_cast<float>(tria_.locally_owned_subdomain());
     out.add_data_vector(subdomain, "subdomain");
     Vector<float> plastic_zone(tria_.n_active_cells());  // volume fraction above yield
-    check_yield(&plastic_zone);
-    out.add_data_vector(plastic_zone, "plastic_zone");
+    if (plastic_)
+      {
+        // the elastoplastic model's own plastic zone: its equivalent plastic strain
+        out.add_data_vector(alpha_max, "equivalent_plastic_strain");
+        out.add_data_vector(vm_max, "von_mises_stress_max");
+      }
+    else
+      {
+        check_yield(&plastic_zone);
+        out.add_data_vector(plastic_zone, "plastic_zone");
+      }
     out.build_patches(*mapping_, fe_->degree, DataOut<dim>::curved_inner_cells);
     const std::string pvtu =
       out.write_vtu_with_pvtu_record(dir + "/", "solution", counter, comm_, 4, 0);

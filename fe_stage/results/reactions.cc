@@ -6,10 +6,11 @@ namespace clearjoint::fe::detail
 {
   /// λ_i = (K u)_i · n_i and ĝ_i = g0_i + n_i · u_i for every candidate node (ghosted values,
   /// so every rank evaluates the same numbers for the nodes it shares).
-  void ContactModel::evaluate_contact(const double delta)
+  void ContactModel::evaluate_contact(const double /*delta: in each node's g0, obstacle_u*/)
   {
     K_.vmult(residual_owned_, solution_owned_);
-    if (dynamic_)  // the constraint forces of the step: (c_m M + c_k K) u − b
+    // the constraint forces: dynamic (c_m M + c_k K) u − b; elastoplastic K_t u − b
+    if (dynamic_ || plastic_)
       residual_owned_ -= dynamic_load_;
     condense_hanging(residual_owned_);
     residual_ = residual_owned_;
@@ -23,10 +24,10 @@ namespace clearjoint::fe::detail
               cn.relative[c] -= p.weight * solution_[p.dofs[c]];
           }
         if (!cn.two_body)
-          cn.relative[1] += delta;  // a rigid obstacle moves by −δ e_y
+          cn.relative -= cn.obstacle_u;  // the rigid obstacle's surface point moved
         cn.lambda = cn.traction * cn.n;
         // ĝ = g0 + n·(u − u_partner); the rigid obstacle's motion is already in g0
-        cn.gap = cn.g0 + cn.n * cn.relative - (cn.two_body ? 0.0 : delta * cn.n[1]);
+        cn.gap = cn.g0 + cn.n * cn.relative + (cn.two_body ? 0.0 : cn.n * cn.obstacle_u);
       }
   }
 

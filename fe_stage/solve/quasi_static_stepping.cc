@@ -174,6 +174,8 @@ namespace clearjoint::fe::detail
   {
     if (plan_.dynamic)
       return run_impact();
+    if (plan_.rolling)
+      return run_rolling();
     RunResult result;
     result.n_ranks = n_ranks_;
     auto seconds = [&] {

@@ -46,6 +46,7 @@ namespace clearjoint::fe
         case Study::hertz: return hertz_study(scene);
         case Study::patch: return patch_study(scene);
         case Study::impact: return impact_study(scene);
+        case Study::rolling: return rolling_study(scene);
       }
     return radial_study(scene);
   }

@@ -37,6 +37,9 @@ namespace clearjoint::fe
     bool must_touch = true;
     /// Implicit dynamics (mass matrix, HHT-α time steps) instead of quasi-static increments.
     bool dynamic = false;
+    /// The rolling study: the bearing turns (computed in its co-rotating frame, the whole ring
+    /// meshed), elastoplastic, the journal's spin found from its torque balance.
+    bool rolling = false;
     std::array<std::string, 2> body_names;  // material ids 0 and 1
   };
 
@@ -52,6 +55,7 @@ namespace clearjoint::fe
   StudyPlan hertz_study(const FeScene &scene);
   StudyPlan patch_study(const FeScene &scene);
   StudyPlan impact_study(const FeScene &scene);
+  StudyPlan rolling_study(const FeScene &scene);
 
   /// The plan of scene.study.
   StudyPlan plan_study(const FeScene &scene);

@@ -291,3 +291,59 @@ TEST(FeScene, ImpactStudy)
   expect_error("schema: clearjoint.fe/1\nsweep: {velocity: [0.1]}\n",
                {"sweep.velocity", "study impact"});
 }
+
+// Study rolling (issue 13 item 1 and the bad inputs of item 6): the paper's §3.4 defaults, the
+// hardening table read and checked, and every key that cannot work named with its range.
+TEST(FeScene, RollingStudy)
+{
+  const std::string head = "schema: clearjoint.fe/1\nstudy: rolling\n";
+  const FeScene d = parse(head);
+  EXPECT_EQ(d.study, Study::rolling);
+  EXPECT_EQ(d.material.model, Material::Model::elastoplastic);
+  EXPECT_DOUBLE_EQ(d.contact.mu, 0.3);
+  EXPECT_DOUBLE_EQ(d.loading.delta_max, 1.0e-3);
+  EXPECT_EQ(d.loading.journal, JournalLoading::rigid);
+  EXPECT_DOUBLE_EQ(d.rolling.omega_B, 12.56);
+  EXPECT_DOUBLE_EQ(d.rolling.ramp_time, 0.25);
+  EXPECT_DOUBLE_EQ(rolling_end_time(d), 0.25);  // no end_time: the end of the ramp
+  // ½ m R_J² of the journal, ρ = 7800 kg/m³, R_J = 9.5 mm, L_J = 18 mm (SPEC §2)
+  const double m = 7800.0 * M_PI * 9.5e-3 * 9.5e-3 * 18e-3;
+  EXPECT_NEAR(rolling_journal_inertia(d), 0.5 * m * 9.5e-3 * 9.5e-3, 1e-15);
+  // the default hardening table is SPEC §2's
+  const auto table = hardening_table(d.material, "test.yaml");
+  EXPECT_DOUBLE_EQ(table.points().front().sigma_y, 168.2e6);
+
+  const FeScene s = parse(head + "rolling: {omega_B: 6.28, ramp_time: 0.5, end_time: 0.6, "
+                                 "n_steps: 12, journal_inertia: 2.0e-6}\n"
+                                 "material: {hardening: [[0, 200.0e6], [0.2, 260.0e6]]}\n");
+  EXPECT_DOUBLE_EQ(s.rolling.omega_B, 6.28);
+  EXPECT_DOUBLE_EQ(rolling_end_time(s), 0.6);
+  EXPECT_EQ(s.rolling.n_steps, 12u);
+  EXPECT_DOUBLE_EQ(rolling_journal_inertia(s), 2.0e-6);
+  EXPECT_DOUBLE_EQ(hardening_table(s.material, "test.yaml").points().back().sigma_y, 260.0e6);
+
+  expect_error(head + "rolling: {omega_B: 0}\n", {"rolling.omega_B", "rad/s"});
+  expect_error(head + "rolling: {ramp_time: -1}\n", {"rolling.ramp_time", "s"});
+  expect_error(head + "rolling: {ramp_time: 0.25, end_time: 0.1}\n",
+               {"rolling.end_time", "ramp_time"});
+  expect_error(head + "rolling: {n_steps: 2}\n", {"rolling.n_steps"});
+  expect_error(head + "rolling: {journal_inertia: 0}\n", {"rolling.journal_inertia", "kg m^2"});
+  expect_error(head + "rolling: {support: glued}\n", {"rolling.support", "outer_surface"});
+  expect_error(head + "material: {model: elastic}\n", {"material.model", "elastoplastic"});
+  expect_error(head + "loading: {journal: end_faces}\n", {"loading.journal", "rigid"});
+  expect_error(head + "mesh: {adaptive_cycles: 1}\n", {"mesh.adaptive_cycles"});
+  expect_error(head + "full_model: true\n", {"full_model"});
+  // the hardening table: strains strictly increasing from 0, stresses non-decreasing
+  expect_error(head + "material: {hardening: [[0.1, 200.0e6], [0.2, 210.0e6]]}\n",
+               {"material.hardening"});
+  expect_error(head + "material: {hardening: [[0, 200.0e6], [0, 210.0e6]]}\n",
+               {"material.hardening"});
+  expect_error(head + "material: {hardening: [[0, 200.0e6], [0.1, 190.0e6]]}\n",
+               {"material.hardening"});
+  expect_error(head + "material: {hardening: [[0, 200.0e6, 1]]}\n",
+               {"material.hardening[0]", "[eps_p, sigma_y]"});
+  expect_error(head + "material: {hardening: []}\n", {"material.hardening"});
+  // elastoplastic only where it is integrated
+  expect_error("schema: clearjoint.fe/1\nmaterial: {model: elastoplastic}\n",
+               {"material.model", "rolling"});
+}

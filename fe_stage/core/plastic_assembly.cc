@@ -1,0 +1,299 @@
+// Elastoplastic bearing (study rolling): the von Mises material of material/j2_plasticity.h at
+// every quadrature point, with its history, inside the contact model's linear machinery. Each
+// material Newton iteration linearises the internal force about the current displacement u_k,
+//     f_int(u) ≈ f_int(u_k) + K_t (u − u_k) = K_t u − b_k,   b_k = K_t u_k − f_int(u_k),
+// so the operator K_ becomes the consistent tangent K_t and b_k the known load (the slot the
+// impact study uses for its dynamic load): the active-set contact solve then runs unchanged on
+// the linearised problem. K_t differs from the elastic stiffness only at the quadrature points
+// that yield in this step, and b_k = (K_t − K_el) u_k + Σ Bᵀ C ε_p only in cells with plastic
+// strain, so the elastic matrices are assembled once and only those cells are revisited.
+#include "fe_stage/core/contact_model.h"
+
+namespace clearjoint::fe::detail
+{
+  namespace
+  {
+    Eigen::Matrix3d to_eigen(const SymmetricTensor<2, dim> &e)
+    {
+      Eigen::Matrix3d m;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          m(i, j) = e[i][j];
+      return m;
+    }
+
+    SymmetricTensor<2, dim> to_deal(const Eigen::Matrix3d &m)
+    {
+      SymmetricTensor<2, dim> e;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          e[i][j] = 0.5 * (m(i, j) + m(j, i));
+      return e;
+    }
+
+    SymmetricTensor<4, dim> to_deal(const Matrix6 &C)
+    {
+      SymmetricTensor<4, dim> t;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          for (unsigned int k = 0; k < dim; ++k)
+            for (unsigned int l = k; l < dim; ++l)
+              t[i][j][k][l] = C(voigt_of(i, j), voigt_of(k, l));
+      return t;
+    }
+  } // namespace
+
+  void ContactModel::init_plasticity()
+  {
+    plastic_ = true;
+    j2_ = std::make_unique<J2Plasticity>(
+      scene_.material.E, scene_.material.nu,
+      hardening_table(scene_.material, scene_.source_file), "material", scene_.source_file);
+    const QGauss<dim> quadrature(fe_->degree + 1);
+    n_q_ = quadrature.size();
+    qp_history_.assign(std::size_t(tria_.n_active_cells()) * n_q_, J2History());
+    // the elastic operator, kept: every assembly starts from it
+    K_el_.reinit(K_);
+    K_el_.copy_from(K_);
+    A_static_el_.reinit(A_static_);
+    A_static_el_.copy_from(A_static_);
+    contact_cell_elastic_ = contact_cell_matrices_;
+    dynamic_load_.reinit(owned_, comm_);
+    for (const auto &line : fixed_constraints_.get_lines())
+      if (line.inhomogeneity != 0.0)
+        throw NumericalError("fe_stage: the elastoplastic assembly needs homogeneous supports "
+                             "(a rigid journal); DoF " + std::to_string(line.index) +
+                             " is prescribed");
+  }
+
+  /// K_ = K_t(u), the condensed static part and the contact cells' matrices the same, and the
+  /// load b = K_t u − f_int(u), at the ghosted solution_. Trial states are written (the
+  /// committed ones are the last converged step's).
+  ContactModel::PlasticAssembly ContactModel::assemble_plastic()
+  {
+    ScopedTimer timer(t_assemble_);
+    PlasticAssembly info;
+    const QGauss<dim> quadrature(fe_->degree + 1);
+    FEValues<dim> fv(*mapping_, *fe_, quadrature, update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    const unsigned int n = fe_->n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    Vector<double> u_cell(n), b_cell(n);
+    FullMatrix<double> D(n, n);
+    std::vector<SymmetricTensor<2, dim>> eps(n_q_), B(n);
+    const SymmetricTensor<4, dim> C_el = to_deal(j2_->elastic_tangent());
+
+    K_.copy_from(K_el_);
+    A_static_.copy_from(A_static_el_);
+    contact_cell_matrices_ = contact_cell_elastic_;
+    dynamic_load_ = 0.0;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[u].get_function_symmetric_gradients(solution_, eps);
+          J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+          bool yields = false, has_plastic_strain = false;
+          std::vector<J2Response> resp(n_q_);
+          for (unsigned int q = 0; q < n_q_; ++q)
+            {
+              resp[q] = j2_->evaluate(to_eigen(eps[q]), h[q]);
+              if (!resp[q].status.converged)
+                throw StepFailure{"the return mapping did not converge at a quadrature point"};
+              yields = yields || resp[q].plastic;
+              has_plastic_strain = has_plastic_strain || h[q].trial.alpha > 0.0;
+              info.n_plastic_points += resp[q].plastic ? 1 : 0;
+            }
+          if (!yields && !has_plastic_strain)
+            continue;  // elastic: its share of K_el and of b (zero) is already there
+          cell->get_dof_indices(dofs);
+          cell->get_dof_values(solution_, u_cell);
+          D = 0.0;
+          b_cell = 0.0;
+          for (unsigned int q = 0; q < n_q_; ++q)
+            {
+              for (unsigned int i = 0; i < n; ++i)
+                B[i] = fv[u].symmetric_gradient(i, q);
+              const double JxW = fv.JxW(q);
+              // Σ Bᵀ C_el ε_p: the plastic strain's share of K_el u − f_int
+              const SymmetricTensor<2, dim> s_p = C_el * to_deal(h[q].trial.eps_p);
+              for (unsigned int i = 0; i < n; ++i)
+                b_cell(i) += (B[i] * s_p) * JxW;
+              if (!resp[q].plastic)
+                continue;
+              const SymmetricTensor<4, dim> dC = to_deal(resp[q].tangent) - C_el;
+              for (unsigned int j = 0; j < n; ++j)
+                {
+                  const SymmetricTensor<2, dim> dCB = dC * B[j];
+                  for (unsigned int i = 0; i < n; ++i)
+                    D(i, j) += (B[i] * dCB) * JxW;
+                }
+            }
+          D.vmult_add(b_cell, u_cell);  // + (K_t − K_el) u
+          dynamic_load_.add(dofs, b_cell);
+          if (!yields)
+            continue;
+          K_.add(dofs, D);
+          const int k = contact_cell_of_[cell->active_cell_index()];
+          if (k >= 0)
+            contact_cell_matrices_[k].add(1.0, D);
+          else
+            fixed_constraints_.distribute_local_to_global(D, dofs, A_static_);
+        }
+    K_.compress(VectorOperation::add);
+    A_static_.compress(VectorOperation::add);
+    dynamic_load_.compress(VectorOperation::add);
+    info.n_plastic_points = Utilities::MPI::sum(info.n_plastic_points, comm_);
+
+    // the load at each contact node, with the shares of the hanging nodes beside it (as the
+    // traction K u − b is read): the friction rows' constant part (contact_rows.cc)
+    TrilinosWrappers::MPI::Vector load = dynamic_load_;
+    condense_hanging(load);
+    TrilinosWrappers::MPI::Vector load_ghosted(owned_, relevant_, comm_);
+    load_ghosted = load;
+    for (auto &cn : nodes_)
+      for (unsigned int c = 0; c < dim; ++c)
+        cn.load_offset[c] = load_ghosted[cn.dofs[c]];
+    return info;
+  }
+
+  /// Trial → committed at every quadrature point (after a converged step), and the step's
+  /// energies from the committed states.
+  ContactModel::PlasticEnergies ContactModel::commit_plasticity()
+  {
+    const QGauss<dim> quadrature(fe_->degree + 1);
+    FEValues<dim> fv(*mapping_, *fe_, quadrature, update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<SymmetricTensor<2, dim>> eps(n_q_);
+    PlasticEnergies e;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[u].get_function_symmetric_gradients(solution_, eps);
+          J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+          double cell_plastic_volume = 0.0;
+          for (unsigned int q = 0; q < n_q_; ++q)
+            {
+              const J2Response r = j2_->evaluate(to_eigen(eps[q]), h[q]);
+              e.plastic_work_step += r.plastic_work * fv.JxW(q);
+              h[q].commit();
+              e.elastic_energy += j2_->elastic_energy(to_eigen(eps[q]), h[q].committed) * fv.JxW(q);
+              e.max_plastic_strain = std::max(e.max_plastic_strain, h[q].committed.alpha);
+              if (h[q].committed.alpha > 0.0)
+                cell_plastic_volume += fv.JxW(q);
+              const auto ev = eigenvalues(eps[q]);
+              e.max_strain = std::max({e.max_strain, std::abs(ev[0]), std::abs(ev[2])});
+            }
+          e.plastic_volume += cell_plastic_volume;
+        }
+    e.plastic_work_step = symmetry_factor_ * Utilities::MPI::sum(e.plastic_work_step, comm_);
+    e.elastic_energy = symmetry_factor_ * Utilities::MPI::sum(e.elastic_energy, comm_);
+    e.plastic_volume = symmetry_factor_ * Utilities::MPI::sum(e.plastic_volume, comm_);
+    e.max_plastic_strain = Utilities::MPI::max(e.max_plastic_strain, comm_);
+    e.max_strain = Utilities::MPI::max(e.max_strain, comm_);
+    return e;
+  }
+
+  /// Per cell: the quadrature points' mean plastic strain tensor (the fields' stress is
+  /// C (ε − ε̄_p)), their largest equivalent plastic strain, and the largest von Mises stress of
+  /// the committed states.
+  void ContactModel::plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
+                                         Vector<float> &alpha_max, Vector<float> &vm_max) const
+  {
+    const QGauss<dim> quadrature(fe_->degree + 1);
+    FEValues<dim> fv(*mapping_, *fe_, quadrature, update_gradients);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<SymmetricTensor<2, dim>> eps(n_q_);
+    mean_eps_p.assign(tria_.n_active_cells(), SymmetricTensor<2, dim>());
+    alpha_max.reinit(tria_.n_active_cells());
+    vm_max.reinit(tria_.n_active_cells());
+    const auto &C = material_;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[u].get_function_symmetric_gradients(solution_, eps);
+          const J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+          const unsigned int c = cell->active_cell_index();
+          for (unsigned int q = 0; q < n_q_; ++q)
+            {
+              const SymmetricTensor<2, dim> ep = to_deal(h[q].committed.eps_p);
+              mean_eps_p[c] += ep / double(n_q_);
+              alpha_max[c] = std::max(alpha_max[c], float(h[q].committed.alpha));
+              vm_max[c] = std::max(vm_max[c], float(von_mises(C.stress(eps[q] - ep))));
+            }
+        }
+  }
+
+  /// The bore's strains at the axial mid-plane within ±half_angle of the contact point at frame
+  /// angle −phi (fixed-frame bottom): the face quadrature points of the bore faces that touch
+  /// z = 0, nearest row to the plane. Collective; every rank gets the sorted profile.
+  std::vector<StrainProfilePoint> ContactModel::bore_strain_profile(const double phi,
+                                                                     const double half_angle) const
+  {
+    const QGauss<dim - 1> fq(fe_->degree + 2);
+    FEFaceValues<dim> fv(*mapping_, *fe_, fq, update_gradients | update_quadrature_points);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<SymmetricTensor<2, dim>> eps(fq.size());
+    std::vector<double> mine;
+    const double R = scene_.geometry.R_B;
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->material_id() == 0)
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+            {
+              double z_min = std::numeric_limits<double>::max();
+              for (const auto v : cell->face(f)->vertex_indices())
+                z_min = std::min(z_min, std::abs(cell->face(f)->vertex(v)[2]));
+              if (z_min > 1e-9 * R)
+                continue;  // not at the mid-plane
+              fv.reinit(cell, f);
+              fv[u].get_function_symmetric_gradients(solution_, eps);
+              double z_row = std::numeric_limits<double>::max();
+              for (const unsigned int q : fv.quadrature_point_indices())
+                z_row = std::min(z_row, std::abs(fv.quadrature_point(q)[2]));
+              const J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+              double alpha = 0.0;
+              SymmetricTensor<2, dim> mean_eps_p;
+              for (unsigned int q = 0; q < n_q_; ++q)
+                {
+                  alpha = std::max(alpha, h[q].committed.alpha);
+                  mean_eps_p += to_deal(h[q].committed.eps_p) / double(n_q_);
+                }
+              for (const unsigned int q : fv.quadrature_point_indices())
+                {
+                  const Point<dim> &p = fv.quadrature_point(q);
+                  if (std::abs(p[2]) > z_row + 1e-12 * R)
+                    continue;
+                  double a = std::atan2(p[0], -p[1]) + phi;  // from the contact point
+                  a = std::remainder(a, 2.0 * units::pi);
+                  if (std::abs(a) > half_angle)
+                    continue;
+                  const double r = std::hypot(p[0], p[1]);
+                  const Tensor<1, dim> er({p[0] / r, p[1] / r, 0.0});
+                  const Tensor<1, dim> et({-p[1] / r, p[0] / r, 0.0});
+                  mine.insert(mine.end(), {a, er * (eps[q] * er), et * (eps[q] * et),
+                                           eps[q][2][2], alpha,
+                                           von_mises(material_.stress(eps[q] - mean_eps_p))});
+                }
+            }
+    std::vector<StrainProfilePoint> profile;
+    for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
+      for (std::size_t i = 0; i + 6 <= part.size(); i += 6)
+        {
+          StrainProfilePoint s;
+          s.angle = part[i];
+          s.arc = R * part[i];
+          s.strain_radial = part[i + 1];
+          s.strain_tangential = part[i + 2];
+          s.strain_axial = part[i + 3];
+          s.plastic_strain = part[i + 4];
+          s.von_mises = part[i + 5];
+          profile.push_back(s);
+        }
+    std::sort(profile.begin(), profile.end(),
+              [](const auto &a, const auto &b) { return a.angle < b.angle; });
+    return profile;
+  }
+} // namespace clearjoint::fe::detail

@@ -1,0 +1,109 @@
+#include "fe_stage/rolling_output.h"
+
+#include "common/error.h"
+
+namespace clearjoint::fe
+{
+  Table rolling_history_table()
+  {
+    return {{"time", "delta", "force_normal", "force_tangential", "phi", "gamma", "phi_rate",
+             "gamma_rate", "slip_speed", "torque_drive", "torque_journal", "work_drive",
+             "work_push", "elastic_energy", "plastic_dissipation", "friction_dissipation",
+             "kinetic_energy", "energy_balance_error", "max_plastic_strain", "max_strain",
+             "plastic_volume", "active_contact_points", "slipping_contact_points",
+             "spin_iterations", "newton_iterations", "contact_iterations", "linear_iterations",
+             "cuts", "phi_paper", "gamma_paper", "phi_rate_paper", "gamma_rate_paper",
+             "wall_time"},
+            {"s", "m", "N", "N", "rad", "rad", "rad/s", "rad/s", "m/s", "N m", "N m", "J", "J",
+             "J", "J", "J", "J", "J", "1", "1", "m^3", "1", "1", "1", "1", "1", "1", "1", "rad",
+             "rad", "rad/s", "rad/s", "s"}};
+  }
+
+  std::vector<std::string> rolling_history_comments(const FeScene &scene)
+  {
+    const auto &R = scene.rolling;
+    return {
+      "clearjoint fe_stage: rolling study (paper 3.4): the bearing turns at omega_B = " +
+        format_value(R.omega_B) + " rad/s; the rigid journal's axis is pushed along -y to " +
+        format_value(scene.loading.delta_max) + " m at " + format_value(R.ramp_time) +
+        " s and turns freely, driven by Coulomb friction mu = " + format_value(scene.contact.mu),
+      "elastoplastic bearing (von Mises, isotropic hardening table), computed in its "
+      "co-rotating frame; angles counter-clockwise about +z in the fixed frame",
+      "force_normal = contact force on the journal along +y, force_tangential along +x (full "
+      "body); slip_speed = omega_B R_B - gamma_rate R_J (0: rolling without slip)",
+      "torque_drive = the supports' torque on the bearing; torque_journal = the contact's "
+      "torque on the journal; work_drive = int torque_drive dphi, work_push = int force dδ",
+      "energy balance: work_drive + work_push = elastic_energy + plastic_dissipation + "
+      "friction_dissipation + kinetic_energy + energy_balance_error",
+      "phi_paper, gamma_paper = paper Eqs. 4-6 on the bore node and the journal point that "
+      "touch at t = 0 (bottom of the mid-plane), from their displacement vectors; "
+      "*_rate_paper = Eqs. 7-8 (angle / t); phi, gamma = the exact angles"};
+  }
+
+  std::vector<double> rolling_history_row(const RollingStepRecord &r)
+  {
+    return {r.time, r.delta, r.force_normal, r.force_tangential, r.phi, r.gamma, r.phi_rate,
+            r.gamma_rate, r.slip_speed, r.torque_drive, r.torque_journal, r.work_drive,
+            r.work_push, r.elastic_energy, r.plastic_dissipation, r.friction_dissipation,
+            r.kinetic_energy, r.energy_balance_error, r.max_plastic_strain, r.max_strain,
+            r.plastic_volume, double(r.n_active), double(r.n_slip), double(r.spin_iterations),
+            double(r.newton_iterations), double(r.contact_iterations),
+            double(r.linear_iterations), double(r.cuts), r.phi_paper, r.gamma_paper,
+            r.phi_rate_paper, r.gamma_rate_paper, r.wall_time};
+  }
+
+  std::vector<double> rolling_history_start()
+  {
+    return std::vector<double>(rolling_history_table().columns.size(), 0.0);
+  }
+
+  Table strain_profile_table()
+  {
+    return {{"angle", "arc", "strain_radial", "strain_tangential", "strain_axial",
+             "plastic_strain", "von_mises"},
+            {"rad", "m", "1", "1", "1", "1", "Pa"}};
+  }
+
+  std::vector<double> strain_profile_row(const StrainProfilePoint &p)
+  {
+    return {p.angle, p.arc, p.strain_radial, p.strain_tangential, p.strain_axial,
+            p.plastic_strain, p.von_mises};
+  }
+
+  nlohmann::json rolling_summary_json(const RollingSummary &s, const RollingStepRecord *last)
+  {
+    nlohmann::json j = {
+      {"journal_inertia", {{"value", s.journal_inertia}, {"unit", "kg m^2"}}},
+      {"rolling_rate", {{"value", s.rolling_rate}, {"unit", "rad/s"},
+                        {"meaning", "omega_B (R_B + delta_max) / R_J: the spin of rolling without slip at the end of the push"}}},
+      {"time_step", {{"value", s.time_step}, {"unit", "s"}}},
+      {"slip_stages",
+       {{"found", s.stages_found},
+        {"slip_speed_max", {{"value", s.slip_speed_max}, {"unit", "m/s"}}},
+        {"end_of_slip", {{"value", s.end_of_slip}, {"unit", "s"},
+                         {"meaning", "the slip speed first falls below half its largest value"}}},
+        {"settled", {{"value", s.settled}, {"unit", "s"},
+                     {"meaning", "from here the slip speed stays within 5 % of its largest "
+                                 "value about its final value"}}},
+        {"slip_speed_final", {{"value", s.slip_speed_final}, {"unit", "m/s"}}}}},
+      {"max_plastic_strain", s.max_plastic_strain},
+      {"max_strain", {{"value", s.max_strain},
+                      {"meaning", "largest principal total strain: small strain is accurate "
+                                  "while this stays well below ~0.01"}}},
+      {"energy_balance_error", {{"value", s.energy_balance_error},
+                                {"meaning", "|error| / (|work_drive| + |work_push|) at the end"}}}};
+    if (last)
+      j["final"] = {{"time", last->time},
+                    {"force_normal", last->force_normal},
+                    {"gamma_rate", last->gamma_rate},
+                    {"phi_rate_paper", last->phi_rate_paper},
+                    {"gamma_rate_paper", last->gamma_rate_paper},
+                    {"work_drive", last->work_drive},
+                    {"work_push", last->work_push},
+                    {"elastic_energy", last->elastic_energy},
+                    {"plastic_dissipation", last->plastic_dissipation},
+                    {"friction_dissipation", last->friction_dissipation},
+                    {"units", "s, N, rad/s, rad/s, rad/s, J, J, J, J, J"}};
+    return j;
+  }
+} // namespace clearjoint::fe

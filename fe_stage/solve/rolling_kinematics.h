@@ -1,0 +1,96 @@
+// The rolling study's kinematics (paper §3.4), no deal.II: the prescribed motion (the bearing's
+// spin φ = ω_B t, the journal's push δ(t)), the co-rotating frame in which the bearing is
+// computed, the rigid journal's surface motion seen from that frame, the paper's Eqs. 4–8, the
+// slip stages, and the bracketed root finder of the journal's torque balance. Unit-tested in
+// tests/unit/fe/rolling_kinematics_test.cc.
+//
+// Frame: the fixed frame has the axes of SPEC §2 (bearing axis z, push along −y). The bearing
+// turns by φ(t) about +z; its co-rotating frame is the fixed one turned by φ, so a bearing
+// material point X (frame coordinates) is at R(φ)·(X + u) in the fixed frame, u the small
+// deformation. A rigid spin gives u = 0 and hence no strain, exactly (docs/fe.md).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace clearjoint::fe::rolling
+{
+  using Vec3 = std::array<double, 3>;
+
+  /// R(angle)·v: rotation about +z.
+  Vec3 rotate_z(const Vec3 &v, double angle);
+
+  struct Motion
+  {
+    double omega_B = 0.0;    // [rad/s]
+    double ramp_time = 0.0;  // [s]
+    double delta_max = 0.0;  // [m]
+    double c_r = 0.0;        // [m] the journal's axis at y = −c_r at first touch
+    double R_B = 0.0, R_J = 0.0;  // [m]
+
+    double phi(double t) const { return omega_B * t; }  ///< [rad] bearing angle
+    double delta(double t) const;                       ///< [m] push beyond first touch
+    /// [m] the journal's axis in the fixed frame: (0, −c_r − δ(t), 0).
+    Vec3 centre_fixed(double t) const;
+    /// [m] the same in the bearing's co-rotating frame: R(−φ)·centre_fixed.
+    Vec3 centre_frame(double t) const;
+    /// [m] distance from the bearing's axis of the journal's surface point deepest in the
+    /// bore: c_r + δ + R_J = R_B + δ. The journal is rigid and the contact closes the gap, so
+    /// the bore's material there is at this radius too and moves at ω_B (R_B + δ).
+    double contact_radius(double t) const { return R_B + delta(t); }
+    /// [rad/s] the journal's spin of rolling without slip at that point:
+    /// γ̇ R_J = ω_B (R_B + δ).
+    double rolling_rate(double t) const { return omega_B * contact_radius(t) / R_J; }
+    /// [m/s] the relative speed of the surfaces at that point, bore minus journal:
+    /// ω_B (R_B + δ) − γ̇ R_J (0: rolling without slip).
+    double slip_speed(double t, double gamma_rate) const
+    {
+      return omega_B * contact_radius(t) - gamma_rate * R_J;
+    }
+  };
+
+  /// Displacement, over a step, of the rigid journal's surface point that faces the frame
+  /// direction `n` (unit, from the journal's axis outward) at the step's end: the point is at
+  /// c1 + R_J n at the end and came from c0 + R_J R(−Δψ) n, Δψ = Δγ − Δφ the journal's turn
+  /// relative to the frame. [m], frame coordinates.
+  Vec3 journal_surface_step(const Vec3 &c0, const Vec3 &c1, double R_J, const Vec3 &n,
+                            double delta_psi);
+
+  /// Paper Eqs. 4–5 (and 6 with R = R_J): the angle a point on a circle of radius R has turned
+  /// through, from the length of its displacement U: 2 asin(|U|/2R) [rad] (|U| ≤ 2R; valid
+  /// up to half a turn).
+  double paper_angle(const Vec3 &U, double R);
+
+  /// The three slip stages of the paper (§3.4) located on the relative surface speed
+  /// v(t) = ω_B R_B − γ̇ R_J of the converged steps: (i) slip, from the start until the speed
+  /// first falls below `fall_fraction` of its largest value; (ii) the fall, until it stays
+  /// within `settle_band` (of that largest value) of its final value; (iii) the stable rest.
+  struct SlipStages
+  {
+    bool found = false;       // false: fewer than 3 steps, or no slip at all
+    double v_max = 0.0;       // [m/s] largest relative speed
+    double end_of_slip = 0.0; // [s] end of stage (i)
+    double settled = 0.0;     // [s] start of stage (iii)
+    double v_final = 0.0;     // [m/s] relative speed at the end
+  };
+  SlipStages slip_stages(const std::vector<double> &t, const std::vector<double> &v,
+                         double fall_fraction = 0.5, double settle_band = 0.05);
+
+  /// The root of an increasing function g on the real line, bracketed first (from a and b,
+  /// widening geometrically, at most `max_evaluations` calls in all) then found by the Illinois
+  /// variant of regula falsi, until |g| ≤ g_tolerance or the bracket is narrower than
+  /// x_tolerance. Every g call is counted; a failure (no bracket, no convergence within the
+  /// budget) gives converged = false with the reason.
+  struct RootResult
+  {
+    bool converged = false;
+    double x = 0.0, g = 0.0;
+    unsigned int evaluations = 0;
+    std::string message;
+  };
+  RootResult solve_increasing(const std::function<double(double)> &g, double a, double b,
+                              double g_tolerance, double x_tolerance,
+                              unsigned int max_evaluations);
+} // namespace clearjoint::fe::rolling

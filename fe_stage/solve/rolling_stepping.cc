@@ -1,0 +1,361 @@
+// The rolling study (paper §3.4, docs/fe.md "Rolling study"): time steps over the push ramp.
+// Each step: the bearing turned to φ = ω_B t (its co-rotating frame: the mesh stays, the rigid
+// journal's axis turns round it), the journal pushed to δ(t), and the journal's spin rate γ̇
+// found from its torque balance  I (γ̇ − γ̇_n)/Δt = M(γ̇)  (backward Euler; M the contact's
+// torque on the journal, which falls as γ̇ rises: one root, bracketed and found by regula falsi).
+// Every evaluation of M is a state of the elastoplastic bearing: material Newton iterations,
+// each an active-set contact solve with Coulomb friction. A step that fails is halved
+// (loading.max_cuts times); what converged is kept.
+#include "fe_stage/core/contact_model.h"
+
+namespace clearjoint::fe::detail
+{
+  ContactModel::RollingSolve ContactModel::solve_rolling_state(const double delta)
+  {
+    RollingSolve rs;
+    // Material Newton converged when the correction is below 1e-7 of the push (δ_max = 1 mm:
+    // 0.1 nm), far below the discretisation error; quadratic convergence reaches it in a few
+    // iterations once the plastic zone and the active set have settled.
+    const double tolerance = 1e-7 * scene_.loading.delta_max;
+    const unsigned int max_it = scene_.rolling.max_newton_iterations;
+    TrilinosWrappers::MPI::Vector before(owned_, comm_);
+    for (unsigned int k = 0;; ++k)
+      {
+        const PlasticAssembly pa = assemble_plastic();
+        before = solution_owned_;
+        rs.record = solve_increment(delta);
+        rs.contact_iterations += rs.record.contact_iterations;
+        rs.linear_iterations += rs.record.linear_iterations;
+        rs.newton_iterations = k + 1;
+        before -= solution_owned_;
+        const double correction = before.linfty_norm();
+        if (log::level() <= log::Level::debug && rank_ == 0)
+          log::debug("  material Newton iteration " + std::to_string(k + 1) + ": correction " +
+                     format_value(correction) + " m, " + std::to_string(pa.n_plastic_points) +
+                     " quadrature points yielding, contact force " +
+                     format_value(rs.record.force) + " N");
+        if (!std::isfinite(correction))
+          throw StepFailure{"non-finite displacement in the material Newton iteration"};
+        if (correction <= tolerance)
+          break;
+        if (k + 1 >= max_it)
+          throw StepFailure{"the material Newton iteration did not converge in " +
+                            std::to_string(max_it) + " iterations (last correction " +
+                            format_value(correction) + " m)"};
+      }
+    // the contact's torque on the journal about its axis: the force on the journal is −t at
+    // its surface point c' + R_J n (z-moments are the same in every frame turned about z)
+    // (only the friction force has a moment: the normal n passes through the journal's axis)
+    double torque = 0.0;
+    for (const auto &cn : nodes_)
+      if (friction_ && cn.owned && cn.active)
+        {
+          const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
+          torque -= scene_.geometry.R_J() * (cn.n[0] * t[1] - cn.n[1] * t[0]);
+        }
+    rs.torque_journal = symmetry_factor_ * Utilities::MPI::sum(torque, comm_);
+    return rs;
+  }
+
+  RunResult ContactModel::run_rolling()
+  {
+    RunResult result;
+    result.n_ranks = n_ranks_;
+    auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    };
+    const auto &R = scene_.rolling;
+    const auto &L = scene_.loading;
+    const auto &G = scene_.geometry;
+    rolling_ = true;
+    make_grid();
+    prepare_mesh();
+    init_plasticity();
+    result.n_dofs = dof_handler_.n_dofs();
+    result.n_cells = tria_.n_global_active_cells();
+    result.symmetry_factor = symmetry_factor_;
+    result.h_min = h_min_;
+    result.setup_time = seconds();
+
+    const rolling::Motion motion{R.omega_B, R.ramp_time, L.delta_max, G.c_r, G.R_B, G.R_J()};
+    const double t_end = rolling_end_time(scene_);
+    const double dt_nominal = t_end / R.n_steps;
+    const double inertia = rolling_journal_inertia(scene_);
+    auto &S = result.rolling;
+    S.journal_inertia = inertia;
+    S.rolling_rate = motion.rolling_rate(t_end);
+    S.time_step = dt_nominal;
+    if (rank_ == 0)
+      log::info("fe_stage: rolling study, " + std::to_string(result.n_dofs) + " DoFs, " +
+                std::to_string(result.n_cells) + " cells, " +
+                std::to_string(std::count_if(nodes_.begin(), nodes_.end(),
+                                             [](const auto &c) { return c.candidate; })) +
+                " contact candidate nodes (rank 0); omega_B " + format_value(R.omega_B) +
+                " rad/s, delta_max " + format_value(L.delta_max) + " m at " +
+                format_value(R.ramp_time) + " s, " + std::to_string(R.n_steps) +
+                " steps to " + format_value(t_end) + " s, journal spin inertia " +
+                format_value(inertia) + " kg m^2, mu " + format_value(scene_.contact.mu) +
+                ", setup " + log::format_duration(result.setup_time));
+
+    solution_owned_ = 0.0;
+    solution_ = 0.0;
+    for (auto &cn : nodes_)
+      {
+        cn.active = false;
+        cn.stick = true;
+        cn.relative = cn.relative_converged = Tensor<1, dim>();
+        cn.obstacle_u = cn.obstacle_u_converged = Tensor<1, dim>();
+      }
+    // the bore node at the bottom of the mid-plane: it touches the journal at t = 0 (paper
+    // Fig. 9's N_B); the generated ring has a vertex there
+    int tracked = -1;
+    for (unsigned int i = 0; i < nodes_.size(); ++i)
+      if (nodes_[i].owned && std::abs(nodes_[i].X[0]) < 1e-9 * G.R_B &&
+          std::abs(nodes_[i].X[1] + G.R_B) < 1e-9 * G.R_B && std::abs(nodes_[i].X[2]) < 1e-9 * G.R_B)
+        tracked = int(i);
+    if (Utilities::MPI::sum(tracked >= 0 ? 1u : 0u, comm_) != 1)
+      throw NumericalError("fe_stage: the rolling study found no single bore node at the "
+                           "bottom of the mid-plane to track");
+
+    const bool fields = options_.write_fields && !options_.output_dir.empty();
+    unsigned int field_counter = 0;
+    if (fields && rank_ == 0)
+      std::filesystem::create_directories(options_.output_dir + "/fields");
+    if (fields)
+      {
+        rolling_phi_ = 0.0;
+        rolling_centre_previous_ = rolling_centre_ = motion.centre_frame(0.0);
+        rolling_delta_psi_ = 0.0;
+        set_obstacle_position(0.0);
+        evaluate_contact(0.0);
+        write_fields(field_counter++, 0.0);
+      }
+
+    double t = 0.0, gamma = 0.0, gamma_rate = 0.0;
+    double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction_work = 0.0;
+    double torque_drive_prev = 0.0, force_prev = 0.0;
+    std::vector<double> times, slips;
+    const double wall_steps_start = seconds();
+    unsigned int step = 0;
+    const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
+    for (; t < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
+      {
+        double dt = std::min(dt_nominal, t_end - t);
+        unsigned int cuts = 0;
+        RollingSolve rs;
+        unsigned int spin_evaluations = 0;
+        double rate_new = gamma_rate;
+        const TrilinosWrappers::MPI::Vector saved = solution_owned_;
+        const std::vector<ContactNode> saved_nodes = nodes_;
+        for (;;)
+          {
+            const double t1 = t + dt;
+            rolling_phi_ = motion.phi(t1);
+            rolling_centre_previous_ = motion.centre_frame(t);
+            rolling_centre_ = motion.centre_frame(t1);
+            const double delta1 = motion.delta(t1);
+            const double dphi = motion.phi(t1) - motion.phi(t);
+            double torque_scale = 0.0;
+            try
+              {
+                // g(γ̇) / scale, the scale μ F R_J (+ the inertia term) of the first
+                // evaluation: the balance holds to 1e-6 of the largest friction torque
+                auto g = [&](const double rate) {
+                  rolling_delta_psi_ = rate * dt - dphi;
+                  rs = solve_rolling_state(delta1);
+                  const double inertial = inertia * (rate - gamma_rate) / dt;
+                  if (torque_scale == 0.0)
+                    torque_scale = std::max(
+                      {scene_.contact.mu * std::abs(rs.record.force) * G.R_J(),
+                       std::abs(rs.torque_journal), inertia * motion.rolling_rate(t1) / dt,
+                       1e-30});
+                  return (inertial - rs.torque_journal) / torque_scale;
+                };
+                const double a = gamma_rate;
+                const double roll = motion.rolling_rate(t1);
+                const double b = std::abs(roll - a) > 1e-3 * roll ? roll : a + 1e-2 * roll;
+                const auto root = rolling::solve_increasing(g, a, b, 1e-6,
+                                                            1e-10 * roll,
+                                                            R.max_spin_iterations);
+                spin_evaluations = root.evaluations;
+                if (!root.converged)
+                  throw StepFailure{root.message};
+                rate_new = root.x;  // the last evaluation: the model's state is this one
+                break;
+              }
+            catch (const StepFailure &f)
+              {
+                solution_owned_ = saved;
+                solution_ = solution_owned_;
+                nodes_ = saved_nodes;
+                if (cuts >= L.max_cuts)
+                  {
+                    result.message = "time step to t = " + format_value(t + dt) +
+                                     " s failed after " + std::to_string(cuts) + " cuts: " +
+                                     f.reason;
+                    if (rank_ == 0)
+                      log::error("fe_stage: " + result.message);
+                    break;
+                  }
+                ++cuts;
+                dt *= 0.5;
+                if (rank_ == 0)
+                  log::warning("fe_stage: time step to t = " + format_value(t + 2 * dt) +
+                               " s failed (" + f.reason + "); retrying with dt " +
+                               format_value(dt) + " s");
+              }
+          }
+        if (!result.message.empty())
+          break;
+
+        // the converged step: friction's slip work, the contact forces (frame → fixed), the
+        // torques; then commit the material and the contact's reference state
+        const double t1 = t + dt;
+        double fr = 0.0, torque_bearing = 0.0;
+        Tensor<1, dim> force_frame;
+        unsigned int n_active = 0, n_slip = 0;
+        for (const auto &cn : nodes_)
+          if (cn.owned && cn.active)
+            {
+              const Tensor<1, dim> tr = contact_traction(cn);
+              fr -= tangential(tr, cn.n) * contact_slip_increment(cn);
+              force_frame += tr;
+              Tensor<1, dim> x = cn.X;
+              for (unsigned int c = 0; c < dim; ++c)
+                x[c] += solution_[cn.dofs[c]];
+              torque_bearing += x[0] * tr[1] - x[1] * tr[0];
+              ++n_active;
+              if (friction_ && !cn.stick)
+                ++n_slip;
+            }
+        for (unsigned int c = 0; c < dim; ++c)
+          force_frame[c] = Utilities::MPI::sum(force_frame[c], comm_);
+        fr = symmetry_factor_ * Utilities::MPI::sum(fr, comm_);
+        torque_bearing = symmetry_factor_ * Utilities::MPI::sum(torque_bearing, comm_);
+        const auto on_journal = rolling::rotate_z({-force_frame[0], -force_frame[1], 0.0},
+                                                  motion.phi(t1));
+        Vec3 u_tracked{0.0, 0.0, 0.0};
+        if (tracked >= 0)
+          for (unsigned int c = 0; c < dim; ++c)
+            u_tracked[c] = solution_[nodes_[tracked].dofs[c]];
+        for (auto &c : u_tracked)
+          c = Utilities::MPI::sum(c, comm_);
+        for (auto &cn : nodes_)
+          {
+            cn.relative_converged = cn.relative;
+            cn.obstacle_u_converged = cn.obstacle_u;
+          }
+        const PlasticEnergies pe = commit_plasticity();
+
+        RollingStepRecord rec;
+        rec.step = step + 1;
+        rec.time = t1;
+        rec.delta = motion.delta(t1);
+        rec.force_normal = symmetry_factor_ * on_journal[1];
+        rec.force_tangential = symmetry_factor_ * on_journal[0];
+        rec.phi = motion.phi(t1);
+        rec.phi_rate = R.omega_B;
+        rec.gamma_rate = rate_new;
+        rec.gamma = gamma + rate_new * dt;
+        rec.slip_speed = motion.slip_speed(t1, rate_new);
+        rec.torque_journal = rs.torque_journal;
+        rec.torque_drive = -torque_bearing;
+        work_drive += 0.5 * (torque_drive_prev + rec.torque_drive) * (rec.phi - motion.phi(t));
+        work_push += 0.5 * (force_prev + rec.force_normal) * (rec.delta - motion.delta(t));
+        plastic += pe.plastic_work_step;
+        friction_work += fr;
+        rec.work_drive = work_drive;
+        rec.work_push = work_push;
+        rec.elastic_energy = pe.elastic_energy;
+        rec.plastic_dissipation = plastic;
+        rec.friction_dissipation = friction_work;
+        rec.kinetic_energy = 0.5 * inertia * rate_new * rate_new;
+        rec.energy_balance_error = work_drive + work_push - rec.elastic_energy - plastic -
+                                   friction_work - rec.kinetic_energy;
+        rec.max_plastic_strain = pe.max_plastic_strain;
+        rec.max_strain = pe.max_strain;
+        rec.plastic_volume = pe.plastic_volume;
+        rec.n_active = Utilities::MPI::sum(n_active, comm_);
+        rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
+        rec.spin_iterations = spin_evaluations;
+        rec.newton_iterations = rs.newton_iterations;
+        rec.contact_iterations = rs.contact_iterations;
+        rec.linear_iterations = rs.linear_iterations;
+        rec.cuts = cuts;
+        // paper Eqs. 4–8: N_B at X0 = (0, −R_B, 0), N_J the journal point under it at t = 0
+        const Vec3 X0{0.0, -G.R_B, 0.0};
+        const Vec3 xB = rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0},
+                                          rec.phi);
+        rec.phi_paper = rolling::paper_angle({xB[0] - X0[0], xB[1] - X0[1], 0.0}, G.R_B);
+        const Vec3 c0 = motion.centre_fixed(0.0), c1 = motion.centre_fixed(t1);
+        const Vec3 pJ = rolling::rotate_z({0.0, -G.R_J(), 0.0}, rec.gamma);
+        rec.gamma_paper = rolling::paper_angle(
+          {c1[0] + pJ[0] - c0[0], c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0}, G.R_J());
+        rec.phi_rate_paper = rec.phi_paper / t1;
+        rec.gamma_rate_paper = rec.gamma_paper / t1;
+        rec.wall_time = seconds();
+        torque_drive_prev = rec.torque_drive;
+        force_prev = rec.force_normal;
+        gamma = rec.gamma;
+        gamma_rate = rate_new;
+        t = t1;
+        times.push_back(t);
+        slips.push_back(rec.slip_speed);
+        result.rolling_steps.push_back(rec);
+
+        IncrementRecord inc = rs.record;
+        inc.delta = rec.delta;
+        inc.force = inc.force_support = inc.force_load = rec.force_normal;
+        inc.n_active = rec.n_active;
+        inc.n_slip = rec.n_slip;
+        inc.contact_iterations = rec.contact_iterations;
+        inc.linear_iterations = rec.linear_iterations;
+        inc.wall_time = rec.wall_time;
+        result.increments.push_back(inc);
+        if (rank_ == 0)
+          {
+            const double per_second = (seconds() - wall_steps_start) / t;
+            log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(t) +
+                      " s, delta " + format_value(rec.delta) + " m, F " +
+                      format_value(rec.force_normal) + " N, spin " +
+                      format_value(rec.gamma_rate) + " rad/s (slip " +
+                      format_value(rec.slip_speed) + " m/s), eps_p max " +
+                      format_value(rec.max_plastic_strain) + ", " +
+                      std::to_string(rec.spin_iterations) + " spin / " +
+                      std::to_string(rec.contact_iterations) + " contact iterations" +
+                      (cuts ? ", " + std::to_string(cuts) + " cuts" : "") + ", ETA " +
+                      log::format_duration(per_second * (t_end - t)));
+          }
+        if (options_.on_increment)
+          options_.on_increment(inc);
+        if (options_.on_rolling_step)
+          options_.on_rolling_step(rec);
+        const bool last = t >= t_end * (1.0 - 1e-12);
+        if (fields && (rec.step % R.field_stride == 0 || last))
+          write_fields(field_counter++, t);
+      }
+    if (result.message.empty() && t < t_end * (1.0 - 1e-12))
+      result.message = "the step limit (" + std::to_string(max_steps) + ") was reached at t = " +
+                       format_value(t) + " s";
+    // the end state: strains across the contact zone, the slip stages, the balance
+    result.strain_profile = bore_strain_profile(motion.phi(t), 30.0 * units::deg);
+    const auto stages = rolling::slip_stages(times, slips);
+    S.stages_found = stages.found;
+    S.slip_speed_max = stages.v_max;
+    S.end_of_slip = stages.end_of_slip;
+    S.settled = stages.settled;
+    S.slip_speed_final = stages.v_final;
+    if (!result.rolling_steps.empty())
+      {
+        const auto &last = result.rolling_steps.back();
+        S.max_plastic_strain = last.max_plastic_strain;
+        S.max_strain = last.max_strain;
+        const double work_in = std::abs(last.work_drive) + std::abs(last.work_push);
+        S.energy_balance_error = work_in > 0.0 ? std::abs(last.energy_balance_error) / work_in : 0.0;
+      }
+    result.field_files = field_files_;
+    result.complete = result.message.empty();
+    result.wall_time = seconds();
+    return result;
+  }
+} // namespace clearjoint::fe::detail

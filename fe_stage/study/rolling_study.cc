@@ -1,0 +1,17 @@
+// The rolling study (paper §3.4): the elastoplastic bearing ring, turning at ω_B, computed in its
+// co-rotating frame; the rigid journal pushed radially from first touch and turned by friction
+// alone. The whole ring is meshed (the contact zone travels round the bore as the bearing turns),
+// the axial mid-plane is a symmetry plane. solve/rolling_stepping.cc runs it.
+#include "fe_stage/study/study.h"
+
+namespace clearjoint::fe
+{
+  StudyPlan rolling_study(const FeScene &scene)
+  {
+    StudyPlan p = joint_study(scene, "rolling");
+    p.obstacle.kind = RigidObstacle::Kind::cylinder;
+    p.obstacle.offset = scene.geometry.c_r;  // first touch at the bore's bottom
+    p.rolling = true;
+    return p;
+  }
+} // namespace clearjoint::fe

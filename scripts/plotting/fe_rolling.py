@@ -1,0 +1,101 @@
+"""FE rolling study plots (fe_stage study rolling; the paper's §3.4, Figs. 10–12).
+
+    scripts/plot.py fe_rolling OUT.png CASE_DIR
+        from CASE_DIR/rolling_history.csv and CASE_DIR/rolling_strain_profile.csv:
+        the spin rates φ̇ (bearing) and γ̇ (journal) against time, exact and by the paper's
+        Eqs. 7–8 (Fig. 10); the slip speed at the contact with the slip stages; the contact
+        forces; the energy balance (drive and push work against stored elastic energy,
+        plastic and friction dissipation, the journal's kinetic energy); and the radial and
+        tangential strain profiles across the contact zone at the end (Fig. 12).
+"""
+import json
+import os
+
+import matplotlib.pyplot as plt
+
+from plotting._common import read_table
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__)
+        return 1
+    out, folder = argv
+    _, _, h = read_table(os.path.join(folder, "rolling_history.csv"))
+    profile_path = os.path.join(folder, "rolling_strain_profile.csv")
+    p = read_table(profile_path)[2] if os.path.exists(profile_path) else None
+    stages = None
+    summary_path = os.path.join(folder, "summary.json")
+    if os.path.exists(summary_path):
+        with open(summary_path) as f:
+            stages = json.load(f).get("rolling", {}).get("slip_stages")
+    t_ms = [x * 1e3 for x in h["time"]]
+
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8))
+    ax = axes[0][0]
+    ax.plot(t_ms, h["phi_rate"], "C0-", label="φ̇ bearing (driven)")
+    ax.plot(t_ms, h["phi_rate_paper"], "C0--", label="φ̇ by Eqs. 4–5, 7")
+    ax.plot(t_ms, h["gamma_rate"], "C1-", label="γ̇ journal (torque balance)")
+    ax.plot(t_ms, h["gamma_rate_paper"], "C1--", label="γ̇ by Eqs. 6, 8")
+    ax.set_xlabel("t [ms]")
+    ax.set_ylabel("spin rate [rad/s]")
+    ax.set_title("spin rates (paper Fig. 10)")
+    ax.legend(fontsize=7)
+
+    ax = axes[0][1]
+    ax.plot(t_ms, h["slip_speed"], "o-", ms=2)
+    ax.axhline(0.0, color="k", lw=0.5)
+    if stages and stages.get("found"):
+        for key, lab in [("end_of_slip", "end of gross slip"), ("settled", "settled")]:
+            ax.axvline(stages[key]["value"] * 1e3, color="C3", ls=":", lw=1)
+            ax.text(stages[key]["value"] * 1e3, ax.get_ylim()[1], " " + lab, fontsize=7,
+                    va="top", color="C3")
+    ax.set_xlabel("t [ms]")
+    ax.set_ylabel("slip speed ω_B R_B − γ̇ R_J [m/s]")
+    ax.set_title("relative speed at the contact (slip stages)")
+
+    ax = axes[0][2]
+    ax.plot(t_ms, h["force_normal"], label="normal (along +y, on the journal)")
+    ax.plot(t_ms, h["force_tangential"], label="tangential (along +x)")
+    ax.set_xlabel("t [ms]")
+    ax.set_ylabel("contact force [N]")
+    ax.set_title("contact force, full body")
+    ax.legend(fontsize=7)
+
+    ax = axes[1][0]
+    for key, lab in [("work_drive", "work of the drive (bearing torque)"),
+                     ("work_push", "work of the push (journal axis)"),
+                     ("elastic_energy", "stored elastic energy"),
+                     ("plastic_dissipation", "plastic dissipation"),
+                     ("friction_dissipation", "friction dissipation"),
+                     ("kinetic_energy", "journal kinetic energy"),
+                     ("energy_balance_error", "balance error")]:
+        ax.plot(t_ms, h[key], label=lab, ls=":" if key == "energy_balance_error" else "-")
+    ax.set_xlabel("t [ms]")
+    ax.set_ylabel("energy [J]")
+    ax.set_title("energy balance")
+    ax.legend(fontsize=7)
+
+    ax = axes[1][1]
+    ax.plot(t_ms, h["max_plastic_strain"], label="largest equivalent plastic strain")
+    ax.plot(t_ms, h["max_strain"], label="largest principal strain")
+    ax.set_xlabel("t [ms]")
+    ax.set_ylabel("strain [1]")
+    ax.set_title("plastic and total strain")
+    ax.legend(fontsize=7)
+
+    ax = axes[1][2]
+    if p:
+        arc_mm = [x * 1e3 for x in p["arc"]]
+        ax.plot(arc_mm, p["strain_radial"], label="radial")
+        ax.plot(arc_mm, p["strain_tangential"], label="tangential")
+        ax.plot(arc_mm, p["plastic_strain"], "k--", label="equivalent plastic")
+        ax.legend(fontsize=7)
+    ax.set_xlabel("arc along the bore from the contact point [mm]")
+    ax.set_ylabel("strain at the bore [1]")
+    ax.set_title("strain profile across the contact zone at the end (Fig. 12)")
+    for a in axes.flat:
+        a.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    return 0
