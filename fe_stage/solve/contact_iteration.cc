@@ -51,6 +51,26 @@ namespace clearjoint::fe::detail
         constraints_.distribute(solution_owned_);
         solution_ = solution_owned_;
         evaluate_contact(delta);
+        if (friction_ && log::level() <= log::Level::debug)
+          {
+            // the friction rows' own check: at a node that slipped in this solve the solved
+            // tangential force must be the linearised slip law it was given (round-off)
+            double mismatch = 0.0;
+            for (const auto &[dof, i] : slipping_)
+              if (nodes_[i].owned)
+                {
+                  const ContactNode &cn = nodes_[i];
+                  const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
+                  const Tensor<2, dim> Q = tangent_projection(cn) -
+                                           outer_product(cn.slip_direction, cn.slip_direction);
+                  const Tensor<1, dim> F =
+                    scene_.contact.mu * cn.lambda * cn.slip_direction +
+                    cn.kappa * (Q * (t - tangential_scale_ * c * contact_slip_increment(cn)));
+                  mismatch = std::max(mismatch, (t - F).norm());
+                }
+            log::debug("  friction rows: largest |t - F(u)| " +
+                       format_value(Utilities::MPI::max(mismatch, comm_)) + " N");
+          }
         const auto change = update_active_set(c, eps_g);
         const bool slip_settled = change.slip_residual <= slip_tolerance * change.force_scale;
         if (log::level() <= log::Level::debug)
