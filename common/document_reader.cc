@@ -408,6 +408,11 @@ namespace clearjoint
     return std::string::npos;
   }
 
+  std::string json_text(const json &value, const int indent)
+  {
+    return value.dump(indent, ' ', false, json::error_handler_t::replace);
+  }
+
   std::string json_excerpt(const json &value, const std::size_t max_chars)
   {
     std::string s;

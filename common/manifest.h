@@ -39,6 +39,9 @@ namespace clearjoint
     /// status: "complete", "incomplete" or "failed"; message: why (empty if complete).
     void write(const std::string &status, const std::string &message = "");
     bool written() const { return written_; }
+    /// No manifest at all (the destructor writes none): for an input error or an interrupt
+    /// that leaves nothing behind.
+    void discard() { written_ = true; }
 
     double elapsed_seconds() const;
 

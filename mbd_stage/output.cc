@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.h"
 #include "common/csv.h"
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/log.h"
@@ -65,7 +66,7 @@ namespace clearjoint::mbd
       else
         csv.commit_incomplete(r.failure);
     }
-    write_file_atomically(tmp_ + "/summary.json", r.summary.dump(2) + "\n");
+    write_file_atomically(tmp_ + "/summary.json", json_text(r.summary) + "\n");
     // Plots are drawn in the temporary folder too, so that an interrupt while plot.py runs
     // (it is stopped, common/plot_script.h) leaves DIR as it was.
     if (make_plots)

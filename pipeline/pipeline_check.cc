@@ -253,7 +253,7 @@ namespace clearjoint::pipeline
           scene["geometry"].erase("mesh");
         const std::string label = study.parameter + "=" + value_label(study.values[v]);
         const std::string file = scratch.file("fe_" + study.name + "_" + label + ".yaml");
-        write_file_atomically(file, scene.dump(2) + "\n");
+        write_file_atomically(file, json_text(scene) + "\n");
         std::vector<Origin> origins;
         preset_origins("fe", origins);
         for (const auto &[k, val] : study.overrides)
@@ -270,7 +270,7 @@ namespace clearjoint::pipeline
     {
       const nlohmann::json scene = compose_scene(config_, config_.impact->scene, "fe", {});
       const std::string file = scratch.file("fe_impact.yaml");
-      write_file_atomically(file, scene.dump(2) + "\n");
+      write_file_atomically(file, json_text(scene) + "\n");
       std::vector<Origin> origins;
       preset_origins("fe", origins);
       run_check("fe_stage", file, origins, "impact.scene",
@@ -347,7 +347,7 @@ namespace clearjoint::pipeline
       }
       const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
       const std::string file = scratch.file("mbd_" + m.name + ".yaml");
-      write_file_atomically(file, scene.dump(2) + "\n");
+      write_file_atomically(file, json_text(scene) + "\n");
       run_check("mbd_stage", file, origins, key + ".scene",
                 "MBD run " + m.name + " (scene " + m.scene + ")");
     }

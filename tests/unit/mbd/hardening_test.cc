@@ -232,3 +232,22 @@ TEST(MbdHardening, ARerunReplacesTheOldOutputsAsAWhole)
   EXPECT_FALSE(fs::exists(dir.file("out/stale_extra_file.vtu")));
   EXPECT_TRUE(fs::exists(dir.file("out/manifest.json")));
 }
+
+TEST(MbdHardening, PathsThatAreNotUtf8AreWrittenNotFatal)
+{
+  // A scene in a folder named with the byte 0xFF: its path goes into summary.json and the
+  // manifest (as U+FFFD); the run used to end in "unexpected failure" (exit 2) on that write.
+  test_support::ScratchDir dir("mbd_not_utf8_path");
+  const std::string folder = dir.file("d\xff");
+  fs::create_directories(folder);
+  nlohmann::json d = base();
+  d["duration"] = 0.002;
+  std::ofstream(folder + "/s.json") << d.dump();
+  ASSERT_EQ(test_support::run_command(std::string(MBD_STAGE_EXECUTABLE) + " '" + folder +
+                                        "/s.json' --no-plots --output '" + folder + "/out'",
+                                      dir.file("run.log")),
+            0)
+    << test_support::read_text(dir.file("run.log"));
+  EXPECT_EQ(read_json_file(folder + "/out/manifest.json")["status"], "complete");
+  EXPECT_TRUE(fs::is_regular_file(folder + "/out/summary.json"));
+}
