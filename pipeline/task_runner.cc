@@ -46,7 +46,7 @@ namespace clearjoint::pipeline
     {
       try
       {
-        const auto j = nlohmann::json::parse(read_file(stamp_path(dir)));
+        const auto j = parse_json_string(read_file(stamp_path(dir)), stamp_path(dir));
         if (j.at("identity").get<std::string>() == identity)
           return j.at("wall_time").at("value").get<double>();
       }
