@@ -193,3 +193,54 @@ TEST(PipelineCheck, TheImpactSectionIsChecked)
   std::string log;
   EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
 }
+
+// SIGINT and SIGTERM while a stage plots: run_pipeline passes the signal on (to the stage's
+// process group), the stage stops its plot.py and the run exits 130/143 with the task left as
+// '<dir>.partial'. The stand-in plot.py ignores SIGINT, so only the stage's SIGTERM ends it:
+// a stage that did not stop its child would leave it running.
+TEST(PipelineInterrupt, ASignalWhileAStagePlotsStopsItsPlotPy)
+{
+  for (const auto &[sig, code] : std::vector<std::pair<int, int>>{{SIGINT, 130}, {SIGTERM, 143}})
+  {
+    test_support::ScratchDir dir("pipeline_interrupt_stage_plot");
+    const Build b(dir);
+    pipeline(dir);
+    // The first stage that plots is fit_stage (the FE stand-in does not plot).
+    test_support::write_text(dir.file("plot.py"),
+                             "import os, signal, sys, time\n"
+                             "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+                             "open(os.environ['PLOT_PID'], 'w').write(str(os.getpid()))\n"
+                             "time.sleep(60)\n");
+    const std::string pid_file = dir.file("plot.pid");
+    const pid_t pid = test_support::start_process(
+      RUN_PIPELINE_EXE, {dir.file("p.yaml"), "--build-dir", b.root}, dir.file("log.txt"),
+      {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py"), "PLOT_PID=" + pid_file});
+    ASSERT_GE(pid, 0);
+    for (int i = 0; i < 6000 && test_support::read_text(pid_file).empty(); ++i)
+      usleep(20000);
+    ASSERT_FALSE(test_support::read_text(pid_file).empty())
+      << test_support::read_text(dir.file("log.txt"));
+    const pid_t plot = std::stoi(test_support::read_text(pid_file));
+    kill(pid, sig);
+    ASSERT_EQ(test_support::wait_exit_code(pid), code)
+      << test_support::read_text(dir.file("log.txt"));
+    bool gone = false;
+    for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
+      gone = kill(plot, 0) != 0;
+    EXPECT_TRUE(gone) << "the stage's plot.py was stopped";
+    // The fit task that was plotting is left as '<dir>.partial' (redone by the next run), with
+    // no law in it (fit_stage removes its temporaries) and none under a final name.
+    bool partial = false;
+    for (const auto &e : fs::recursive_directory_iterator(dir.file("out/r/fit")))
+    {
+      const std::string name = e.path().filename().string();
+      if (e.is_directory() && name.size() > 8 && name.substr(name.size() - 8) == ".partial")
+        partial = true;
+      EXPECT_NE(name, "law.json") << e.path();
+      EXPECT_EQ(name.find(".tmp."), std::string::npos) << e.path();
+    }
+    EXPECT_TRUE(partial) << "the interrupted fit task is marked .partial";
+    const std::string manifest = test_support::read_text(dir.file("out/r/manifest.json"));
+    EXPECT_NE(manifest.find("\"status\": \"incomplete\""), std::string::npos) << manifest;
+  }
+}
