@@ -244,3 +244,37 @@ TEST(PipelineInterrupt, ASignalWhileAStagePlotsStopsItsPlotPy)
     EXPECT_NE(manifest.find("\"status\": \"incomplete\""), std::string::npos) << manifest;
   }
 }
+
+// The fit commands are checked too (fit_stage --check with the options the run will give):
+// a preset's measured discretisation error that fit_stage refuses stops the run before its
+// first task, naming the preset key (it used to fail at the first fit, after the FE cases).
+TEST(PipelineCheck, TheFitCommandsAreChecked)
+{
+  test_support::ScratchDir dir("pipeline_check_fit");
+  const Build b(dir);
+  for (const std::string percent : {"100", "4.8"})
+  {
+    std::string text = test_support::read_text(pipeline(dir));
+    const std::string fast = "fast: {fe: null, mbd: null}";
+    text.replace(text.find(fast), fast.size(),
+                 "fast: {fe: null, mbd: null, measured: {note: n, error_F_max: {thickness: "
+                 "{percent: " + percent + ", where: w}}}}");
+    test_support::write_text(dir.file("p.yaml"), text);
+    for (const std::string args : {"--check", ""})
+    {
+      std::string log;
+      const int rc = run_pipeline(dir, b, args, log);
+      if (percent == "100")
+      {
+        EXPECT_EQ(rc, 1) << log;
+        EXPECT_NE(log.find("key 'presets.fast.measured.error_F_max.thickness.percent'"),
+                  std::string::npos)
+          << log;
+        EXPECT_FALSE(fs::exists(dir.file("out"))) << "nothing under the output root: " << log;
+      }
+      else
+        EXPECT_EQ(rc, 0) << log;
+      fs::remove_all(dir.file("out"));
+    }
+  }
+}
