@@ -34,15 +34,8 @@ namespace clearjoint::mbd
     while (dir_.size() > 1 && dir_.back() == '/')
       dir_.pop_back();
     tmp_ = dir_ + ".tmp." + std::to_string(::getpid());
-    std::error_code ec;
     check_output_replaceable(dir_, "mbd_stage");
-    const fs::path parent = fs::path(dir_).parent_path();
-    if (!parent.empty())
-      fs::create_directories(parent, ec);
-    fs::remove_all(tmp_, ec);
-    if (!fs::create_directories(tmp_, ec) || ec)
-      throw InputError("", "--output", dir_, "a directory that can be created",
-                       "cannot create " + tmp_ + ": " + ec.message());
+    create_work_folder(tmp_, dir_);
   }
 
   OutputWriter::~OutputWriter()

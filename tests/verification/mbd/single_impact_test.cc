@@ -178,3 +178,28 @@ TEST(ImpactCompare, WritesTheComparisonAndRejectsBadInput)
             1);
   EXPECT_FALSE(std::filesystem::exists(out2));
 }
+
+// An --output that cannot be made (a file in the way) is an input error naming --output, for
+// impact_compare and mbd_stage alike (impact_compare used to end in "unexpected failure", 2).
+TEST(ImpactCompare, AnOutputFolderThatCannotBeMadeIsAnInputError)
+{
+  test_support::ScratchDir dir("impact_compare_output");
+  const std::string sweep = dir.file("sweep.csv");
+  test_support::write_text(sweep,
+                           "# units: m/s,N,m,s,1,kg\n"
+                           "v_in_m_per_s,peak_force_N,delta_max_m,contact_duration_s,"
+                           "restitution,journal_mass_kg\n"
+                           "0.1,481.4,9.8e-07,3.37e-05,0.9754,0.0398\n# status: complete\n");
+  test_support::write_text(dir.file("a_file"), "x");
+  const std::string law = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  EXPECT_EQ(test_support::run_command(std::string(IMPACT_COMPARE_EXE) + " --law " + law +
+                                        " --fe-sweep " + sweep + " --no-plots --output " +
+                                        dir.file("a_file/out"),
+                                      dir.file("log.txt")),
+            1)
+    << test_support::read_text(dir.file("log.txt"));
+  EXPECT_NE(test_support::read_text(dir.file("log.txt")).find("key '--output'"),
+            std::string::npos)
+    << test_support::read_text(dir.file("log.txt"));
+  EXPECT_EQ(test_support::read_text(dir.file("a_file")), "x");
+}
