@@ -1,6 +1,7 @@
 // run_pipeline --check and the check every run starts with (issue 16 item 2): a bad value in
 // any generated scene is an input error naming the pipeline key that produced it, exit 1, and
 // nothing is created under the output root. Stand-in FE stage, the real mbd_stage.
+#include "common/document_reader.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -277,4 +278,27 @@ TEST(PipelineCheck, TheFitCommandsAreChecked)
       fs::remove_all(dir.file("out"));
     }
   }
+}
+
+// Run from a folder whose name is not UTF-8 (a byte 0xFF): the scene paths made absolute from
+// it go into pipeline_summary.json and the stages' manifests as U+FFFD, and the run completes
+// (the summary's write used to throw: "a path with a byte 0xFF makes run_pipeline abort").
+TEST(PipelineRun, AWorkingFolderThatIsNotUtf8)
+{
+  test_support::ScratchDir dir("pipeline_not_utf8_cwd");
+  const Build b(dir);
+  const std::string folder = dir.file("p\xff");
+  fs::create_directories(folder);
+  pipeline(dir, ", overrides: {duration: 0.002}");
+  std::string text = test_support::read_text(dir.file("p.yaml"));
+  text.replace(text.find(dir.file("fe.yaml")), dir.file("fe.yaml").size(), "fe.yaml");
+  test_support::write_text(folder + "/p.yaml", text);
+  test_support::write_text(folder + "/fe.yaml", "{\"geometry\": {\"t_B\": 0.004}}\n");
+  const int rc = test_support::run_command("cd '" + folder + "' && " + RUN_PIPELINE_EXE +
+                                             " p.yaml --no-plots --build-dir " + b.root,
+                                           dir.file("log.txt"));
+  ASSERT_EQ(rc, 0) << test_support::read_text(dir.file("log.txt"));
+  const std::string summary = test_support::read_text(dir.file("out/r/pipeline_summary.json"));
+  EXPECT_NE(summary.find("p\xef\xbf\xbd"), std::string::npos) << summary;
+  EXPECT_NO_THROW(read_json_file(dir.file("out/r/pipeline_summary.json")));
 }
