@@ -76,7 +76,10 @@ namespace clearjoint::pipeline
       study.mesh_parameters, run_dir(), options_.build_dir);
     const std::string msh = mesh.output_dir + "/mesh.msh";
     if (dry_run)
-      planned_meshes_.insert(mesh.output_dir);
+    {
+      if (planned_meshes_.insert(mesh.output_dir).second)  // each mesh once
+        check_geo_parses(mesh, where);
+    }
     else
     {
       auto it = meshes_.find(mesh.output_dir);

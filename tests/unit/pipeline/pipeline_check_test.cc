@@ -302,3 +302,35 @@ TEST(PipelineRun, AWorkingFolderThatIsNotUtf8)
   EXPECT_NE(summary.find("p\xef\xbf\xbd"), std::string::npos) << summary;
   EXPECT_NO_THROW(read_json_file(dir.file("out/r/pipeline_summary.json")));
 }
+
+// A .geo named by an FE scene is parsed by Gmsh in the check (gmsh -0 with the mesh task's
+// -setnumber values): one Gmsh cannot read is an input error naming geometry.mesh before any
+// task (it used to pass the check and fail as the run's first task); the shipped one passes.
+TEST(PipelineCheck, AGeoFileGmshCannotReadIsAnInputError)
+{
+  if (std::system("command -v gmsh > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "gmsh is not installed";
+  test_support::ScratchDir dir("pipeline_check_geo");
+  const Build b(dir);
+  test_support::write_text(dir.file("bad.geo"), "Point(1) = {0, 0, 0\n");
+  const std::string good =
+    std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/flanged_bearing.geo";
+  for (const std::string &geo : {dir.file("bad.geo"), good})
+  {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("    parameter:"), 0,
+                 "    overrides: {geometry.mesh: " + geo + "}\n");
+    test_support::write_text(dir.file("p.yaml"), text);
+    std::string log;
+    const int rc = run_pipeline(dir, b, "--check", log);
+    if (geo == good)
+      EXPECT_EQ(rc, 0) << log;
+    else
+    {
+      EXPECT_EQ(rc, 1) << log;
+      EXPECT_NE(log.find("key 'geometry.mesh'"), std::string::npos) << log;
+      EXPECT_NE(log.find("gmsh -0: Error"), std::string::npos) << log;
+    }
+    EXPECT_FALSE(fs::exists(dir.file("out"))) << log;
+  }
+}
