@@ -229,25 +229,93 @@ namespace clearjoint
       return i == s.size();
     }
 
-    /// Parser events are only counted (per document) — see parse_yaml_string.
-    class DocumentCounter : public YAML::EventHandler
+    /// The first pass over a YAML text (see parse_yaml_string): counts documents and follows
+    /// the key path of every node from the parser's events, so that nesting deeper than
+    /// max_document_depth is reported with its key path before yaml-cpp builds the tree.
+    class DocumentScanner : public YAML::EventHandler
     {
     public:
-      void OnDocumentStart(const YAML::Mark &) override {}
-      void OnDocumentEnd() override {}
-      void OnNull(const YAML::Mark &, YAML::anchor_t) override {}
-      void OnAlias(const YAML::Mark &, YAML::anchor_t) override {}
-      void OnScalar(const YAML::Mark &, const std::string &, YAML::anchor_t,
-                    const std::string &) override
+      explicit DocumentScanner(const std::string &source)
+        : source_(source)
       {}
+
+      void OnDocumentStart(const YAML::Mark &) override { stack_.clear(); }
+      void OnDocumentEnd() override {}
+      void OnNull(const YAML::Mark &, YAML::anchor_t) override { node_done(nullptr); }
+      void OnAlias(const YAML::Mark &, YAML::anchor_t) override { node_done(nullptr); }
+      void OnScalar(const YAML::Mark &, const std::string &, YAML::anchor_t,
+                    const std::string &value) override
+      {
+        node_done(&value);
+      }
       void OnSequenceStart(const YAML::Mark &, const std::string &, YAML::anchor_t,
                            YAML::EmitterStyle::value) override
-      {}
-      void OnSequenceEnd() override {}
+      {
+        open(false);
+      }
+      void OnSequenceEnd() override { close(); }
       void OnMapStart(const YAML::Mark &, const std::string &, YAML::anchor_t,
                       YAML::EmitterStyle::value) override
-      {}
-      void OnMapEnd() override {}
+      {
+        open(true);
+      }
+      void OnMapEnd() override { close(); }
+
+    private:
+      struct Frame
+      {
+        bool map;
+        bool expect_key;
+        std::string key;      // the key whose value comes next (maps)
+        std::size_t index;    // the index of the next element (lists)
+        std::string path;     // this container's key path
+      };
+
+      /// Key path of the node about to start.
+      std::string next_path() const
+      {
+        if (stack_.empty())
+          return "";
+        const Frame &f = stack_.back();
+        if (f.map)
+          return child_path(f.path, f.expect_key ? "(key)" : f.key);
+        return index_path(f.path, f.index);
+      }
+
+      void open(const bool map)
+      {
+        const std::string path = next_path();
+        if (static_cast<int>(stack_.size()) >= max_document_depth)
+          too_deep(source_, path);
+        stack_.push_back({map, true, "", 0, path});
+      }
+
+      void close()
+      {
+        if (!stack_.empty())
+          stack_.pop_back();
+        node_done(nullptr);
+      }
+
+      /// A node ended: a key (its text, if a scalar) or a value.
+      void node_done(const std::string *scalar)
+      {
+        if (stack_.empty())
+          return;
+        Frame &f = stack_.back();
+        if (!f.map)
+          ++f.index;
+        else if (f.expect_key)
+        {
+          f.key = scalar ? *scalar : "(key)";
+          f.expect_key = false;
+        }
+        else
+          f.expect_key = true;
+      }
+
+      const std::string &source_;
+      std::vector<Frame> stack_;
     };
 
     class YamlConverter
@@ -408,6 +476,11 @@ namespace clearjoint
     return std::string::npos;
   }
 
+  std::string json_text(const json &value, const int indent)
+  {
+    return value.dump(indent, ' ', false, json::error_handler_t::replace);
+  }
+
   std::string json_excerpt(const json &value, const std::size_t max_chars)
   {
     std::string s;
@@ -476,13 +549,14 @@ namespace clearjoint
     YAML::Node document;
     try
     {
-      // Count the documents first, at most two: yaml-cpp 0.7's LoadAll never ends on a stray
-      // ',' at block level (",x" makes empty documents forever — found by fuzz_document).
+      // Scan the documents first, at most two: yaml-cpp 0.7's LoadAll never ends on a stray
+      // ',' at block level (",x" makes empty documents forever — found by fuzz_document); the
+      // scan also stops deep nesting, naming its key path.
       std::istringstream stream(text);
       YAML::Parser parser(stream);
-      DocumentCounter counter;
+      DocumentScanner scanner(source_name);
       int n_documents = 0;
-      while (n_documents < 2 && parser.HandleNextDocument(counter))
+      while (n_documents < 2 && parser.HandleNextDocument(scanner))
         ++n_documents;
       if (n_documents > 1)
         throw InputError(source_name, "(top level)", "more than one document", "one YAML document",

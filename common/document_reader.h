@@ -46,6 +46,12 @@ namespace clearjoint
   /// surrogates and code points above U+10FFFF included), or std::string::npos.
   std::size_t first_invalid_utf8(const std::string &text);
 
+  /// A document as text for a file (indent as nlohmann's dump): never throws on strings that
+  /// are not UTF-8 — paths from the command line or the working directory may hold any byte
+  /// (a folder named with 0xFF); such bytes are written as U+FFFD rather than the stage
+  /// aborting on its last write.
+  std::string json_text(const nlohmann::json &value, int indent = 2);
+
   /// A value as short text for messages: never throws (invalid UTF-8 replaced), at most
   /// max_chars characters ("..." appended when cut).
   std::string json_excerpt(const nlohmann::json &value, std::size_t max_chars = 120);

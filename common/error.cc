@@ -16,7 +16,8 @@ namespace clearjoint
       if (!key_path.empty())
         m += ": key '" + key_path + "'";
       if (!value.empty())
-        m += " has value '" + value + "'";
+        // Without a key ("input error in f.yaml: value '0xFF'; allowed: UTF-8 text (...)").
+        m += (key_path.empty() ? ": value '" : " has value '") + value + "'";
       if (!allowed.empty())
         m += "; allowed: " + allowed;
       if (!detail.empty())

@@ -121,6 +121,18 @@ namespace clearjoint
     written_ = true;
   }
 
+  void create_work_folder(const std::string &work, const std::string &dir)
+  {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::remove_all(work, ec);
+    ec.clear();
+    if (!fs::create_directories(work, ec) || ec)
+      throw InputError("", "--output", dir, "a directory that can be created",
+                       "cannot create " + work + ": " +
+                         (ec ? ec.message() : std::string("it already exists")));
+  }
+
   void check_output_replaceable(const std::string &dir, const std::string &stage)
   {
     namespace fs = std::filesystem;

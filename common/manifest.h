@@ -39,6 +39,9 @@ namespace clearjoint
     /// status: "complete", "incomplete" or "failed"; message: why (empty if complete).
     void write(const std::string &status, const std::string &message = "");
     bool written() const { return written_; }
+    /// No manifest at all (the destructor writes none): for an input error or an interrupt
+    /// that leaves nothing behind.
+    void discard() { written_ = true; }
 
     double elapsed_seconds() const;
 
@@ -61,4 +64,9 @@ namespace clearjoint
   /// output of the same `stage` (its manifest.json says so): never delete a folder the stage
   /// did not write. Throws InputError naming --output otherwise.
   void check_output_replaceable(const std::string &dir, const std::string &stage);
+
+  /// Creates `work` (the temporary folder DIR.tmp.<pid> a stage writes before renaming it to
+  /// `dir`), and the folders above it, after removing a stale one. InputError naming --output if
+  /// it cannot be made (a file in the way, no permission) — not an "unexpected failure".
+  void create_work_folder(const std::string &work, const std::string &dir);
 } // namespace clearjoint

@@ -2,6 +2,7 @@
 
 #include "common/csv.h"
 #include "common/error.h"
+#include "common/interrupt.h"
 #include "common/log.h"
 #include "common/manifest.h"
 #include "common/plot_script.h"
@@ -17,6 +18,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
+#include <optional>
+
+#include <unistd.h>
 
 namespace clearjoint::fit
 {
@@ -188,22 +193,106 @@ namespace clearjoint::fit
     }
   }
 
+  namespace
+  {
+    /// The outputs of one fit_stage run (OUT, STEM.png, STEM.manifest.json) are written under
+    /// temporary names (STEM.tmp.<pid>.json, STEM.tmp.<pid>.png) and renamed into place only
+    /// when the whole output is complete. Whatever was not committed is removed when the run
+    /// ends — by an input error, a numerical failure or an interrupt — together with the
+    /// folder of --output if this run created it and left it empty. An earlier run's outputs
+    /// stay as they were until the new ones replace them.
+    class FitOutputs
+    {
+    public:
+      explicit FitOutputs(const std::string &output)
+        : output_(output)
+      {
+        const fs::path out(output);
+        dir_ = out.parent_path();
+        stem_ = (dir_ / out.stem()).string();
+        const std::string tag = ".tmp." + std::to_string(::getpid());
+        tmp_law_ = stem_ + tag + ".json";
+        tmp_png_ = stem_ + tag + ".png";
+      }
+      ~FitOutputs()
+      {
+        std::error_code ec;
+        fs::remove(tmp_law_, ec);
+        fs::remove(tmp_png_, ec);
+        if (created_dir_)  // from the folder of --output up to the top-most one created
+          for (fs::path d = dir_; !d.empty(); d = d.parent_path())
+          {
+            if (!fs::is_empty(d, ec) || ec || !fs::remove(d, ec))
+              break;
+            if (d == created_top_)
+              break;
+          }
+      }
+
+      /// Creates the folder of --output if needed; InputError naming --output if it cannot be.
+      void make_folder()
+      {
+        if (dir_.empty() || fs::is_directory(dir_))
+          return;
+        std::error_code ec;
+        fs::path missing = dir_;  // the top-most folder this run creates (removed if empty)
+        while (!missing.parent_path().empty() && !fs::exists(missing.parent_path(), ec))
+          missing = missing.parent_path();
+        fs::create_directories(dir_, ec);
+        if (ec)
+          throw InputError("", "--output", output_, "a file in a folder that can be created",
+                           "cannot create " + dir_.string() + ": " + ec.message());
+        created_dir_ = true;
+        created_top_ = missing;
+      }
+
+      const std::string &tmp_law() const { return tmp_law_; }
+      const std::string &tmp_png() const { return tmp_png_; }
+      std::string png() const { return stem_ + ".png"; }
+      std::string manifest() const { return stem_ + ".manifest.json"; }
+
+      /// Moves the temporaries into place: the plot (or, if none was made, an earlier run's
+      /// plot is removed, so it cannot be mistaken for this law's), then the law.
+      void commit(const bool plotted)
+      {
+        std::error_code ec;
+        if (plotted)
+          fs::rename(tmp_png_, png(), ec);
+        else
+          fs::remove(png(), ec);
+        if (ec)
+          throw NumericalError("cannot put " + png() + " in place: " + ec.message());
+        fs::rename(tmp_law_, output_, ec);
+        if (ec)
+          throw NumericalError("cannot rename " + tmp_law_ + " to " + output_ + ": " +
+                               ec.message());
+        created_dir_ = false;
+      }
+
+    private:
+      std::string output_, stem_, tmp_law_, tmp_png_;
+      fs::path dir_, created_top_;
+      bool created_dir_ = false;
+    };
+  } // namespace
+
   int run_fit_command(const FitCommand &c, const int argc, const char *const *argv)
   {
-    const fs::path out(c.output);
-    if (!out.parent_path().empty() && !fs::is_directory(out.parent_path()))
-      fs::create_directories(out.parent_path());
-    const std::string stem = (out.parent_path() / out.stem()).string();
-    Manifest manifest("fit_stage", stem + ".manifest.json", argc, argv);
+    FitOutputs files(c.output);
+    Manifest manifest("fit_stage", files.manifest(), argc, argv);
     manifest.set_library_version("ceres", CERES_VERSION_STRING);
     try
     {
+      // Everything is read and fitted before anything is written: an input error leaves
+      // nothing behind.
       nlohmann::json scene = nullptr;
       if (c.scene_file)
       {
         manifest.add_input(*c.scene_file);
         scene = read_structured_file(*c.scene_file);
       }
+      std::optional<laws::LawFile> single;
+      std::optional<laws::LawFamily> family;
       if (!c.family_parameter)
       {
         if (c.inputs.size() != 1)
@@ -213,13 +302,13 @@ namespace clearjoint::fit
         laws::LawFile law = fit_csv_file(c.inputs[0], c.options, scene, c.delta_ref);
         law.discretisation_error = c.discretisation_error;
         print_law(c.inputs[0], law);
-        laws::write_law_file(c.output, law);
         manifest.extra()["K"] = {{"value", law.law.K}, {"unit", "N/m^n"}};
         manifest.extra()["n"] = law.law.n;
         manifest.extra()["r_squared"] = law.diagnostics->r_squared;
         if (law.discretisation_error)
           manifest.extra()["discretisation_error_F_relative"] =
             law.discretisation_error->F_relative;
+        single = std::move(law);
       }
       else
       {
@@ -250,30 +339,47 @@ namespace clearjoint::fit
         const double ref = c.delta_ref.value_or(delta_ref);
         for (auto &m : members)
           m.law.delta_ref = ref;
-        const laws::LawFamily family(*c.family_parameter, c.family_unit, ref, std::move(members),
-                                     laws::parse_range_policy(c.family_policy));
-        laws::write_law_family(c.output, family);
+        family.emplace(*c.family_parameter, c.family_unit, ref, std::move(members),
+                       laws::parse_range_policy(c.family_policy));
       }
-      manifest.add_output(c.output);
+
+      files.make_folder();
+      if (single)
+        laws::write_law_file(files.tmp_law(), *single);
+      else
+        laws::write_law_family(files.tmp_law(), *family);
+      bool plotted = false;
       if (c.plots)
-      {
-        const std::string png = stem + ".png";
-        if (run_plot_script(c.family_parameter ? "law_family" : "fit",
-                            {c.output, "--output", png}))
-          manifest.add_output(png);
-      }
+        plotted = run_plot_script(c.family_parameter ? "law_family" : "fit",
+                                  {files.tmp_law(), "--output", files.tmp_png()}) &&
+                  fs::is_regular_file(files.tmp_png());
+      interrupt::throw_if_requested("before its outputs were put in place");
+      files.commit(plotted);
+      manifest.add_output(c.output);
+      if (plotted)
+        manifest.add_output(files.png());
       manifest.write("complete");
       log::info("wrote " + c.output);
       return exit_success;
     }
-    catch (const InputError &e)
-    {
-      manifest.write("failed", e.what());
-      throw;
-    }
     catch (const NumericalError &e)
     {
-      manifest.write("failed", e.what());
+      // A fit that did not converge: no law, a manifest that says why (exit 2).
+      try
+      {
+        files.make_folder();
+        manifest.write("failed", e.what());
+      }
+      catch (...)
+      {
+        manifest.discard();
+      }
+      throw;
+    }
+    catch (...)
+    {
+      // Input errors and interrupts leave nothing new behind (an earlier run's outputs stay).
+      manifest.discard();
       throw;
     }
   }

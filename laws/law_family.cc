@@ -1,6 +1,7 @@
 #include "laws/law_family.h"
 
 #include "common/atomic_file.h"
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "common/strict_reader.h"
 
@@ -123,7 +124,7 @@ namespace clearjoint::laws
 
   void write_law_family(const std::string &path, const LawFamily &family)
   {
-    write_file_atomically(path, to_json(family).dump(2) + "\n");
+    write_file_atomically(path, json_text(to_json(family)) + "\n");
   }
 
   std::string peek_schema(const std::string &path)

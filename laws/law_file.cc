@@ -1,6 +1,7 @@
 #include "laws/law_file.h"
 
 #include "common/atomic_file.h"
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "common/strict_reader.h"
 #include "common/units.h"
@@ -167,7 +168,7 @@ namespace clearjoint::laws
 
     l.scene = top.raw("scene");
     if (!l.scene.is_null() && !l.scene.is_object())
-      top.fail("scene", l.scene.dump(), "null or a mapping of scene parameters");
+      top.fail("scene", json_excerpt(l.scene), "null or a mapping of scene parameters");
     if (top.has("diagnostics"))
       l.diagnostics = diagnostics_from_json(top.object("diagnostics"));
     else
@@ -196,6 +197,6 @@ namespace clearjoint::laws
 
   void write_law_file(const std::string &path, const LawFile &law)
   {
-    write_file_atomically(path, to_json(law).dump(2) + "\n");
+    write_file_atomically(path, json_text(to_json(law)) + "\n");
   }
 } // namespace clearjoint::laws

@@ -108,8 +108,7 @@ int main(int argc, char **argv)
       throw InputError("", "--output", "(none)", "a directory");
     check_output_replaceable(output, "impact_compare");
     const std::string work = output + ".tmp." + std::to_string(::getpid());
-    fs::remove_all(work);
-    fs::create_directories(work);
+    create_work_folder(work, output);
     try
       {
         std::vector<std::string> cols = {"v_in", "journal_mass", "fe_peak_force",

@@ -39,7 +39,8 @@ int main(int argc, char **argv)
              "scene, law file or command line; nothing is written)\n  2  numerical failure "
              "(integrator error, non-finite state, law range under 'error'); the partial "
              "outputs are kept and marked failed; also when the scene's budget (budget.wall_time, "
-             "budget.steps) is exceeded)\n  130/143  interrupted by SIGINT/SIGTERM (DIR.tmp.PID "
+             "budget.steps) is exceeded; budget.output_rows is checked before the run)\n"
+             "  130/143  interrupted by SIGINT/SIGTERM (DIR.tmp.PID "
              "removed, an earlier DIR left as it was)");
   try
   {

@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.h"
 #include "common/csv.h"
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/log.h"
@@ -33,15 +34,8 @@ namespace clearjoint::mbd
     while (dir_.size() > 1 && dir_.back() == '/')
       dir_.pop_back();
     tmp_ = dir_ + ".tmp." + std::to_string(::getpid());
-    std::error_code ec;
     check_output_replaceable(dir_, "mbd_stage");
-    const fs::path parent = fs::path(dir_).parent_path();
-    if (!parent.empty())
-      fs::create_directories(parent, ec);
-    fs::remove_all(tmp_, ec);
-    if (!fs::create_directories(tmp_, ec) || ec)
-      throw InputError("", "--output", dir_, "a directory that can be created",
-                       "cannot create " + tmp_ + ": " + ec.message());
+    create_work_folder(tmp_, dir_);
   }
 
   OutputWriter::~OutputWriter()
@@ -65,7 +59,7 @@ namespace clearjoint::mbd
       else
         csv.commit_incomplete(r.failure);
     }
-    write_file_atomically(tmp_ + "/summary.json", r.summary.dump(2) + "\n");
+    write_file_atomically(tmp_ + "/summary.json", json_text(r.summary) + "\n");
     // Plots are drawn in the temporary folder too, so that an interrupt while plot.py runs
     // (it is stopped, common/plot_script.h) leaves DIR as it was.
     if (make_plots)

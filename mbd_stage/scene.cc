@@ -416,10 +416,22 @@ namespace clearjoint::mbd
       StrictObject bo = top.object("budget");
       scene.max_wall_time = bo.number_or("wall_time", scene.max_wall_time, Range::positive("s"));
       scene.max_steps = bo.integer_or("steps", scene.max_steps, 1, 1'000'000'000'000L);
+      scene.max_output_rows =
+        bo.integer_or("output_rows", scene.max_output_rows, 1, 1'000'000'000'000L);
       bo.finish();
     }
     else
       top.number_or("budget", 0.0, Range::any());
+    // The time series has one row per output_interval (~0.5 kB each): a duration of 1e300 s,
+    // or an interval of 1e-12 s, would fill the disk long before any budget stops the run.
+    if (const double rows = std::floor(scene.duration / scene.output_interval) + 1.0;
+        !(rows <= static_cast<double>(scene.max_output_rows)))
+      top.fail("integrator.output_interval", format_value(scene.output_interval),
+               "at least duration / budget.output_rows = " +
+                 format_value(scene.duration / static_cast<double>(scene.max_output_rows)) +
+                 " s (duration " + format_value(scene.duration) + " s would give " +
+                 format_value(rows) + " rows of timeseries.csv, ~0.5 kB each; raise "
+                 "output_interval, shorten duration or raise budget.output_rows)");
     top.finish();
 
     sys->finalize(0.0);

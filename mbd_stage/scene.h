@@ -22,7 +22,8 @@
 //                  max_step (s, 0 = none), output_interval (s)}
 // stabilization: {alpha, beta} (1/s)                                       # optional
 // outputs:       {slider: {body, axis}, crank: {body, axis}}               # optional
-// budget:        {wall_time (s, default 14400), steps (default 1e7)}       # optional
+// budget:        {wall_time (s, default 14400), steps (default 1e7),
+//                  output_rows (default 1e7: duration / output_interval)}  # optional
 #pragma once
 
 #include "mbd_stage/integrator.h"
@@ -60,6 +61,9 @@ namespace clearjoint::mbd
     /// 100 times beyond that.
     double max_wall_time = 14400.0;  ///< [s] budget.wall_time (4 h)
     long max_steps = 10'000'000;     ///< budget.steps: accepted integrator steps
+    /// budget.output_rows: rows of timeseries.csv (duration / output_interval + 1), checked
+    /// before the run; 1e7 rows are ~5 GB, 10 times a 10 s run at the shipped 1e-5 s.
+    long max_output_rows = 10'000'000;
     nlohmann::json raw;  ///< the scene as read (for the summary)
     /// The assembled, finalised system (initial velocities made consistent).
     std::shared_ptr<MultibodySystem> system;

@@ -4,6 +4,7 @@
 #include "common/sha256.h"
 #include "pipeline/pipeline_config.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -112,5 +113,46 @@ namespace clearjoint::pipeline
     t.output_dir = (fs::path(run_dir) / "mesh" / (stem + "-" + sha256_hex(key).substr(0, 12))).string();
     t.name = "mesh/" + fs::path(t.output_dir).filename().string();
     return t;
+  }
+
+  void check_geo_parses(const Task &mesh, const std::string &where)
+  {
+    const std::string geo = mesh.args.at(0);
+    const std::string base =
+      (fs::temp_directory_path() / ("clearjoint-geo-check-" + std::to_string(::getpid()))).string();
+    std::vector<std::string> words = {"gmsh", "-0", geo};
+    words.insert(words.end(), mesh.args.begin() + 2, mesh.args.end());  // -setnumber NAME VALUE
+    words.insert(words.end(), {"-o", base + ".geo_unrolled"});
+    std::error_code ec;
+    fs::remove(base + ".log", ec);
+    const int status = run_process(words, base + ".log");
+    std::string log;
+    {
+      std::ifstream in(base + ".log");
+      std::stringstream text;
+      text << in.rdbuf();
+      log = text.str();
+    }
+    fs::remove(base + ".log", ec);
+    fs::remove(base + ".geo_unrolled", ec);
+    // gmsh often exits 0 after an error: its "Error" lines decide too (as in make_mesh).
+    std::string error;
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind("Error", 0) == 0)
+      {
+        error = line;
+        break;
+      }
+    const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (exited_ok && error.empty())
+      return;
+    if (error.empty())
+      error = "gmsh exited with status " +
+              std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    throw InputError(where, "geometry.mesh", geo,
+                     "a .geo file Gmsh reads (with the scene's joint dimensions and the study's "
+                     "mesh_parameters)",
+                     "gmsh -0: " + error);
   }
 } // namespace clearjoint::pipeline

@@ -37,4 +37,10 @@ namespace clearjoint::pipeline
   Task make_mesh_task(const std::string &geo, const std::map<std::string, double> &joint,
                       const std::map<std::string, double> &parameters, const std::string &run_dir,
                       const std::string &build_dir);
+
+  /// run_pipeline --check (and every run's check): the mesh task's .geo is parsed by Gmsh with
+  /// the task's -setnumber values (`gmsh -0`: read and written back unrolled, not meshed, ~0.2 s)
+  /// so that a .geo Gmsh cannot read is an input error before the first task rather than a
+  /// failed mesh task. InputError naming `where` and geometry.mesh with Gmsh's first error.
+  void check_geo_parses(const Task &mesh_task, const std::string &where);
 } // namespace clearjoint::pipeline

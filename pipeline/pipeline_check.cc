@@ -194,12 +194,15 @@ namespace clearjoint::pipeline
     }
 
     const Scratch scratch;
-    const auto run_check = [&](const std::string &stage, const std::string &scene_file,
-                               const std::vector<Origin> &origins,
-                               const std::string &base_key, const std::string &what) {
-      const std::string log_path = scene_file + ".log";
-      const int status =
-        run_process({stage_executable(stage), scene_file, "--check", "-q"}, log_path);
+    // Runs STAGE ARGS... --check -q; the log goes to log_path.
+    const auto run_stage_check = [&](const std::string &stage, std::vector<std::string> args,
+                                     const std::string &log_path,
+                                     const std::vector<Origin> &origins,
+                                     const std::string &base_key, const std::string &what) {
+      args.insert(args.begin(), stage_executable(stage));
+      args.push_back("--check");
+      args.push_back("-q");
+      const int status = run_process(args, log_path);
       if (interrupt_requested())
         throw NumericalError("interrupted while checking the scenes; nothing was written");
       if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
@@ -224,8 +227,14 @@ namespace clearjoint::pipeline
           throw InputError(src, it->pipeline_key, json_excerpt(it->value),
                            "a value " + stage + " accepts",
                            what + ": " + stage + " reports: " + error_line(log));
-      throw InputError(src, base_key, what, "a scene " + stage + " accepts",
+      throw InputError(src, base_key, what,
+                       (stage == "fit_stage" ? "a command " : "a scene ") + stage + " accepts",
                        stage + " reports: " + error_line(log));
+    };
+    const auto run_check = [&](const std::string &stage, const std::string &scene_file,
+                               const std::vector<Origin> &origins,
+                               const std::string &base_key, const std::string &what) {
+      run_stage_check(stage, {scene_file}, scene_file + ".log", origins, base_key, what);
     };
     const auto preset_origins = [&](const std::string &stage, std::vector<Origin> &origins) {
       const auto preset = config_.presets.find(config_.preset);
@@ -253,7 +262,7 @@ namespace clearjoint::pipeline
           scene["geometry"].erase("mesh");
         const std::string label = study.parameter + "=" + value_label(study.values[v]);
         const std::string file = scratch.file("fe_" + study.name + "_" + label + ".yaml");
-        write_file_atomically(file, scene.dump(2) + "\n");
+        write_file_atomically(file, json_text(scene) + "\n");
         std::vector<Origin> origins;
         preset_origins("fe", origins);
         for (const auto &[k, val] : study.overrides)
@@ -266,11 +275,50 @@ namespace clearjoint::pipeline
       }
     }
 
+    // The fit commands the run will give (fit_stage --check): the data files do not exist yet,
+    // so this checks the options the pipeline and its preset put on the command line (the
+    // weighting, the range policy, the preset's measured discretisation error, the family's
+    // parameter and values).
+    for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+    {
+      const FeStudy &study = config_.fe_studies[i];
+      const std::string key = "fe_studies[" + std::to_string(i) + "]";
+      const std::vector<std::string> mesh_error = discretisation_error_args(study.name);
+      std::vector<Origin> origins = {
+        {"--weighting", "fit.weighting", config_.fit_weighting},
+        {"--family-out-of-range", "fit.family_out_of_range", config_.family_out_of_range},
+        {"--discretisation-error",
+         "presets." + config_.preset + ".measured.error_F_max." + study.name + ".percent",
+         mesh_error.size() > 1 ? nlohmann::json(std::stod(mesh_error[1])) : nlohmann::json()},
+        {"--family", key + ".parameter.name", study.parameter},
+        {"--parameter-unit", key + ".parameter.unit", study.unit}};
+      std::vector<std::string> fit_args = {scratch.file("fe_" + study.name + ".csv"), "--output",
+                                           scratch.file("law.json"), "--weighting",
+                                           config_.fit_weighting, "--no-plots"};
+      fit_args.insert(fit_args.end(), mesh_error.begin(), mesh_error.end());
+      run_stage_check("fit_stage", fit_args, scratch.file("fit_" + study.name + ".log"), origins,
+                      key, "the fit of study " + study.name);
+      if (study.values.size() < 2)
+        continue;
+      std::vector<std::string> family_args = {"--family", study.parameter};
+      for (std::size_t v = 0; v < study.values.size(); ++v)
+        family_args.push_back(scratch.file("fe_" + study.name + "_" + std::to_string(v) + ".csv") +
+                              "=" + value_label(to_si(study.values[v], study.unit).value));
+      for (const auto &a : std::vector<std::string>{
+             "--parameter-unit", to_si(1.0, study.unit).unit, "--family-out-of-range",
+             config_.family_out_of_range, "--output", scratch.file("family.json"),
+             "--weighting", config_.fit_weighting, "--no-plots"})
+        family_args.push_back(a);
+      family_args.insert(family_args.end(), mesh_error.begin(), mesh_error.end());
+      run_stage_check("fit_stage", family_args, scratch.file("family_" + study.name + ".log"),
+                      origins, key, "the law family of study " + study.name);
+    }
+
     if (config_.impact)
     {
       const nlohmann::json scene = compose_scene(config_, config_.impact->scene, "fe", {});
       const std::string file = scratch.file("fe_impact.yaml");
-      write_file_atomically(file, scene.dump(2) + "\n");
+      write_file_atomically(file, json_text(scene) + "\n");
       std::vector<Origin> origins;
       preset_origins("fe", origins);
       run_check("fe_stage", file, origins, "impact.scene",
@@ -347,7 +395,7 @@ namespace clearjoint::pipeline
       }
       const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
       const std::string file = scratch.file("mbd_" + m.name + ".yaml");
-      write_file_atomically(file, scene.dump(2) + "\n");
+      write_file_atomically(file, json_text(scene) + "\n");
       run_check("mbd_stage", file, origins, key + ".scene",
                 "MBD run " + m.name + " (scene " + m.scene + ")");
     }

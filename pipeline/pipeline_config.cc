@@ -87,7 +87,7 @@ namespace clearjoint::pipeline
         if (!e.has("percent"))
           e.raw("percent");  // required: a number, or null for "not yet measured"
         else
-          pe.percent = e.number("percent", Range{.lo = 0.0, .hi = 100.0, .lo_open = true, .unit = "%"});
+          pe.percent = e.number("percent", Range::open(0.0, 100.0, "%"));
         pe.where = e.string("where");
         e.finish();
         r.error_F_max[it.key()] = pe;

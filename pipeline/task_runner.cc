@@ -1,6 +1,7 @@
 #include "pipeline/task_runner.h"
 
 #include "common/atomic_file.h"
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/log.h"
@@ -45,7 +46,7 @@ namespace clearjoint::pipeline
     {
       try
       {
-        const auto j = nlohmann::json::parse(read_file(stamp_path(dir)));
+        const auto j = parse_json_string(read_file(stamp_path(dir)), stamp_path(dir));
         if (j.at("identity").get<std::string>() == identity)
           return j.at("wall_time").at("value").get<double>();
       }
@@ -136,7 +137,7 @@ namespace clearjoint::pipeline
     for (const auto &f : t.input_files)
       j["inputs"].push_back(sha256_file(f));
     j["depends_on"] = t.depends_on;
-    return sha256_hex(j.dump());
+    return sha256_hex(json_text(j, -1));
   }
 
   std::optional<TaskResult> find_completed(const Task &t)
@@ -210,7 +211,7 @@ namespace clearjoint::pipeline
                                   {"task", t.name},
                                   {"identity", identity},
                                   {"wall_time", {{"value", seconds}, {"unit", "s"}}}};
-    write_file_atomically(stamp_path(t.output_dir), stamp.dump(2) + "\n");
+    write_file_atomically(stamp_path(t.output_dir), json_text(stamp) + "\n");
     log::info("  done    " + t.name + "  in " + log::format_duration(seconds));
     return {TaskOutcome::ran, identity, seconds};
   }

@@ -5,6 +5,7 @@
 import argparse
 import json
 import os
+import re
 
 import matplotlib.pyplot as plt
 
@@ -35,8 +36,10 @@ def main(argv):
     # run_pipeline's law sits in fit/<study>/<p>=<v>(.partial)/law.json: name the case
     from plotting.fe import folder_label
     name = folder_label(os.path.dirname(os.path.abspath(a.law)))
-    if os.path.basename(a.law) != "law.json" or "=" not in os.path.basename(os.path.dirname(a.law)):
-        name = os.path.basename(a.law)
+    # fit_stage plots its law before putting it in place: LAW.tmp.<pid>.json is LAW.json
+    base = re.sub(r"\.tmp\.[0-9]+\.json$", ".json", os.path.basename(a.law))
+    if base != "law.json" or "=" not in os.path.basename(os.path.dirname(a.law)):
+        name = base
     ax.set_title(f"{name}:  R² = {d['r_squared']:.6f},  "
                  f"n = {n:.4f} ± {d['n_std_error']:.2g}")
     ax.grid(True, alpha=0.3)

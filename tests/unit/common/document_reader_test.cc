@@ -78,7 +78,32 @@ TEST(DocumentReader, DeepYamlNestingIsAnInputError)
   {
     const std::string m = message_of([&] { parse_yaml_string(text, "scene.yaml"); });
     EXPECT_TRUE(contains(m, "input error in scene.yaml")) << m;
+    EXPECT_TRUE(contains(m, "levels of nesting")) << m;
   }
+  // The key path of the container that is one level too deep is named, in block and flow
+  // styles, below keys and list elements.
+  std::string block = "geometry:\n  t_B: 0.004\nextra:\n  - 1\n  - ";
+  for (int i = 0; i < 100; ++i)
+    block += "[";
+  block += std::string(100, ']') + "\n";
+  std::string expected = "extra[1]";
+  for (int i = 0; i < max_document_depth - 2; ++i)
+    expected += "[0]";
+  const std::string m = message_of([&] { parse_yaml_string(block, "scene.yaml"); });
+  EXPECT_TRUE(contains(m, "key '" + expected + "'")) << m;
+  std::string flow = "{a: {b: ";
+  for (int i = 0; i < max_document_depth; ++i)
+    flow += "{k: ";
+  flow += "1" + std::string(max_document_depth + 2, '}');
+  const std::string f = message_of([&] { parse_yaml_string(flow, "scene.yaml"); });
+  EXPECT_TRUE(contains(f, "key 'a.b.k.k.k")) << f;
+  // The limit itself is accepted, one more level is not.
+  std::string at_limit, over_limit;
+  for (int i = 0; i < max_document_depth; ++i)
+    at_limit += "[";
+  at_limit += std::string(max_document_depth, ']');
+  EXPECT_NO_THROW(parse_yaml_string(at_limit, "ok.yaml"));
+  EXPECT_THROW(parse_yaml_string("[" + at_limit + "]", "deep.yaml"), InputError);
 }
 
 TEST(DocumentReader, BytesThatAreNotUtf8AreNamedWithTheirPosition)

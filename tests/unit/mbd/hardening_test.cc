@@ -116,6 +116,17 @@ TEST(MbdHardening, AbsurdValuesAreInputErrorsNamingTheKey)
   EXPECT_TRUE(has(error_of([](auto &d) { d["clearance_joints"][0]["geometry"]["R_B"] = 1e300; }),
                   "geometry.R_B"));
   EXPECT_TRUE(has(error_of([](auto &d) { d["budget"] = {{"steps", 0}}; }), "budget.steps"));
+  // A duration that would write more time-series rows than the output budget (1e7 by
+  // default, ~5 GB): an input error before the run, not a full disk hours later.
+  const std::string endless = error_of([](auto &d) { d["duration"] = 1e300; });
+  EXPECT_TRUE(has(endless, "integrator.output_interval")) << endless;
+  EXPECT_TRUE(has(endless, "budget.output_rows")) << endless;
+  EXPECT_TRUE(has(error_of([](auto &d) { d["integrator"]["output_interval"] = 1e-12; }),
+                  "integrator.output_interval"));
+  EXPECT_TRUE(has(error_of([](auto &d) { d["budget"] = {{"output_rows", 1000}}; }),
+                  "integrator.output_interval"));  // 0.1 s at 1e-5 s: 10001 rows
+  EXPECT_EQ(error_of([](auto &d) { d["budget"] = {{"output_rows", 10001}}; }), "(accepted)");
+  EXPECT_EQ(error_of([](auto &d) { d["duration"] = 10.0; }), "(accepted)");  // SPEC §6's 10 s
 }
 
 TEST(MbdHardening, CheckValidatesAndWritesNothing)
@@ -172,6 +183,7 @@ TEST(MbdHardening, InterruptDuringIntegrationLeavesTheOldOutputsAndNoTemporaryFo
             0);
   const std::string old_manifest = test_support::read_text(dir.file("out/manifest.json"));
   d["duration"] = 100.0;  // s: runs far longer than the test waits
+  d["integrator"]["output_interval"] = 1e-4;  // s: 1e6 rows, within budget.output_rows
   std::ofstream(dir.file("long.json")) << d.dump();
   // SIGINT early (setup or first steps) and later (well into the integration); SIGTERM.
   for (const auto &[sig, delay, code] :
@@ -231,4 +243,23 @@ TEST(MbdHardening, ARerunReplacesTheOldOutputsAsAWhole)
   ASSERT_EQ(test_support::run_command(cmd, dir.file("2.log")), 0);
   EXPECT_FALSE(fs::exists(dir.file("out/stale_extra_file.vtu")));
   EXPECT_TRUE(fs::exists(dir.file("out/manifest.json")));
+}
+
+TEST(MbdHardening, PathsThatAreNotUtf8AreWrittenNotFatal)
+{
+  // A scene in a folder named with the byte 0xFF: its path goes into summary.json and the
+  // manifest (as U+FFFD); the run used to end in "unexpected failure" (exit 2) on that write.
+  test_support::ScratchDir dir("mbd_not_utf8_path");
+  const std::string folder = dir.file("d\xff");
+  fs::create_directories(folder);
+  nlohmann::json d = base();
+  d["duration"] = 0.002;
+  std::ofstream(folder + "/s.json") << d.dump();
+  ASSERT_EQ(test_support::run_command(std::string(MBD_STAGE_EXECUTABLE) + " '" + folder +
+                                        "/s.json' --no-plots --output '" + folder + "/out'",
+                                      dir.file("run.log")),
+            0)
+    << test_support::read_text(dir.file("run.log"));
+  EXPECT_EQ(read_json_file(folder + "/out/manifest.json")["status"], "complete");
+  EXPECT_TRUE(fs::is_regular_file(folder + "/out/summary.json"));
 }

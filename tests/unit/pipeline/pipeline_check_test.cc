@@ -1,6 +1,7 @@
 // run_pipeline --check and the check every run starts with (issue 16 item 2): a bad value in
 // any generated scene is an input error naming the pipeline key that produced it, exit 1, and
 // nothing is created under the output root. Stand-in FE stage, the real mbd_stage.
+#include "common/document_reader.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -192,4 +193,144 @@ TEST(PipelineCheck, TheImpactSectionIsChecked)
   test_support::write_text(dir.file("p.yaml"), text);
   std::string log;
   EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+}
+
+// SIGINT and SIGTERM while a stage plots: run_pipeline passes the signal on (to the stage's
+// process group), the stage stops its plot.py and the run exits 130/143 with the task left as
+// '<dir>.partial'. The stand-in plot.py ignores SIGINT, so only the stage's SIGTERM ends it:
+// a stage that did not stop its child would leave it running.
+TEST(PipelineInterrupt, ASignalWhileAStagePlotsStopsItsPlotPy)
+{
+  for (const auto &[sig, code] : std::vector<std::pair<int, int>>{{SIGINT, 130}, {SIGTERM, 143}})
+  {
+    test_support::ScratchDir dir("pipeline_interrupt_stage_plot");
+    const Build b(dir);
+    pipeline(dir);
+    // The first stage that plots is fit_stage (the FE stand-in does not plot).
+    test_support::write_text(dir.file("plot.py"),
+                             "import os, signal, sys, time\n"
+                             "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+                             "open(os.environ['PLOT_PID'], 'w').write(str(os.getpid()))\n"
+                             "time.sleep(60)\n");
+    const std::string pid_file = dir.file("plot.pid");
+    const pid_t pid = test_support::start_process(
+      RUN_PIPELINE_EXE, {dir.file("p.yaml"), "--build-dir", b.root}, dir.file("log.txt"),
+      {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py"), "PLOT_PID=" + pid_file});
+    ASSERT_GE(pid, 0);
+    for (int i = 0; i < 6000 && test_support::read_text(pid_file).empty(); ++i)
+      usleep(20000);
+    ASSERT_FALSE(test_support::read_text(pid_file).empty())
+      << test_support::read_text(dir.file("log.txt"));
+    const pid_t plot = std::stoi(test_support::read_text(pid_file));
+    kill(pid, sig);
+    ASSERT_EQ(test_support::wait_exit_code(pid), code)
+      << test_support::read_text(dir.file("log.txt"));
+    bool gone = false;
+    for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
+      gone = kill(plot, 0) != 0;
+    EXPECT_TRUE(gone) << "the stage's plot.py was stopped";
+    // The fit task that was plotting is left as '<dir>.partial' (redone by the next run), with
+    // no law in it (fit_stage removes its temporaries) and none under a final name.
+    bool partial = false;
+    for (const auto &e : fs::recursive_directory_iterator(dir.file("out/r/fit")))
+    {
+      const std::string name = e.path().filename().string();
+      if (e.is_directory() && name.size() > 8 && name.substr(name.size() - 8) == ".partial")
+        partial = true;
+      EXPECT_NE(name, "law.json") << e.path();
+      EXPECT_EQ(name.find(".tmp."), std::string::npos) << e.path();
+    }
+    EXPECT_TRUE(partial) << "the interrupted fit task is marked .partial";
+    const std::string manifest = test_support::read_text(dir.file("out/r/manifest.json"));
+    EXPECT_NE(manifest.find("\"status\": \"incomplete\""), std::string::npos) << manifest;
+  }
+}
+
+// The fit commands are checked too (fit_stage --check with the options the run will give):
+// a preset's measured discretisation error that fit_stage refuses stops the run before its
+// first task, naming the preset key (it used to fail at the first fit, after the FE cases).
+TEST(PipelineCheck, TheFitCommandsAreChecked)
+{
+  test_support::ScratchDir dir("pipeline_check_fit");
+  const Build b(dir);
+  for (const std::string percent : {"100", "4.8"})
+  {
+    std::string text = test_support::read_text(pipeline(dir));
+    const std::string fast = "fast: {fe: null, mbd: null}";
+    text.replace(text.find(fast), fast.size(),
+                 "fast: {fe: null, mbd: null, measured: {note: n, error_F_max: {thickness: "
+                 "{percent: " + percent + ", where: w}}}}");
+    test_support::write_text(dir.file("p.yaml"), text);
+    for (const std::string args : {"--check", ""})
+    {
+      std::string log;
+      const int rc = run_pipeline(dir, b, args, log);
+      if (percent == "100")
+      {
+        EXPECT_EQ(rc, 1) << log;
+        EXPECT_NE(log.find("key 'presets.fast.measured.error_F_max.thickness.percent'"),
+                  std::string::npos)
+          << log;
+        EXPECT_FALSE(fs::exists(dir.file("out"))) << "nothing under the output root: " << log;
+      }
+      else
+        EXPECT_EQ(rc, 0) << log;
+      fs::remove_all(dir.file("out"));
+    }
+  }
+}
+
+// Run from a folder whose name is not UTF-8 (a byte 0xFF): the scene paths made absolute from
+// it go into pipeline_summary.json and the stages' manifests as U+FFFD, and the run completes
+// (the summary's write used to throw: "a path with a byte 0xFF makes run_pipeline abort").
+TEST(PipelineRun, AWorkingFolderThatIsNotUtf8)
+{
+  test_support::ScratchDir dir("pipeline_not_utf8_cwd");
+  const Build b(dir);
+  const std::string folder = dir.file("p\xff");
+  fs::create_directories(folder);
+  pipeline(dir, ", overrides: {duration: 0.002}");
+  std::string text = test_support::read_text(dir.file("p.yaml"));
+  text.replace(text.find(dir.file("fe.yaml")), dir.file("fe.yaml").size(), "fe.yaml");
+  test_support::write_text(folder + "/p.yaml", text);
+  test_support::write_text(folder + "/fe.yaml", "{\"geometry\": {\"t_B\": 0.004}}\n");
+  const int rc = test_support::run_command("cd '" + folder + "' && " + RUN_PIPELINE_EXE +
+                                             " p.yaml --no-plots --build-dir " + b.root,
+                                           dir.file("log.txt"));
+  ASSERT_EQ(rc, 0) << test_support::read_text(dir.file("log.txt"));
+  const std::string summary = test_support::read_text(dir.file("out/r/pipeline_summary.json"));
+  EXPECT_NE(summary.find("p\xef\xbf\xbd"), std::string::npos) << summary;
+  EXPECT_NO_THROW(read_json_file(dir.file("out/r/pipeline_summary.json")));
+}
+
+// A .geo named by an FE scene is parsed by Gmsh in the check (gmsh -0 with the mesh task's
+// -setnumber values): one Gmsh cannot read is an input error naming geometry.mesh before any
+// task (it used to pass the check and fail as the run's first task); the shipped one passes.
+TEST(PipelineCheck, AGeoFileGmshCannotReadIsAnInputError)
+{
+  if (std::system("command -v gmsh > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "gmsh is not installed";
+  test_support::ScratchDir dir("pipeline_check_geo");
+  const Build b(dir);
+  test_support::write_text(dir.file("bad.geo"), "Point(1) = {0, 0, 0\n");
+  const std::string good =
+    std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/flanged_bearing.geo";
+  for (const std::string &geo : {dir.file("bad.geo"), good})
+  {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("    parameter:"), 0,
+                 "    overrides: {geometry.mesh: " + geo + "}\n");
+    test_support::write_text(dir.file("p.yaml"), text);
+    std::string log;
+    const int rc = run_pipeline(dir, b, "--check", log);
+    if (geo == good)
+      EXPECT_EQ(rc, 0) << log;
+    else
+    {
+      EXPECT_EQ(rc, 1) << log;
+      EXPECT_NE(log.find("key 'geometry.mesh'"), std::string::npos) << log;
+      EXPECT_NE(log.find("gmsh -0: Error"), std::string::npos) << log;
+    }
+    EXPECT_FALSE(fs::exists(dir.file("out"))) << log;
+  }
 }

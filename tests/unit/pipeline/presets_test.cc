@@ -84,7 +84,10 @@ TEST(Presets, BadMeasurementsNameTheKey)
   EXPECT_NE(m.find("thickness|misalignment"), std::string::npos) << m;
   m = error_for("measured: {note: x, error_F_max: {thickness: {percent: 480, where: a}}}");
   EXPECT_NE(m.find("error_F_max.thickness.percent"), std::string::npos) << m;
-  EXPECT_NE(m.find("(0, 100] %"), std::string::npos) << m;
+  EXPECT_NE(m.find("(0, 100) %"), std::string::npos) << m;
+  // 100 % is no estimate (and fit_stage --discretisation-error takes [0, 100)).
+  m = error_for("measured: {note: x, error_F_max: {thickness: {percent: 100, where: a}}}");
+  EXPECT_NE(m.find("error_F_max.thickness.percent"), std::string::npos) << m;
   m = error_for("measured: {note: x, error_F_max: {thickness: {where: a}}}");
   EXPECT_NE(m.find("error_F_max.thickness.percent"), std::string::npos) << m;
   m = error_for("measured: {note: x, error_F_max: {thickness: {percent: 1}}}");

@@ -12,6 +12,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <signal.h>
+#include <unistd.h>
+
 using namespace clearjoint;
 using namespace clearjoint::mbd;
 
@@ -177,4 +180,78 @@ TEST(ImpactCompare, WritesTheComparisonAndRejectsBadInput)
                                       dir.file("log3.txt")),
             1);
   EXPECT_FALSE(std::filesystem::exists(out2));
+}
+
+// An --output that cannot be made (a file in the way) is an input error naming --output, for
+// impact_compare and mbd_stage alike (impact_compare used to end in "unexpected failure", 2).
+TEST(ImpactCompare, AnOutputFolderThatCannotBeMadeIsAnInputError)
+{
+  test_support::ScratchDir dir("impact_compare_output");
+  const std::string sweep = dir.file("sweep.csv");
+  test_support::write_text(sweep,
+                           "# units: m/s,N,m,s,1,kg\n"
+                           "v_in_m_per_s,peak_force_N,delta_max_m,contact_duration_s,"
+                           "restitution,journal_mass_kg\n"
+                           "0.1,481.4,9.8e-07,3.37e-05,0.9754,0.0398\n# status: complete\n");
+  test_support::write_text(dir.file("a_file"), "x");
+  const std::string law = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  EXPECT_EQ(test_support::run_command(std::string(IMPACT_COMPARE_EXE) + " --law " + law +
+                                        " --fe-sweep " + sweep + " --no-plots --output " +
+                                        dir.file("a_file/out"),
+                                      dir.file("log.txt")),
+            1)
+    << test_support::read_text(dir.file("log.txt"));
+  EXPECT_NE(test_support::read_text(dir.file("log.txt")).find("key '--output'"),
+            std::string::npos)
+    << test_support::read_text(dir.file("log.txt"));
+  EXPECT_EQ(test_support::read_text(dir.file("a_file")), "x");
+}
+
+// impact_compare interrupted while plotting (SIGINT, SIGTERM): plot.py stopped (a stand-in
+// that ignores SIGINT), exit 130/143, the earlier output left as it was, no DIR.tmp.<pid>.
+TEST(ImpactCompare, AnInterruptWhilePlottingLeavesTheEarlierOutput)
+{
+  test_support::ScratchDir dir("impact_compare_interrupt");
+  const std::string sweep = dir.file("sweep.csv");
+  test_support::write_text(sweep,
+                           "# units: m/s,N,m,s,1,kg\n"
+                           "v_in_m_per_s,peak_force_N,delta_max_m,contact_duration_s,"
+                           "restitution,journal_mass_kg\n"
+                           "0.1,481.4,9.8e-07,3.37e-05,0.9754,0.0398\n# status: complete\n");
+  const std::string law = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  const std::string out = dir.file("out");
+  ASSERT_EQ(test_support::run_command(std::string(IMPACT_COMPARE_EXE) + " --law " + law +
+                                        " --fe-sweep " + sweep + " --no-plots --output " + out,
+                                      dir.file("first.log")),
+            0);
+  const std::string old_manifest = test_support::read_text(out + "/manifest.json");
+  test_support::write_text(dir.file("slow_plot.py"),
+                           "import os, signal, time\n"
+                           "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+                           "open(os.environ['PLOT_PID_FILE'], 'w').write(str(os.getpid()))\n"
+                           "time.sleep(60)\n");
+  for (const auto &[sig, code] : std::vector<std::pair<int, int>>{{SIGINT, 130}, {SIGTERM, 143}})
+  {
+    const std::string pid_file = dir.file("plot.pid");
+    std::filesystem::remove(pid_file);
+    const pid_t pid = test_support::start_process(
+      IMPACT_COMPARE_EXE, {"--law", law, "--fe-sweep", sweep, "--output", out},
+      dir.file("run.log"),
+      {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("slow_plot.py"), "PLOT_PID_FILE=" + pid_file});
+    for (int i = 0; i < 3000 && test_support::read_text(pid_file).empty(); ++i)
+      usleep(20000);
+    ASSERT_FALSE(test_support::read_text(pid_file).empty())
+      << test_support::read_text(dir.file("run.log"));
+    const pid_t plot = std::stoi(test_support::read_text(pid_file));
+    kill(pid, sig);
+    EXPECT_EQ(test_support::wait_exit_code(pid), code)
+      << test_support::read_text(dir.file("run.log"));
+    EXPECT_EQ(test_support::read_text(out + "/manifest.json"), old_manifest);
+    for (const auto &e : std::filesystem::directory_iterator(dir.path()))
+      EXPECT_EQ(e.path().filename().string().find("out.tmp"), std::string::npos) << e.path();
+    bool gone = false;
+    for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
+      gone = kill(plot, 0) != 0;
+    EXPECT_TRUE(gone) << "plot.py still running";
+  }
 }
