@@ -510,12 +510,27 @@ int main(int argc, char **argv)
       output_dir = work_dir_for(output_dir);
       work_root = output_dir;
       final_root = final_dir;
+      // the work folder, made by rank 0: one that cannot be made (a file in the way, no
+      // permission) is an input error naming --output on every rank (the others would
+      // otherwise wait for rank 0 in the next collective call)
+      std::string work_error;
       if (root)
+        try
+          {
+            create_work_folder(output_dir, final_dir);
+          }
+        catch (const InputError &e)
+          {
+            work_error = e.what();
+          }
+      int work_ok = work_error.empty() ? 1 : 0;
+      MPI_Bcast(&work_ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+      if (!work_ok)
         {
-          std::filesystem::remove_all(output_dir);
-          std::filesystem::create_directories(output_dir);
+          if (root)
+            log::error(work_error);
+          return exit_input_error;  // nothing was made: no folder to remove
         }
-      MPI_Barrier(MPI_COMM_WORLD);
 
       bool complete = true;
       // One case per swept value (t_B [m] or θ [deg]), each in its own folder.

@@ -117,3 +117,25 @@ TEST(FeHardening, ARerunReplacesTheOutputsAsAWholeAndForeignFoldersAreRefused)
   EXPECT_EQ(test_support::run_command(cmd + dir.file("foreign"), dir.file("3.log")), 1);
   EXPECT_EQ(test_support::read_text(dir.file("foreign/notes.txt")), "mine");
 }
+
+// An --output that cannot be made (a regular file where a folder must go) is an input error
+// naming --output, exit 1 (was exit 2, "unexpected failure: filesystem error"), and nothing is
+// created beside the file.
+TEST(FeHardening, AnOutputFolderThatCannotBeMadeIsAnInputError)
+{
+  test_support::ScratchDir dir("fe_output_under_file");
+  test_support::write_text(dir.file("ok.yaml"), scene(3));
+  test_support::write_text(dir.file("blocker"), "a file, not a folder\n");
+  const std::string exe = FE_STAGE_EXE;
+  EXPECT_EQ(test_support::run_command(exe + " " + dir.file("ok.yaml") + " -o " +
+                                        dir.file("blocker") + "/run --no-plots",
+                                      dir.file("run.log")),
+            1);
+  const std::string m = test_support::read_text(dir.file("run.log"));
+  EXPECT_NE(m.find("--output"), std::string::npos) << m;
+  EXPECT_EQ(m.find("unexpected"), std::string::npos) << m;
+  std::size_t n = 0;
+  for ([[maybe_unused]] const auto &e : fs::directory_iterator(dir.path()))
+    ++n;
+  EXPECT_EQ(n, 3u) << "only the scene, the blocking file and the log";
+}
