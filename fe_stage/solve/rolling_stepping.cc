@@ -19,6 +19,8 @@ namespace clearjoint::fe::detail
     const double tolerance = 1e-7 * scene_.loading.delta_max;
     const unsigned int max_it = scene_.rolling.max_newton_iterations;
     TrilinosWrappers::MPI::Vector before(owned_, comm_);
+    double last_correction = 0.0;
+    unsigned int growths = 0;
     for (unsigned int k = 0;; ++k)
       {
         const PlasticAssembly pa = assemble_plastic();
@@ -38,6 +40,13 @@ namespace clearjoint::fe::detail
           throw StepFailure{"non-finite displacement in the material Newton iteration"};
         if (correction <= tolerance)
           break;
+        // diverging (the correction grew in each of the last three iterations): give up at
+        // once, so that the step is cut instead of running out its iterations
+        growths = k > 0 && correction > last_correction ? growths + 1 : 0;
+        last_correction = correction;
+        if (growths >= 3)
+          throw StepFailure{"the material Newton iteration diverges (the correction grew in "
+                            "three iterations running, to " + format_value(correction) + " m)"};
         if (k + 1 >= max_it)
           throw StepFailure{"the material Newton iteration did not converge in " +
                             std::to_string(max_it) + " iterations (last correction " +
@@ -137,10 +146,14 @@ namespace clearjoint::fe::detail
     std::vector<double> times, slips;
     const double wall_steps_start = seconds();
     unsigned int step = 0;
+    // the step size carries over: a step that needed cuts starts the next one at its own size,
+    // which doubles (up to the nominal) after two steps without a cut (as the impact study)
+    double dt_try = dt_nominal;
+    unsigned int easy_steps = 0;
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
     for (; t < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
       {
-        double dt = std::min(dt_nominal, t_end - t);
+        double dt = std::min(dt_try, t_end - t);
         unsigned int cuts = 0;
         RollingSolve rs;
         unsigned int spin_evaluations = 0;
@@ -299,6 +312,10 @@ namespace clearjoint::fe::detail
         gamma = rec.gamma;
         gamma_rate = rate_new;
         t = t1;
+        if (cuts > 0)
+          dt_try = dt, easy_steps = 0;
+        else if (++easy_steps >= 2 && dt_try < dt_nominal)
+          dt_try = std::min(dt_nominal, 2.0 * dt_try), easy_steps = 0;
         times.push_back(t);
         slips.push_back(rec.slip_speed);
         result.rolling_steps.push_back(rec);
