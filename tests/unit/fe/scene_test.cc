@@ -302,6 +302,7 @@ TEST(FeScene, RollingStudy)
   EXPECT_EQ(d.material.model, Material::Model::elastoplastic);
   EXPECT_DOUBLE_EQ(d.contact.mu, 0.3);
   EXPECT_DOUBLE_EQ(d.loading.delta_max, 1.0e-3);
+  EXPECT_EQ(d.loading.max_cuts, 10u);
   EXPECT_EQ(d.loading.journal, JournalLoading::rigid);
   EXPECT_DOUBLE_EQ(d.rolling.omega_B, 12.56);
   EXPECT_DOUBLE_EQ(d.rolling.ramp_time, 0.25);
