@@ -155,6 +155,10 @@ namespace clearjoint::fe
     double friction_dissipation = 0.0; // [J] Σ −t_T·Δs_T over the contact nodes since t = 0
     double kinetic_energy = 0.0;    // [J] ½ I γ̇² of the journal's spin
     double energy_balance_error = 0.0;  // [J] work_drive + work_push − the four above
+    // [J] Σ ½(f_n + f_{n+1})·Δu of the contact forces on the bearing in its frame (the
+    // supports do no work there): the bearing's own balance is work_frame = elastic + plastic
+    double work_frame = 0.0;
+    double frame_balance_error = 0.0;  // [J] work_frame − elastic_energy − plastic_dissipation
     double max_plastic_strain = 0.0;    // [1] largest equivalent plastic strain
     double max_strain = 0.0;            // [1] largest principal total strain magnitude
     double plastic_volume = 0.0;        // [m^3] where ε_p > 0 (full body)

@@ -9,13 +9,14 @@ namespace clearjoint::fe
     return {{"time", "delta", "force_normal", "force_tangential", "phi", "gamma", "phi_rate",
              "gamma_rate", "slip_speed", "torque_drive", "torque_journal", "work_drive",
              "work_push", "elastic_energy", "plastic_dissipation", "friction_dissipation",
-             "kinetic_energy", "energy_balance_error", "max_plastic_strain", "max_strain",
+             "kinetic_energy", "energy_balance_error", "work_frame", "frame_balance_error",
+             "max_plastic_strain", "max_strain",
              "plastic_volume", "active_contact_points", "slipping_contact_points",
              "spin_iterations", "newton_iterations", "contact_iterations", "linear_iterations",
              "cuts", "phi_paper", "gamma_paper", "phi_rate_paper", "gamma_rate_paper",
              "wall_time"},
             {"s", "m", "N", "N", "rad", "rad", "rad/s", "rad/s", "m/s", "N m", "N m", "J", "J",
-             "J", "J", "J", "J", "J", "1", "1", "m^3", "1", "1", "1", "1", "1", "1", "1", "rad",
+             "J", "J", "J", "J", "J", "J", "J", "1", "1", "m^3", "1", "1", "1", "1", "1", "1", "1", "rad",
              "rad", "rad/s", "rad/s", "s"}};
   }
 
@@ -34,7 +35,9 @@ namespace clearjoint::fe
       "torque_drive = the supports' torque on the bearing; torque_journal = the contact's "
       "torque on the journal; work_drive = int torque_drive dphi, work_push = int force dδ",
       "energy balance: work_drive + work_push = elastic_energy + plastic_dissipation + "
-      "friction_dissipation + kinetic_energy + energy_balance_error",
+      "friction_dissipation + kinetic_energy + energy_balance_error; in the bearing's frame "
+      "work_frame (the contact forces' work on it) = elastic_energy + plastic_dissipation + "
+      "frame_balance_error",
       "phi_paper, gamma_paper = paper Eqs. 4-6 on the bore node and the journal point that "
       "touch at t = 0 (bottom of the mid-plane), from their displacement vectors; "
       "*_rate_paper = Eqs. 7-8 (angle / t); phi, gamma = the exact angles"};
@@ -45,7 +48,8 @@ namespace clearjoint::fe
     return {r.time, r.delta, r.force_normal, r.force_tangential, r.phi, r.gamma, r.phi_rate,
             r.gamma_rate, r.slip_speed, r.torque_drive, r.torque_journal, r.work_drive,
             r.work_push, r.elastic_energy, r.plastic_dissipation, r.friction_dissipation,
-            r.kinetic_energy, r.energy_balance_error, r.max_plastic_strain, r.max_strain,
+            r.kinetic_energy, r.energy_balance_error, r.work_frame, r.frame_balance_error,
+            r.max_plastic_strain, r.max_strain,
             r.plastic_volume, double(r.n_active), double(r.n_slip), double(r.spin_iterations),
             double(r.newton_iterations), double(r.contact_iterations),
             double(r.linear_iterations), double(r.cuts), r.phi_paper, r.gamma_paper,

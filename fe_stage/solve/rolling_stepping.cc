@@ -140,6 +140,9 @@ namespace clearjoint::fe::detail
         write_fields(field_counter++, 0.0);
       }
 
+    // the bearing's balance in its frame: the contact forces' work on it, node by node
+    std::vector<Tensor<1, dim>> force_before(nodes_.size()), u_before(nodes_.size());
+    double work_frame = 0.0;
     double t = 0.0, gamma = 0.0, gamma_rate = 0.0;
     double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction_work = 0.0;
     double torque_drive_prev = 0.0, force_prev = 0.0;
@@ -253,11 +256,24 @@ namespace clearjoint::fe::detail
             u_tracked[c] = solution_[nodes_[tracked].dofs[c]];
         for (auto &c : u_tracked)
           c = Utilities::MPI::sum(c, comm_);
-        for (auto &cn : nodes_)
+        double dw = 0.0;
+        for (unsigned int i = 0; i < nodes_.size(); ++i)
           {
+            auto &cn = nodes_[i];
+            if (cn.candidate && cn.owned)
+              {
+                const Tensor<1, dim> f = cn.active ? contact_traction(cn) : Tensor<1, dim>();
+                Tensor<1, dim> u;
+                for (unsigned int c = 0; c < dim; ++c)
+                  u[c] = solution_[cn.dofs[c]];
+                dw += 0.5 * (force_before[i] + f) * (u - u_before[i]);
+                force_before[i] = f;
+                u_before[i] = u;
+              }
             cn.relative_converged = cn.relative;
             cn.obstacle_u_converged = cn.obstacle_u;
           }
+        work_frame += symmetry_factor_ * Utilities::MPI::sum(dw, comm_);
         const PlasticEnergies pe = commit_plasticity();
 
         RollingStepRecord rec;
@@ -285,6 +301,8 @@ namespace clearjoint::fe::detail
         rec.kinetic_energy = 0.5 * inertia * rate_new * rate_new;
         rec.energy_balance_error = work_drive + work_push - rec.elastic_energy - plastic -
                                    friction_work - rec.kinetic_energy;
+        rec.work_frame = work_frame;
+        rec.frame_balance_error = work_frame - rec.elastic_energy - plastic;
         rec.max_plastic_strain = pe.max_plastic_strain;
         rec.max_strain = pe.max_strain;
         rec.plastic_volume = pe.plastic_volume;

@@ -51,7 +51,7 @@ def main(argv):
             ax.text(stages[key]["value"] * 1e3, ax.get_ylim()[1], " " + lab, fontsize=7,
                     va="top", color="C3")
     ax.set_xlabel("t [ms]")
-    ax.set_ylabel("slip speed ω_B R_B − γ̇ R_J [m/s]")
+    ax.set_ylabel("slip speed ω_B (R_B + δ) − γ̇ R_J [m/s]")
     ax.set_title("relative speed at the contact (slip stages)")
 
     ax = axes[0][2]
@@ -69,8 +69,11 @@ def main(argv):
                      ("plastic_dissipation", "plastic dissipation"),
                      ("friction_dissipation", "friction dissipation"),
                      ("kinetic_energy", "journal kinetic energy"),
-                     ("energy_balance_error", "balance error")]:
-        ax.plot(t_ms, h[key], label=lab, ls=":" if key == "energy_balance_error" else "-")
+                     ("energy_balance_error", "balance error"),
+                     ("work_frame", "contact work on the bearing, in its frame"),
+                     ("frame_balance_error", "the bearing's balance error, in its frame")]:
+        if key in h:  # (older outputs lack the frame's columns)
+            ax.plot(t_ms, h[key], label=lab, ls=":" if key.endswith("error") else "-")
     ax.set_xlabel("t [ms]")
     ax.set_ylabel("energy [J]")
     ax.set_title("energy balance")
@@ -93,7 +96,7 @@ def main(argv):
         ax.legend(fontsize=7)
     ax.set_xlabel("arc along the bore from the contact point [mm]")
     ax.set_ylabel("strain at the bore [1]")
-    ax.set_title("strain profile across the contact zone at the end (Fig. 12)")
+    ax.set_title("bore strains across the contact, at the end (Fig. 12)")
     for a in axes.flat:
         a.grid(True, alpha=0.3)
     fig.tight_layout()
