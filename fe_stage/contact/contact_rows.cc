@@ -37,6 +37,14 @@ namespace clearjoint::fe::detail
   /// The rigid obstacle at δ: each node's gap g0, normal n and the displacement of the
   /// obstacle's surface point facing it (a translation by −δ e_y; the rolling study: the
   /// turning journal seen from the bearing's co-rotating frame, accumulated step by step).
+  ///
+  /// The gap is linear in u, ĝ = g0 + n·u. The studies with small displacements take g0 and n
+  /// at the node's reference position X. The rolling study takes them at the current iterate
+  /// x = X + u_k (each material Newton iteration calls this again), ĝ = g(x) + n(x)·(u − u_k):
+  /// there the plastic wake drags the bore's nodes tens of µm along the surface, and a normal
+  /// from X would no longer pass through the journal's axis — the frictionless contact would
+  /// then exert a moment on the journal and do work, and the drive's torque would be off by a
+  /// quarter (measured; docs/fe.md "Rolling study").
   void ContactModel::set_obstacle_position(const double delta)
   {
     if (rolling_)
@@ -44,7 +52,22 @@ namespace clearjoint::fe::detail
     for (auto &cn : nodes_)
       if (!cn.two_body)
         {
-          obstacle_gap(cn.X, delta, cn.g0, cn.n);
+          if (!rolling_)
+            obstacle_gap(cn.X, delta, cn.g0, cn.n);
+          else
+            {
+              // in the cross-section only: whether a node faces the journal's length stays
+              // decided by its reference z (a node on the journal's end plane would
+              // otherwise leave it by its Poisson expansion)
+              Tensor<1, dim> u;
+              for (unsigned int c = 0; c + 1 < dim; ++c)
+                u[c] = solution_[cn.dofs[c]];
+              double g = 0.0;
+              if (!obstacle_gap(cn.X + u, delta, g, cn.n))
+                throw NumericalError("fe_stage: a contact-surface node left the rolling "
+                                     "journal's length");
+              cn.g0 = g - cn.n * u;
+            }
           if (!rolling_)
             cn.obstacle_u = Tensor<1, dim>({0.0, -delta, 0.0});
           else

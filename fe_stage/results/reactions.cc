@@ -64,10 +64,12 @@ namespace clearjoint::fe::detail
   auto contact_force_y = [&](const ContactNode &cn) {
     return friction_ ? cn.traction[1] : cn.lambda * cn.n[1];
   };
+  Point<dim> deepest;
   for (const auto &cn : nodes_)
     if (cn.owned)
       {
-        max_pen = std::max(max_pen, -cn.gap);
+        if (-cn.gap > max_pen)
+          max_pen = -cn.gap, deepest = cn.X;
         if (cn.active)
           {
             ++n_act;
@@ -115,8 +117,17 @@ namespace clearjoint::fe::detail
   // Watched (non-candidate) nodes must not penetrate: if one does, the candidate window was
   // too small and the result would be wrong, so the run stops instead.
   if (rec.max_penetration > 1e-6 * scene_.loading.delta_max)
-    throw StepFailure{"penetration " + format_value(rec.max_penetration) +
-                      " m at a contact-surface node (candidate window too small)"};
+    {
+      // the deepest node's position, from the rank that holds it
+      const bool mine = max_pen == rec.max_penetration;
+      std::array<double, dim> where{};
+      for (unsigned int c = 0; c < dim; ++c)
+        where[c] = Utilities::MPI::max(mine ? deepest[c] : -1e300, comm_);
+      throw StepFailure{"penetration " + format_value(rec.max_penetration) +
+                        " m at the contact-surface node at (" + format_value(where[0]) + ", " +
+                        format_value(where[1]) + ", " + format_value(where[2]) +
+                        ") m (candidate window too small)"};
+    }
   }
 
   /// How well the converged state satisfies Coulomb's law at every node (IncrementRecord's

@@ -94,13 +94,18 @@ TEST(FeRolling, ElastoplasticPushDissipatesAndClosesTheEnergyBalance)
 
 // Issue 13 item 3: with a yield stress far above the stresses reached, the rolling study's
 // contact force at δ equals the elastic radial study's on the same mesh and loading. The two
-// share everything but the path to the state: the rolling study is the material Newton
-// (K_t u − b, plastic bookkeeping, J2 return that never yields) inside a time-stepped
-// co-rotating frame turned by 1e-6 rad/s, the radial one the linear solve of each increment;
-// both hold the upper half of the outer surface (rolling.support: upper_half) and push a
-// rigid journal into the whole ring, on the same bearing mesh (the radial model also carries
-// the rigid journal's cells, which add DoFs but no unknowns to the bearing's). Measured 23125.021878 N both, 1.2e-10 apart: the linear
-// solves' tolerance (1e-10 relative residual), so 1e-8 leaves a margin of 100.
+// share the mesh and the supports but not the path to the state: the rolling study is the
+// material Newton (K_t u − b, plastic bookkeeping, J2 return that never yields) inside a
+// time-stepped co-rotating frame turned by 1e-6 rad/s, the radial one the linear solve of each
+// increment; both hold the upper half of the outer surface (rolling.support: upper_half) and
+// push a rigid journal into the whole ring (the radial model also carries the rigid journal's
+// cells, which add DoFs but no unknowns to the bearing's). One physical difference remains:
+// the rolling study takes the gap and its normal at the deformed position of each node (its
+// bore nodes slide along the surface), the radial study at the reference position. Measured:
+// 23122.985 N against 23125.022 N, 8.8e-5 apart (a geometric term, below u/R_B = 5e-3); with
+// the gap at the reference position in both they agreed to 1.2e-10 (the linear solves'
+// tolerance). 5e-4: the geometric term with a
+// margin of 5; a plastic or frictional path would be off by far more.
 TEST(FeRolling, ElasticLimitGivesTheRadialStudysForce)
 {
   const std::string mesh =
@@ -120,7 +125,7 @@ TEST(FeRolling, ElasticLimitGivesTheRadialStudysForce)
   const auto &a = radial.increments.back();
   ASSERT_DOUBLE_EQ(r.delta, a.delta);
   EXPECT_EQ(r.max_plastic_strain, 0.0);
-  EXPECT_NEAR(r.force_normal, a.force, 1e-8 * a.force);
+  EXPECT_NEAR(r.force_normal, a.force, 5e-4 * a.force);
   std::printf("elastic limit: rolling F(%.3g m) = %.12g N, radial %.12g N\n", r.delta,
               r.force_normal, a.force);
 }
