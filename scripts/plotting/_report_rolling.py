@@ -67,6 +67,15 @@ def _fmt(value, fmt="{:.4g}", unit=""):
     return fmt.format(value) + (f" {unit}" if unit else "")
 
 
+def _failure_line(message):
+    """A failed task's message in one line: run_pipeline's first line (which task, exit status)
+    and the last line of the stage's log (what went wrong), when they differ."""
+    lines = [l.strip() for l in (message or "").splitlines() if l.strip()]
+    if not lines:
+        return "(no message)"
+    return lines[0] if len(lines) == 1 else f"{lines[0]} … {lines[-1]}"
+
+
 def _folder(rolling):
     """The folder holding this run's rolling outputs: the task's folder, or for a failed task
     the partial output it left (an older complete folder would not be this run's)."""
@@ -379,10 +388,9 @@ def rolling_section(rolling, base, warnings):
     run = RollingRun(rolling)
     parts.append(_what_was_modelled(run))
     if status == "failed":
-        msg = rolling.get("message", "(no message)")
+        msg = rolling.get("message") or "(no message)"
         warnings.add("FE rolling study", "the fe_stage task <strong>failed</strong>: " +
-                     esc(msg.splitlines()[0] if msg else "(no message)") +
-                     " — the rest of the run went on", "rolling")
+                     esc(_failure_line(msg)) + " — the rest of the run went on", "rolling")
         parts.append("<div class='warn'><p><strong>The rolling task failed.</strong> Its message:"
                      f"</p><pre>{esc(msg)}</pre>" +
                      (f"<p>What it wrote before it stopped is in {rel_link(run.folder, base)} "
@@ -466,8 +474,7 @@ def rolling_headline(rolling):
     if status == "not_run":
         return f"<p>Rolling ({link}): not run ({esc(rolling.get('message', ''))}).</p>"
     run = RollingRun(rolling)
-    failed = ("<strong>the task failed</strong>: " +
-              esc((rolling.get("message") or "").splitlines()[0] if rolling.get("message") else "")
+    failed = ("<strong>the task failed</strong>: " + esc(_failure_line(rolling.get("message")))
               ) if status == "failed" else ""
     if not run.has_steps():
         return f"<p>Rolling ({link}): {failed or 'no converged time step'}.</p>"

@@ -202,12 +202,14 @@ def main():
                "a failed task's section shows its whole message, escaped")
         expect("6172.8 N" in html and "99999" not in html and "1e+05" not in html,
                "a failed task shows its partial output, not the older complete folder")
-        expect(any("failed" in t and "exit status 2" in t for t in warning_texts(w)),
-               f"a failed task is in the warnings: {warning_texts(w)}")
+        expect(any("failed" in t and "exit status 2" in t and
+                   "time step 3 did not converge &lt;after 10 cuts&gt;" in t for t in warning_texts(w)),
+               f"a failed task is in the warnings, with the stage's last line: {warning_texts(w)}")
         expect(len(w.items) == 1, f"one warning for the failure, not a second for 'incomplete': "
                                   f"{warning_texts(w)}")
         head = rolling_headline(failed)
-        expect("the task failed" in head and "99999" not in head and "6172.8 N" in head,
+        expect("the task failed" in head and "did not converge" in head and "99999" not in head
+               and "6172.8 N" in head,
                f"the summary sentence says it failed and shows the last step: {head}")
         # ... and one that left nothing
         gone = dict(failed, partial_dir=os.path.join(d, "nowhere.partial"))
