@@ -379,6 +379,17 @@ def _what_was_modelled(run):
             "small strain." + (f" This run: {esc(', '.join(parts))}." if parts else "") + "</p>")
 
 
+def _frame_note(h):
+    """Where fe_stage writes it, the bearing's own balance in its frame (work_frame against its
+    elastic energy and plastic dissipation): tells a gap in the drive's work from a gap in the
+    bearing's bookkeeping (docs/fe.md)."""
+    wf, fe = _last(h, "work_frame"), _last(h, "frame_balance_error")
+    if wf is None or fe is None or not wf:
+        return ""
+    return (f"; the bearing's own balance in its frame is {100 * fe / abs(wf):+.1f} % of "
+            f"work_frame = {wf:.4g} J")
+
+
 def rolling_section(rolling, base, warnings):
     """HTML of the rolling section, or "" if the run has no rolling study."""
     if not rolling:
@@ -426,8 +437,8 @@ def rolling_section(rolling, base, warnings):
         warnings.add("FE rolling study",
                      f"the energy balance does not close: its error at the end is "
                      f"<strong>{100 * frac:+.1f} % of the work in</strong> (|work_drive| + "
-                     f"|work_push| = {run.work_in():.4g} J; limit ±{100 * BALANCE_LIMIT:g} %)",
-                     "rolling")
+                     f"|work_push| = {run.work_in():.4g} J; limit ±{100 * BALANCE_LIMIT:g} %)" +
+                     _frame_note(h), "rolling")
     eps = run.max_of("max_strain", "max_strain")
     if eps is not None and eps > STRAIN_LIMIT:
         warnings.add("FE rolling study",

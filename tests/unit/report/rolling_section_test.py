@@ -167,7 +167,8 @@ def main():
         # The energy balance off by 10 % of the work in.
         off = write_run(os.path.join(d, "balance"), error=0.3)
         _, w = section({"fe_dir": off, "status": "complete"}, d)
-        expect(len(w.items) == 1 and "+10.0 % of the work in" in w.items[0][1],
+        expect(len(w.items) == 1 and "+10.0 % of the work in" in w.items[0][1] and
+               "its frame is +2.4 % of work_frame = 2.05 J" in w.items[0][1],
                f"a 10 % balance error gives one warning: {warning_texts(w)}")
         # ... and within 5 %: none (the limit, not any error, triggers it)
         ok = write_run(os.path.join(d, "balance_ok"), error=-0.14)
