@@ -32,7 +32,8 @@ int main(int argc, char **argv)
     "validated by its stage's own reader; nothing is written under the output root until the\n"
     "whole pipeline is valid.\n"
     "\n"
-    "Exit codes: 0 success, 1 input error (pipeline.yaml or a scene), 2 a stage failed,\n"
+    "Exit codes: 0 success, 1 input error (pipeline.yaml or a scene), 2 a stage failed (a\n"
+    "failing rolling study does not stop the rest: the report is written, then exit 2),\n"
     "130/143 interrupted by SIGINT/SIGTERM (passed on to the running stage or report)."};
   std::string pipeline_file = "pipeline.yaml", preset, only, build_dir;
   pipeline::RunOptions options;
@@ -95,6 +96,7 @@ int main(int argc, char **argv)
       (t["outcome"] == "ran" ? n_ran : n_reused) += 1;
     manifest->extra()["tasks_ran"] = n_ran;
     manifest->extra()["tasks_reused"] = n_reused;
+    bool report_written = false;
     if (config.report && options.plots && (!options.only || *options.only == "report"))
     {
       const std::string html = runner.run_dir() + "/report.html";
@@ -102,9 +104,23 @@ int main(int argc, char **argv)
       {
         manifest->add_output(html);
         log::info("report: " + html);
+        report_written = true;
       }
     }
     interrupt::throw_if_requested("after the last task");
+    // The rolling study's failure did not stop the run (PipelineRunner::run_rolling): the
+    // rest is complete and the report shows the failure, but the run did not do all it was
+    // asked to: exit 2.
+    if (summary.contains("rolling") && summary["rolling"].value("status", "") == "failed")
+    {
+      const std::string message =
+        "the FE rolling study failed (every other task is complete" +
+        std::string(report_written ? ", report.html shows the failure" : "") +
+        "): " + summary["rolling"].value("message", std::string());
+      log::error("run_pipeline: " + message);
+      manifest->write("failed", message);
+      return exit_numerical_error;
+    }
     manifest->write("complete");
     log::info("run_pipeline: " + std::to_string(n_ran) + " tasks ran, " +
               std::to_string(n_reused) + " reused, in " +

@@ -339,6 +339,40 @@ namespace clearjoint::pipeline
         }
     }
 
+    if (config_.rolling)
+    {
+      const std::string &base = config_.rolling->scene;
+      std::error_code ec;
+      if (!fs::is_regular_file(base, ec))
+        throw InputError(src, "rolling.scene", base,
+                         "an existing FE scene file (clearjoint.fe/1) with study: rolling",
+                         "no such file (relative paths are taken from the folder run_pipeline "
+                         "runs in)");
+      nlohmann::json scene;
+      try
+      {
+        scene = rolling_scene();
+      }
+      catch (const InputError &e)
+      {
+        throw InputError(src, "rolling.scene", base, "a readable FE scene (clearjoint.fe/1)",
+                         e.what());
+      }
+      // Before fe_stage's check: a scene of another study (or none, which is radial) would
+      // pass it and then run the wrong study.
+      const nlohmann::json *study = find_key_path(scene, "study");
+      if (!study || !study->is_string() || study->get<std::string>() != "rolling")
+        throw InputError(src, "rolling.scene", base, "a scene with study: rolling",
+                         "its study is " + (study ? json_excerpt(*study) : "radial (not stated)"));
+      const std::string file = scratch.file("fe_rolling.yaml");
+      write_file_atomically(file, json_text(scene) + "\n");
+      std::vector<Origin> origins;
+      preset_origins("fe", origins);
+      for (const auto &[k, val] : config_.rolling->overrides)
+        origins.push_back({k, "rolling.overrides." + k, val});
+      run_check("fe_stage", file, origins, "rolling.scene", "FE rolling study (scene " + base + ")");
+    }
+
     // Fitted laws do not exist before the run: the MBD scenes are checked with a stand-in (the
     // paper's law for t_B = 4 mm, and a two-member family of it over the study's parameter),
     // which validates every other key; the fitted law itself is checked when mbd_stage runs.

@@ -76,6 +76,7 @@ namespace clearjoint::pipeline
       r.fe_case_time = optional_number(m, "fe_case_time", Range::positive("s"));
       r.pipeline_time = optional_number(m, "pipeline_time", Range::positive("s"));
       r.impact_time = optional_number(m, "impact_time", Range::positive("s"));
+      r.rolling_time = optional_number(m, "rolling_time", Range::positive("s"));
       const auto &map = m.raw("error_F_max");
       if (!map.is_object())
         m.fail("error_F_max", map.dump(), "a mapping of FE study names to {percent, where}");
@@ -319,18 +320,34 @@ namespace clearjoint::pipeline
       m.finish();
       c.impact = impact;
     }
+    if (top.has("rolling"))
+    {
+      auto m = top.object("rolling");
+      RollingStudy rolling;
+      rolling.scene = m.string("scene");
+      if (rolling.scene.empty())
+        m.fail("scene", "", "an FE scene file (clearjoint.fe/1) with study: rolling");
+      rolling.overrides = read_overrides(m, "overrides");
+      m.finish();
+      c.rolling = rolling;
+    }
     // A preset's errors are per FE study: each name must be one of them (or `impact`, the
-    // impact study's peak force, when there is one).
+    // impact study's peak force, when there is one; or `rolling`, when there is one).
     for (const auto &[preset, measured] : c.preset_measured)
       for (const auto &[study, error] : measured.error_F_max)
       {
         std::string names;
-        bool found = study == "impact" && c.impact.has_value();
+        bool found = (study == "impact" && c.impact.has_value()) ||
+                     (study == "rolling" && c.rolling.has_value());
         for (const auto &f : c.fe_studies)
         {
           names += (names.empty() ? "" : "|") + f.name;
           found = found || f.name == study;
         }
+        if (c.impact)
+          names += "|impact";
+        if (c.rolling)
+          names += "|rolling";
         if (!found)
           throw InputError(path, "presets." + preset + ".measured.error_F_max." + study, study,
                            "one of the fe_studies: " + names);

@@ -68,6 +68,17 @@ namespace clearjoint::pipeline
     LawChoice law;                      ///< the law of the same geometry (key unused)
   };
 
+  /// The FE rolling study (issue 13, paper §3.4): one fe_stage run of a scene with
+  /// study: rolling (the bearing turning, the rigid journal pushed and spun by friction). Nothing
+  /// downstream uses its results; the report has its own section.
+  struct RollingStudy
+  {
+    std::string scene;                  ///< FE scene file with study: rolling
+    /// Set in the scene after the preset's `fe` overrides (e.g. mesh.global_refinements: 0 to
+    /// keep the rolling mesh coarse whatever the preset).
+    Overrides overrides;
+  };
+
   /// A preset's measured estimated error of F(δ_max) for one FE study.
   struct PresetError
   {
@@ -82,6 +93,7 @@ namespace clearjoint::pipeline
     std::optional<double> fe_dofs;           ///< [1] DoFs of the reference FE case
     std::optional<double> fe_case_time;      ///< [s] one reference FE curve
     std::optional<double> impact_time;       ///< [s] the FE impact sweep (its one task)
+    std::optional<double> rolling_time;      ///< [s] the FE rolling study (its one task)
     std::optional<double> pipeline_time;     ///< [s] the whole default pipeline
     std::map<std::string, PresetError> error_F_max;  ///< FE study name → error
   };
@@ -102,6 +114,7 @@ namespace clearjoint::pipeline
     std::string family_out_of_range = "error";
     std::vector<MbdRun> mbd_runs;
     std::optional<ImpactStudy> impact;  ///< absent: no impact study
+    std::optional<RollingStudy> rolling;  ///< absent: no rolling study
     bool report = true;
   };
 

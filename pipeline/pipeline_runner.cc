@@ -123,6 +123,8 @@ namespace clearjoint::pipeline
       n["fe_impact"] += 1;
       n["impact_compare"] += 1;
     }
+    if (config_.rolling)
+      n["fe_rolling"] += 1;
     for (const auto &m : config_.mbd_runs)
     {
       n["mbd_stage"] += 1;
@@ -140,6 +142,8 @@ namespace clearjoint::pipeline
       return std::nullopt;
     if (which == "impact_time")
       return m->second.impact_time;
+    if (which == "rolling_time")
+      return m->second.rolling_time;
     return which == "fe_case_time" ? m->second.fe_case_time : m->second.pipeline_time;
   }
 
@@ -243,6 +247,63 @@ namespace clearjoint::pipeline
     summary_["impact"]["compare_dir"] = cmp.output_dir;
   }
 
+  nlohmann::json PipelineRunner::rolling_scene() const
+  {
+    return compose_scene(config_, config_.rolling->scene, "fe", config_.rolling->overrides);
+  }
+
+  void PipelineRunner::run_rolling()
+  {
+    const RollingStudy &rolling = *config_.rolling;
+    const std::string run = run_dir();
+    log::info("FE rolling study: " + rolling.scene);
+    Task fe;
+    const nlohmann::json scene_json = rolling_scene();
+    const std::string scene = write_scene(scene_json, rolling.scene, "fe_rolling");
+    fe.name = "fe/rolling";
+    fe.stage = "fe_rolling";  // its own time in the ETA: a time history, not one FE curve
+    if (config_.mpi_ranks > 1)
+      fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
+                     std::to_string(config_.mpi_ranks)};
+    fe.executable = stage_executable("fe_stage");
+    fe.args = {scene, "--output", "{out}"};
+    if (!options_.plots)
+      fe.args.push_back("--no-plots");
+    fe.input_files = {scene};
+    for (const auto &f : files_named_in(scene_json))
+      fe.input_files.push_back(f);
+    fe.output_dir = run + "/fe/rolling";
+    summary_["rolling"] = {{"scene", scene}, {"fe_dir", fe.output_dir}, {"status", "complete"}};
+    // Nothing downstream needs it: outside its stage (--only mbd, say) a missing result is
+    // reported, not an error.
+    if (options_.only && *options_.only != "fe" && !find_completed(fe))
+    {
+      const std::string message = "not run (--only " + *options_.only +
+                                  ") and no complete result of an earlier run";
+      log::warning("FE rolling study: " + message);
+      summary_["rolling"]["status"] = "not_run";
+      summary_["rolling"]["message"] = message;
+      return;
+    }
+    try
+    {
+      execute(fe, "fe");
+    }
+    catch (const NumericalError &e)
+    {
+      if (interrupt_requested())
+        throw;
+      // The stage's own output (its manifest says why, its CSVs hold the steps that converged)
+      // stays in <dir>.partial/ and is redone by the next run.
+      log::error("FE rolling study failed (the rest of the run goes on; run_pipeline exits 2 "
+                 "after the report): " + std::string(e.what()));
+      summary_["rolling"]["status"] = "failed";
+      summary_["rolling"]["message"] = e.what();
+      summary_["rolling"]["partial_dir"] = fe.output_dir + ".partial";
+      summary_["rolling"]["log"] = fe.output_dir + ".log";
+    }
+  }
+
   nlohmann::json PipelineRunner::run()
   {
     const std::string run = run_dir();
@@ -265,7 +326,8 @@ namespace clearjoint::pipeline
       }
     fs::create_directories(run);
     eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
-                                    preset_time("pipeline_time"), preset_time("impact_time"));
+                                    preset_time("pipeline_time"), preset_time("impact_time"),
+                                    preset_time("rolling_time"));
 
     std::map<std::string, std::map<std::string, Done>> laws;  // study → value label → law
     std::map<std::string, Done> families;
@@ -436,6 +498,10 @@ namespace clearjoint::pipeline
       }
       summary_["mbd_runs"].push_back(entry);
     }
+
+    // Last: nothing depends on it, and its failure does not stop the rest (run_rolling).
+    if (config_.rolling)
+      run_rolling();
 
     write_file_atomically(run + "/pipeline_summary.json", json_text(summary_) + "\n");
     return summary_;

@@ -50,6 +50,12 @@ namespace clearjoint::pipeline
                                  std::vector<std::string> &depends_on);
     /// The FE impact sweep and its comparison with the MBD law (config_.impact).
     void run_impact(const std::map<std::string, std::map<std::string, Done>> &laws);
+    /// The FE rolling study (config_.rolling): one fe_stage task, fe/rolling. It is a first
+    /// step (docs/fe.md): a failure of it is recorded in the summary (status, message, where
+    /// its partial output is) and the run goes on; run_pipeline then exits 2 after the report.
+    void run_rolling();
+    /// The rolling study's scene: base scene, the preset's `fe` overrides, rolling.overrides.
+    nlohmann::json rolling_scene() const;
     /// Writes a composed scene to <run>/scenes/<name>.yaml.
     std::string write_scene(const nlohmann::json &scene, const std::string &base,
                             const std::string &name);
@@ -59,7 +65,8 @@ namespace clearjoint::pipeline
     std::vector<std::string> discretisation_error_args(const std::string &study) const;
     /// Tasks per stage this run will execute or reuse (for "task k of N").
     std::map<std::string, int> planned_tasks() const;
-    /// The chosen preset's measured fe_case_time or pipeline_time [s], if measured.
+    /// The chosen preset's measured fe_case_time, pipeline_time, impact_time or rolling_time
+    /// [s], if measured.
     std::optional<double> preset_time(const std::string &which) const;
     void check_output_root() const;
     std::string stage_executable(const std::string &stage) const;

@@ -66,6 +66,7 @@ namespace clearjoint::pipeline
                          {"fe_dofs", opt(m.fe_dofs, "1")},
                          {"fe_case_time", opt(m.fe_case_time, "s")},
                          {"impact_time", opt(m.impact_time, "s")},
+                         {"rolling_time", opt(m.rolling_time, "s")},
                          {"pipeline_time", opt(m.pipeline_time, "s")},
                          {"error_F_max", errors}};
       }

@@ -7,10 +7,11 @@
 namespace clearjoint::pipeline
 {
   RunEta::RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
-                 std::optional<double> pipeline_time, std::optional<double> impact_time)
+                 std::optional<double> pipeline_time, std::optional<double> impact_time,
+                 std::optional<double> rolling_time)
     : fe_case_time_(fe_case_time)
     , pipeline_time_(pipeline_time)
-    , impact_time_(impact_time)
+    , own_times_{{"fe_impact", impact_time}, {"fe_rolling", rolling_time}}
   {
     for (const auto &[stage, n] : planned)
       stages_[stage].planned = n;
@@ -43,22 +44,22 @@ namespace clearjoint::pipeline
       return std::nullopt;
     if (stage == "fe_stage")
       return *fe_case_time_;
-    if (stage == "fe_impact")
-      return impact_time_;
+    if (const auto own = own_times_.find(stage); own != own_times_.end())
+      return own->second;
     if (!pipeline_time_)
       return std::nullopt;
     int n_fe = 0, n_other = 0;
-    double impact = 0.0;
+    double own_studies = 0.0;  // the impact and rolling studies' measured share
     for (const auto &[name, s] : stages_)
-      if (name == "fe_impact")
-        impact += s.planned * impact_time_.value_or(0.0);
+      if (const auto own = own_times_.find(name); own != own_times_.end())
+        own_studies += s.planned * own->second.value_or(0.0);
       else
         (name == "fe_stage" ? n_fe : n_other) += s.planned;
     if (n_other == 0)
       return std::nullopt;
     // A preset measured on a bigger pipeline than this one may leave nothing for the rest:
     // never below zero.
-    return std::max(0.0, (*pipeline_time_ - n_fe * *fe_case_time_ - impact) / n_other);
+    return std::max(0.0, (*pipeline_time_ - n_fe * *fe_case_time_ - own_studies) / n_other);
   }
 
   std::optional<RunEta::Left> RunEta::time_left() const

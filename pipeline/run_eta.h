@@ -3,6 +3,8 @@
 //
 // Before a task of a stage has finished, a task of that stage is expected to take:
 //   fe_stage  — the preset's fe_case_time (one reference FE curve);
+//   fe_impact, fe_rolling — the preset's impact_time, rolling_time (one task each, a study of
+//               its own; unknown when not measured, and then left out of the estimate);
 //   the rest  — (pipeline_time − n_fe·fe_case_time) / n_other, the measured whole pipeline
 //               minus its FE share, spread over the other tasks (fits, MBD runs, meshes).
 // Once tasks of a stage have finished, their mean wall time replaces that guess, and the
@@ -21,9 +23,11 @@ namespace clearjoint::pipeline
   public:
     /// planned: number of tasks per stage ("fe_stage", "fit_stage", "mbd_stage", "mesh").
     /// fe_case_time, pipeline_time: the preset's measured times [s], when measured.
-    /// impact_time: the FE impact sweep's measured time [s] (stage "fe_impact"), if measured.
+    /// impact_time: the FE impact sweep's measured time [s] (stage "fe_impact"), if measured;
+    /// rolling_time: the FE rolling study's [s] (stage "fe_rolling"), if measured.
     RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
-           std::optional<double> pipeline_time, std::optional<double> impact_time = std::nullopt);
+           std::optional<double> pipeline_time, std::optional<double> impact_time = std::nullopt,
+           std::optional<double> rolling_time = std::nullopt);
 
     /// Records a finished task; `ran` false for a reused one (its wall_time is then ignored).
     void finished(const std::string &stage, bool ran, double wall_time_s);
@@ -50,7 +54,9 @@ namespace clearjoint::pipeline
     std::optional<double> prior_seconds(const std::string &stage) const;
 
     std::map<std::string, Stage> stages_;
-    std::optional<double> fe_case_time_, pipeline_time_, impact_time_;
+    std::optional<double> fe_case_time_, pipeline_time_;
+    /// Stages of one task with a measured time of their own: fe_impact, fe_rolling.
+    std::map<std::string, std::optional<double>> own_times_;
     int n_done_ = 0;
   };
 } // namespace clearjoint::pipeline

@@ -3,7 +3,8 @@ resources) that leads with the answer — a summary of what ran, the headline la
 paper's, the MBD headline numbers and every warning of the run — then a table of contents, one
 section per FE study (what was modelled, how it differs from the paper, F–δ with the paper's law,
 F_ref and n against the parameter, the paper's claims beside ours, pictures of the fields), the
-FE impact sweep beside the quasi-static curves (and the MBD laws where compared), the
+FE impact sweep beside the quasi-static curves (and the MBD laws where compared), the FE rolling
+study (spin rates against the paper's Eqs. 7–8, energy split, strain profile, slip stages), the
 multibody results (all contact models overlaid, energy, the response band split into regression
 and mesh error), the presets' measured cost and error, and stage wall times. Per-run plots are
 folded away under each run (<details>).
@@ -21,6 +22,7 @@ from plotting._report_common import Warnings, esc, get, load, load_or_none, valu
 from plotting._report_fe import f_ref_interval, mesh_error, study_section, trend_finding
 from plotting._report_impact import impact_headline, impact_section
 from plotting._report_mbd import headline_table, mbd_section
+from plotting._report_rolling import rolling_headline, rolling_section
 
 
 def preset_section(summary):
@@ -170,6 +172,7 @@ def summary_section(summary, studies, runs, warnings, has_band):
                      f"(contact models, the ideal joint, the tilted crank); joint friction μ ∈ "
                      f"{{{', '.join(f'{m:g}' for m in mus)}}}.</p>")
     parts.append(impact_headline(summary.get("impact")))
+    parts.append(rolling_headline(summary.get("rolling")))
     parts.append("<h3>Headline law beside the paper's</h3>")
     parts.append(headline_laws(studies, has_band))
     findings = [t for t in (trend_finding(fs) for fs in studies if fs.cases) if t]
@@ -185,12 +188,14 @@ def summary_section(summary, studies, runs, warnings, has_band):
     return "".join(parts)
 
 
-def toc(studies, has_mbd, has_band, has_impact=False):
+def toc(studies, has_mbd, has_band, has_impact=False, has_rolling=False):
     items = ["<li><a href='#summary'>Summary</a> (<a href='#warnings'>warnings</a>)</li>"]
     for fs in studies:
         items.append(f"<li><a href='#{esc(fs.anchor)}'>FE study “{esc(fs.study['name'])}”</a></li>")
     if has_impact:
         items.append("<li><a href='#impact'>FE impact study</a></li>")
+    if has_rolling:
+        items.append("<li><a href='#rolling'>FE rolling study</a></li>")
     if has_mbd:
         items.append("<li><a href='#mbd'>Multibody simulations</a>" +
                      (" (<a href='#band'>uncertainty of the response</a>)" if has_band else "") +
@@ -225,6 +230,7 @@ def main(argv):
         study_html.append(html_)
         studies.append(fs)
     impact_html = impact_section(summary.get("impact"), base, warnings)
+    rolling_html = rolling_section(summary.get("rolling"), base, warnings)
     mbd_html, runs = ("", [])
     if summary.get("mbd_runs"):
         mbd_html, runs = mbd_section(summary["mbd_runs"], base, warnings)
@@ -235,9 +241,11 @@ def main(argv):
              f"<p>Pipeline file: {esc(summary['pipeline_file'])}. Laws are shown in SI "
              f"(δ in m, F in N) and in the paper's units (δ in mm, F in N).</p>",
              summary_section(summary, studies, runs, warnings, "id='band'" in mbd_html),
-             toc(studies, bool(runs), "id='band'" in mbd_html, bool(impact_html))]
+             toc(studies, bool(runs), "id='band'" in mbd_html, bool(impact_html),
+                 bool(rolling_html))]
     parts += study_html
     parts.append(impact_html)
+    parts.append(rolling_html)
     parts.append(mbd_html)
     parts.append(preset_section(summary))
     parts.append(timing_section(summary))

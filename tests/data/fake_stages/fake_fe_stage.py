@@ -9,6 +9,13 @@ F = K·δ^n without any FE. Not a physics model.
 What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - study radial (default): K grows with geometry.t_B.
 - study impact: accepted by --check only (the impact study runs with the real fe_stage).
+- study rolling: rolling.n_steps (default 8) must be >= 4, as fe_stage checks it; writes
+  rolling_history.csv (fe_stage's columns, n_steps rows after t = 0: the journal spins up to
+  near the rolling rate, a small plastic strain, a closed energy balance),
+  rolling_strain_profile.csv and manifest.json with extra.rolling shaped as fe_stage writes it
+  (fe_stage/rolling_output.cc). Scene key fake_rolling_fail: true writes half the steps, both
+  CSVs and the manifest marked incomplete with a message, and exits 2, as fe_stage does when a
+  time step fails.
 - study misalignment: needs misalignment.theta_deg [deg] and loading.journal: rigid; rejects
   θ > θ_max (paper Eq. 3, the closed form of docs/geometry.md) with exit 1, as fe_stage does
   (only round-off, 1e-12 relative, is forgiven). K falls with θ.
@@ -63,8 +70,14 @@ elif study == "impact":
     if check:  # only its scene is checked here (the impact tests run the real fe_stage)
         sys.exit(0)
     input_error("study", study, "radial|misalignment (the fake stage does not run impacts)")
+elif study == "rolling":
+    n_steps = scene.get("rolling", {}).get("n_steps", 8)
+    if not (isinstance(n_steps, int) and n_steps >= 4):
+        input_error("rolling.n_steps", n_steps, "an integer in [4, 1000000]")
+    if check:
+        sys.exit(0)
 elif study != "radial":
-    input_error("study", study, "radial|misalignment|impact")
+    input_error("study", study, "radial|misalignment|impact|rolling")
 
 mesh = scene.get("geometry", {}).get("mesh")
 if mesh is not None:
@@ -137,10 +150,118 @@ def write_fields(out, g, mu, old):
                 '</Collection></VTKFile>')
 
 
+
+
+# fe_stage/rolling_output.cc: rolling_history_table(), strain_profile_table()
+ROLLING_COLUMNS = [
+    ("time", "s"), ("delta", "m"), ("force_normal", "N"), ("force_tangential", "N"), ("phi", "rad"),
+    ("gamma", "rad"), ("phi_rate", "rad/s"), ("gamma_rate", "rad/s"), ("slip_speed", "m/s"),
+    ("torque_drive", "N m"), ("torque_journal", "N m"), ("work_drive", "J"), ("work_push", "J"),
+    ("elastic_energy", "J"), ("plastic_dissipation", "J"), ("friction_dissipation", "J"),
+    ("kinetic_energy", "J"), ("energy_balance_error", "J"), ("work_frame", "J"),
+    ("frame_balance_error", "J"), ("max_plastic_strain", "1"), ("max_strain", "1"),
+    ("plastic_volume", "m^3"), ("active_contact_points", "1"), ("slipping_contact_points", "1"),
+    ("spin_iterations", "1"), ("newton_iterations", "1"), ("contact_iterations", "1"),
+    ("linear_iterations", "1"), ("cuts", "1"), ("phi_paper", "rad"), ("gamma_paper", "rad"),
+    ("phi_rate_paper", "rad/s"), ("gamma_rate_paper", "rad/s"), ("wall_time", "s")]
+PROFILE_COLUMNS = [("angle", "rad"), ("arc", "m"), ("strain_radial", "1"),
+                   ("strain_tangential", "1"), ("strain_axial", "1"), ("plastic_strain", "1"),
+                   ("von_mises", "Pa")]
+
+
+def write_rolling(out, scene, g):
+    """Made-up but self-consistent rolling outputs (see the module's text)."""
+    r = scene.get("rolling", {})
+    n_steps, omega_B, ramp = r.get("n_steps", 8), r.get("omega_B", 12.56), r.get("ramp_time", 0.25)
+    delta_max = scene.get("loading", {}).get("delta_max", 1.0e-3)
+    fail = scene.get("fake_rolling_fail", False)
+    R_B, R_J = g["R_B"], g["R_B"] - g["c_r"]
+    rows = [[0.0] * len(ROLLING_COLUMNS)]
+    for k in range(1, (n_steps // 2 if fail else n_steps) + 1):
+        t = ramp * k / n_steps
+        d = delta_max * k / n_steps
+        F = 4.0e4 * k / n_steps
+        spin = omega_B * (R_B + d) / R_J * (1 - 0.5 ** k)
+        slip = omega_B * (R_B + d) - spin * R_J
+        w_push = 0.5 * F * d
+        w_drive = 0.3 * F * 1e-4 * k
+        kinetic = 0.5 * 1.8e-6 * spin ** 2
+        plastic = 0.2 * w_push
+        friction = w_drive - kinetic
+        elastic = w_push - plastic
+        eps_p = 0.01 * k / n_steps
+        row = {"time": t, "delta": d, "force_normal": F, "force_tangential": 0.3 * F,
+               "phi": omega_B * t, "gamma": spin * t, "phi_rate": omega_B, "gamma_rate": spin,
+               "slip_speed": slip, "torque_drive": 0.3 * F * R_B, "torque_journal": 0.3 * F * R_J,
+               "work_drive": w_drive, "work_push": w_push, "elastic_energy": elastic,
+               "plastic_dissipation": plastic, "friction_dissipation": friction,
+               "kinetic_energy": kinetic, "energy_balance_error": 0.0, "work_frame": w_push,
+               "frame_balance_error": 0.0, "max_plastic_strain": eps_p,
+               "max_strain": 2 * eps_p, "plastic_volume": 1e-9 * k, "active_contact_points": 6,
+               "slipping_contact_points": 2, "spin_iterations": 3, "newton_iterations": 4,
+               "contact_iterations": 5, "linear_iterations": 50, "cuts": 0,
+               "phi_paper": 0.98 * omega_B * t, "gamma_paper": 0.97 * spin * t,
+               "phi_rate_paper": 0.98 * omega_B, "gamma_rate_paper": 0.97 * spin,
+               "wall_time": 0.01 * k}
+        rows.append([row[c] for c, _ in ROLLING_COLUMNS])
+    status = "incomplete" if fail else "complete"
+    message = f"time step {len(rows)} (t = {ramp * len(rows) / n_steps!r} s) did not converge " \
+              "after 10 cuts (requested by the test)" if fail else ""
+    marker = f"# status: incomplete: {message}\n" if fail else "# status: complete\n"
+    with open(os.path.join(out, "rolling_history.csv"), "w") as f:
+        f.write("# fake fe_stage: rolling study\n# units: " + ",".join(u for _, u in ROLLING_COLUMNS) +
+                "\n" + ",".join(c for c, _ in ROLLING_COLUMNS) + "\n")
+        for row in rows:
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+        f.write(marker)
+    with open(os.path.join(out, "rolling_strain_profile.csv"), "w") as f:
+        f.write("# units: " + ",".join(u for _, u in PROFILE_COLUMNS) + "\n" +
+                ",".join(c for c, _ in PROFILE_COLUMNS) + "\n")
+        for i in range(-6, 7):
+            a = math.radians(5 * i)
+            bump = math.exp(-(i / 2.5) ** 2)
+            f.write(",".join(repr(v) for v in (a, a * R_B, -0.004 * bump, 0.002 * bump, 0.0005 * bump,
+                                               0.01 * bump, 3.0e8 * bump)) + "\n")
+        f.write(marker)
+    last = dict(zip((c for c, _ in ROLLING_COLUMNS), rows[-1]))
+    rolling = {
+        "journal_inertia": {"value": 1.8e-6, "unit": "kg m^2"},
+        "rolling_rate": {"value": omega_B * (R_B + delta_max) / R_J, "unit": "rad/s"},
+        "time_step": {"value": ramp / n_steps, "unit": "s"},
+        "slip_stages": {"found": not fail,
+                        "slip_speed_max": {"value": max(r[8] for r in rows), "unit": "m/s"},
+                        "end_of_slip": {"value": 2 * ramp / n_steps, "unit": "s"},
+                        "settled": {"value": 4 * ramp / n_steps, "unit": "s"},
+                        "slip_speed_final": {"value": last["slip_speed"], "unit": "m/s"}},
+        "max_plastic_strain": last["max_plastic_strain"],
+        "max_strain": {"value": last["max_strain"]},
+        "energy_balance_error": {"value": 0.0},
+        "final": {k: last[k] for k in ("time", "force_normal", "gamma_rate", "phi_rate_paper",
+                                        "gamma_rate_paper", "work_drive", "work_push",
+                                        "elastic_energy", "plastic_dissipation",
+                                        "friction_dissipation")}}
+    used = json.loads(json.dumps(scene))
+    used["geometry"] = {**used.get("geometry", {}), **g}
+    used.setdefault("contact", {}).setdefault("mu", 0.3)
+    used.setdefault("loading", {}).setdefault("delta_max", delta_max)
+    used["rolling"] = {"omega_B": omega_B, "ramp_time": ramp, "end_time": ramp, "n_steps": n_steps}
+    with open(os.path.join(out, "manifest.json"), "w") as f:
+        json.dump({"status": status, "message": message,
+                   "outputs": [os.path.join(out, n) for n in ("rolling_history.csv",
+                                                              "rolling_strain_profile.csv")],
+                   "extra": {"scene": used, "rolling": rolling}}, f)
+    if fail:
+        print(f"fe_stage: {message}", file=sys.stderr)
+        sys.exit(2)
+
+
 if check:
     sys.exit(0)
 time.sleep(float(os.environ.get("CLEARJOINT_FAKE_SLEEP", "0")))
 os.makedirs(out, exist_ok=True)
+if study == "rolling":
+    write_rolling(out, scene, g)
+    sys.exit(0)
 with open(os.path.join(out, "force_penetration.csv"), "w") as f:
     f.write("# units: m,N\ndelta,force\n0,0\n")
     for i in range(1, 11):

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <filesystem>
 
 using namespace clearjoint;
@@ -193,6 +194,53 @@ TEST(PipelineCheck, TheImpactSectionIsChecked)
   test_support::write_text(dir.file("p.yaml"), text);
   std::string log;
   EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+}
+
+// The rolling section is checked with the rest (issue 13 item 5): its scene must exist and be a
+// rolling study, and fe_stage must accept it with the preset's and the section's overrides;
+// each failure is an input error naming the pipeline key, exit 1, nothing written.
+TEST(PipelineCheck, TheRollingSectionIsChecked)
+{
+  test_support::ScratchDir dir("pipeline_check_rolling");
+  const Build b(dir);
+  test_support::write_text(dir.file("rolling.yaml"), "{\"study\": \"rolling\"}\n");
+  test_support::write_text(dir.file("impact.yaml"), "{\"study\": \"impact\"}\n");
+  test_support::write_text(dir.file("none.yaml"), "{\"geometry\": {\"t_B\": 0.004}}\n");
+  test_support::write_text(dir.file("broken.yaml"), "{\"study\": [\n");
+  const auto with = [&](const std::string &section, const std::string &fast_fe = "null") {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("report: false"), 13, section + "report: false");
+    const std::string fast = "fast: {fe: null,";
+    text.replace(text.find(fast), fast.size(), "fast: {fe: " + fast_fe + ",");
+    test_support::write_text(dir.file("p.yaml"), text);
+  };
+  for (const auto &[section, fast_fe, key] : std::vector<std::array<std::string, 3>>{
+         {"rolling: {scene: " + dir.file("impact.yaml") + "}\n", "null", "rolling.scene"},
+         {"rolling: {scene: " + dir.file("none.yaml") + "}\n", "null", "rolling.scene"},
+         {"rolling: {scene: " + dir.file("missing.yaml") + "}\n", "null", "rolling.scene"},
+         {"rolling: {scene: " + dir.file("broken.yaml") + "}\n", "null", "rolling.scene"},
+         // fe_stage rejects fewer than 4 steps: the key that set it is named
+         {"rolling: {scene: " + dir.file("rolling.yaml") + "}\n", "{rolling.n_steps: 2}",
+          "presets.fast.fe.rolling.n_steps"},
+         {"rolling: {scene: " + dir.file("rolling.yaml") + ", overrides: {rolling.n_steps: 3}}\n",
+          "{rolling.n_steps: 6}", "rolling.overrides.rolling.n_steps"}})
+  {
+    with(section, fast_fe);
+    std::string log;
+    EXPECT_EQ(run_pipeline(dir, b, "--check", log), 1) << section << log;
+    EXPECT_NE(log.find("key '" + key + "'"), std::string::npos) << section << log;
+    EXPECT_FALSE(fs::exists(dir.file("out"))) << section;
+  }
+  // The other study's name is in the message.
+  with("rolling: {scene: " + dir.file("impact.yaml") + "}\n");
+  std::string log;
+  run_pipeline(dir, b, "--check", log);
+  EXPECT_NE(log.find("study: rolling"), std::string::npos) << log;
+  EXPECT_NE(log.find("\"impact\""), std::string::npos) << log;
+  // A valid one passes, with a preset's rolling.n_steps (a key only this study reads).
+  with("rolling: {scene: " + dir.file("rolling.yaml") + "}\n", "{rolling.n_steps: 6}");
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out")));
 }
 
 // SIGINT and SIGTERM while a stage plots: run_pipeline passes the signal on (to the stage's

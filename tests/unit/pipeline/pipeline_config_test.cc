@@ -1,3 +1,4 @@
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "geometry/joint_geometry.h"
 #include "pipeline/pipeline_config.h"
@@ -221,4 +222,64 @@ TEST(PipelineConfig, ImpactStudy)
             std::string::npos);
   EXPECT_EQ(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {file: l.json}\nmbd_runs:"),
             "(accepted)");
+}
+
+// The rolling study (issue 13 item 5): one scene and optional overrides after the preset; a
+// missing, empty or non-string scene, an unknown key or a block that is not a mapping are input
+// errors naming the key under `rolling`.
+TEST(PipelineConfig, RollingStudy)
+{
+  const std::string rolling =
+    "rolling:\n  scene: r.yaml\n  overrides: {mesh.global_refinements: 0}\nmbd_runs:";
+  EXPECT_EQ(error_for("mbd_runs:", rolling), "(accepted)");
+  {
+    test_support::ScratchDir dir("pipeline_config_rolling");
+    std::string text = good;
+    text.replace(text.find("mbd_runs:"), 9, rolling);
+    test_support::write_text(dir.file("p.yaml"), text);
+    const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
+    ASSERT_TRUE(c.rolling.has_value());
+    EXPECT_EQ(c.rolling->scene, "r.yaml");
+    ASSERT_EQ(c.rolling->overrides.size(), 1u);
+    EXPECT_EQ(c.rolling->overrides[0].first, "mesh.global_refinements");
+    EXPECT_EQ(c.rolling->overrides[0].second, 0);
+    // without the block: no rolling study
+    test_support::write_text(dir.file("q.yaml"), good);
+    EXPECT_FALSE(read_pipeline_config(dir.file("q.yaml")).rolling.has_value());
+  }
+  for (const auto &[block, key] : std::vector<std::pair<std::string, std::string>>{
+         {"rolling: {}\n", "rolling.scene"},
+         {"rolling: {scene: 3}\n", "rolling.scene"},
+         {"rolling: {scene: [a.yaml]}\n", "rolling.scene"},
+         {"rolling: {scene: ''}\n", "rolling.scene"},
+         {"rolling: {scene: r.yaml, colour: red}\n", "rolling.colour"},
+         {"rolling: {scene: r.yaml, overrides: 3}\n", "rolling.overrides"},
+         {"rolling: r.yaml\n", "rolling"}})
+  {
+    const std::string m = error_for("mbd_runs:", block + "mbd_runs:");
+    EXPECT_NE(m.find("key '" + key + "'"), std::string::npos) << block << " → " << m;
+  }
+}
+
+// The committed pipeline.yaml carries the rolling block commented out (not in the default run
+// yet): uncommented, it reads, and its scene is a rolling study.
+TEST(PipelineConfig, TheCommittedRollingBlockReadsWhenUncommented)
+{
+  std::string text = test_support::read_text(std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml");
+  for (const std::string line : {"# rolling:\n", "#   scene: ", "#   overrides: "})
+  {
+    const auto p = text.find(line);
+    ASSERT_NE(p, std::string::npos) << line;
+    text.erase(p, 2);
+  }
+  test_support::ScratchDir dir("pipeline_config_committed_rolling");
+  test_support::write_text(dir.file("p.yaml"), text);
+  const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
+  ASSERT_TRUE(c.rolling.has_value());
+  EXPECT_EQ(c.rolling->scene, "fe_stage/scenes/rolling.yaml");
+  const auto scene =
+    read_structured_file(std::string(CLEARJOINT_SOURCE_DIR) + "/" + c.rolling->scene);
+  EXPECT_EQ(scene.at("study"), "rolling");
+  for (const auto &[preset, measured] : c.preset_measured)
+    EXPECT_FALSE(measured.rolling_time.has_value()) << preset << ": not measured yet";
 }

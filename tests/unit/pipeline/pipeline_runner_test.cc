@@ -1,5 +1,6 @@
 // run_pipeline end to end with stand-in FE and MBD stages (tests/data/fake_stages) and the real
 // fit_stage: reuse, re-running only what changed, interrupts, failing stages, bad input.
+#include "common/csv.h"
 #include "common/strict_reader.h"
 #include "common/units.h"
 #include "geometry/joint_geometry.h"
@@ -487,6 +488,108 @@ TEST(RunPipeline, PresetErrorReachesTheLawAndTheBandTasksAreCountedLogsNameFinal
     }
 }
 
+// Issue 13 item 5: the rolling study is one fe_stage task, fe/rolling, with the preset's `fe`
+// overrides (a key only it reads, rolling.n_steps, included) and its own overrides after them,
+// its own time in the ETA (rolling_time), reused like any task; nothing depends on it.
+TEST(RunPipeline, TheRollingStudyIsOneTaskWithItsOwnTime)
+{
+  test_support::ScratchDir dir("pipeline_rolling");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("rolling.yaml"),
+                           "{\"study\": \"rolling\", \"loading\": {\"delta_max\": 5e-5}}\n");
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
+  const std::string plain = "presets: {fast: {fe: null, mbd: null}, ";
+  // fe_case_time 1 s × 2 FE cases, the rolling study its own 50 s, and the 10 other tasks share
+  // the rest of the pipeline's 80 s, (80 − 2 − 50)/10 = 2.8 s each: "about 80 s" (without the
+  // rolling study's own time the estimate would be a lower bound, "at least").
+  yaml.replace(yaml.find(plain), plain.size(),
+               "presets: {fast: {fe: {rolling.n_steps: 6, rolling.omega_B: 10.0}, mbd: null, "
+               "measured: {note: test, fe_case_time: 1.0, pipeline_time: 80.0, "
+               "rolling_time: 50.0, error_F_max: {}}}, ");
+  yaml.replace(yaml.find("report: false"), 13,
+               "rolling: {scene: " + dir.file("rolling.yaml") +
+                 ", overrides: {rolling.omega_B: 12.0}}\nreport: false");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome first = run(dir, build);
+  ASSERT_EQ(first.exit_code, 0) << first.log;
+  EXPECT_EQ(with(first, "ran").size(), 13u) << "12 as before and the rolling task\n" << first.log;
+  EXPECT_EQ(with(first, "ran").count("fe/rolling"), 1u) << first.log;
+  EXPECT_NE(first.log.find("task 1 of 13, about 1 min 20 s left"), std::string::npos) << first.log;
+  const fs::path run_dir = dir.file("out/r");
+  const auto summary = read_json_file((run_dir / "pipeline_summary.json").string());
+  ASSERT_TRUE(summary.contains("rolling")) << summary.dump(2);
+  EXPECT_EQ(summary["rolling"]["status"], "complete");
+  EXPECT_EQ(summary["rolling"]["fe_dir"], (run_dir / "fe/rolling").string());
+  for (const auto &t : summary["tasks"])
+    if (t["name"] == "fe/rolling")
+      EXPECT_EQ(t["stage"], "fe_rolling") << "its own stage in the ETA";
+  // The stand-in fe_stage wrote one row per step after t = 0: the preset's n_steps reached it,
+  // and the rolling block's override came after the preset's.
+  const CsvTable history = read_csv((run_dir / "fe/rolling/rolling_history.csv").string());
+  EXPECT_EQ(history.rows.size(), 7u);
+  const auto used = read_json_file((run_dir / "fe/rolling/manifest.json").string());
+  EXPECT_EQ(used["extra"]["scene"]["rolling"]["n_steps"], 6);
+  EXPECT_EQ(used["extra"]["scene"]["rolling"]["omega_B"], 12.0);
+  EXPECT_TRUE(fs::exists(run_dir / "scenes/fe_rolling.yaml"));
+  // Reused like every task; a change to its scene re-runs it alone.
+  const Outcome second = run(dir, build);
+  ASSERT_EQ(second.exit_code, 0) << second.log;
+  EXPECT_TRUE(with(second, "ran").empty()) << second.log;
+  test_support::write_text(dir.file("rolling.yaml"),
+                           "{\"study\": \"rolling\", \"loading\": {\"delta_max\": 4e-5}}\n");
+  const Outcome third = run(dir, build);
+  ASSERT_EQ(third.exit_code, 0) << third.log;
+  EXPECT_EQ(with(third, "ran"), std::set<std::string>{"fe/rolling"}) << third.log;
+}
+
+// A failing rolling study (a first step, docs/fe.md) does not stop the rest: every other task
+// runs, the summary records the failure with its message and where the partial output is, and
+// run_pipeline exits 2 after the report; --only mbd then does not need it; once the scene is
+// fixed the next run does only the rolling task.
+TEST(RunPipeline, AFailingRollingStudyDoesNotStopTheRest)
+{
+  test_support::ScratchDir dir("pipeline_rolling_fail");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("rolling.yaml"),
+                           "{\"study\": \"rolling\", \"fake_rolling_fail\": true}\n");
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
+  yaml.replace(yaml.find("report: false"), 13,
+               "rolling: {scene: " + dir.file("rolling.yaml") + "}\nreport: false");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const Outcome failed = run(dir, build);
+  EXPECT_EQ(failed.exit_code, 2) << failed.log;
+  EXPECT_NE(failed.log.find("FE rolling study failed"), std::string::npos) << failed.log;
+  EXPECT_NE(failed.log.find("did not converge after 10 cuts"), std::string::npos) << failed.log;
+  const fs::path run_dir = dir.file("out/r");
+  for (const char *done : {"fe/thickness/t_B=0.004", "fit/thickness/family", "mbd/paper",
+                           "mbd/fitted_band/n_high"})
+    EXPECT_TRUE(fs::exists(run_dir / done / ".task.json")) << done << " ran\n" << failed.log;
+  EXPECT_FALSE(fs::exists(run_dir / "fe/rolling"));
+  const auto summary = read_json_file((run_dir / "pipeline_summary.json").string());
+  EXPECT_EQ(summary["rolling"]["status"], "failed");
+  const std::string message = summary["rolling"]["message"];
+  EXPECT_NE(message.find("did not converge"), std::string::npos) << message;
+  EXPECT_EQ(summary["rolling"]["partial_dir"], (run_dir / "fe/rolling.partial").string());
+  const auto partial = read_json_file((run_dir / "fe/rolling.partial/manifest.json").string());
+  EXPECT_EQ(partial["status"], "incomplete");
+  const auto manifest = read_json_file((run_dir / "manifest.json").string());
+  EXPECT_EQ(manifest["status"], "failed");
+  EXPECT_NE(manifest["message"].get<std::string>().find("rolling"), std::string::npos);
+
+  const Outcome only = run(dir, build, "--only mbd");
+  ASSERT_EQ(only.exit_code, 0) << only.log;
+  EXPECT_EQ(read_json_file((run_dir / "pipeline_summary.json").string())["rolling"]["status"],
+            "not_run");
+
+  test_support::write_text(dir.file("rolling.yaml"), "{\"study\": \"rolling\"}\n");
+  const Outcome fixed = run(dir, build);
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.log;
+  EXPECT_EQ(with(fixed, "ran"), std::set<std::string>{"fe/rolling"}) << fixed.log;
+  EXPECT_FALSE(fs::exists(run_dir / "fe/rolling.partial"));
+  EXPECT_EQ(read_json_file((run_dir / "pipeline_summary.json").string())["rolling"]["status"],
+            "complete");
+}
+
 namespace
 {
   /// The report without its figures' and tables' insides: every <details>…</details> removed
@@ -552,6 +655,8 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     "  - {name: johnson, scene: " + mbd + "johnson.yaml}\n"
     "  - {name: ideal, scene: " + mbd + "ideal.yaml}\n"
     "  - {name: tilted_1deg, scene: " + mbd + "tilted_1deg.yaml, overrides: {clearance_joints.0.normal.model: law_family}, laws: [{key: clearance_joints.0.normal.law_file, study: misalignment}]}\n"
+    // issue 13 item 5: the rolling study's own section (the stand-in's outputs: a clean run)
+    "rolling: {scene: " + src + "/fe_stage/scenes/rolling.yaml}\n"
     "report: true\n");
   const int rc = test_support::run_command("CLEARJOINT_FAKE_FIELDS=1 " + std::string(RUN_PIPELINE_EXE) +
                                              " " + dir.file("p.yaml") + " --build-dir " + build.root,
@@ -568,11 +673,15 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
 
   // Item 1: summary, then contents, then one section per study, then the multibody part.
   const auto summary = at("id='summary'"), contents = at("<nav>"), thickness = at("id='study-thickness'"),
-             misalignment = at("id='study-misalignment'"), multibody = at("id='mbd'");
+             misalignment = at("id='study-misalignment'"), rolling = at("id='rolling'"),
+             multibody = at("id='mbd'");
   EXPECT_LT(summary, contents);
   EXPECT_LT(contents, thickness);
   EXPECT_LT(thickness, misalignment);
-  EXPECT_LT(misalignment, multibody);
+  EXPECT_LT(misalignment, rolling);
+  EXPECT_LT(rolling, multibody);
+  EXPECT_NE(report.substr(contents, thickness - contents).find("href='#rolling'"), std::string::npos)
+    << "the contents list the rolling study";
   const std::string head = report.substr(summary, contents - summary);
   for (const char *part :
        {"Preset <strong>fast</strong>", "μ = 0.1", "frictionless", "4.8 %",  // what ran
@@ -581,6 +690,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
         "<strong>the mesh (discretisation) error dominates</strong>",  // item 6: which part dominates
         "grows monotonically over t_B", "as the paper says",   // trends beside the claims
         "mbd-run-fe_law", "mbd-run-johnson", "mbd-run-ideal",  // MBD headline numbers
+        "Rolling (<a href='#rolling'>FE rolling study</a>)",    // the rolling study's sentence
         "id='warnings'"})
     EXPECT_NE(head.find(part), std::string::npos) << "summary lacks: " << part;
   // Every warning of the run is in the summary: the thickness cases' stress above the default
@@ -595,6 +705,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
                            "contact_slip is non-zero at"})
     EXPECT_NE(head.find(part), std::string::npos) << "summary lacks the field warning: " << part;
   EXPECT_EQ(count_of(head, "<strong>FE fields, t_B"), 0u) << "the thickness fields are consistent";
+  EXPECT_EQ(count_of(head, "<strong>FE rolling study</strong>"), 0u) << "the rolling run is clean";
   at("Contact fields: consistent (friction within Coulomb's cone");
   at("against the yield stress 1000 MPa (the scene's material.yield_stress)");
 
@@ -613,7 +724,10 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
   // Per-run plots folded away and captioned by what they show, not by their file name. Unfolded:
   // per study F–δ, F_ref and n, the fields picture; for the multibody runs the two overlays and
   // the band.
-  EXPECT_EQ(count_of(unfolded_only(report), "<img"), 3u * 2u + 2u + 1u);
+  // ... and the rolling study's three: spin rates (Fig. 10), energy split, strain profile (Fig. 12)
+  EXPECT_EQ(count_of(unfolded_only(report), "<img"), 3u * 2u + 2u + 1u + 3u);
+  at("the counterpart of the paper's Fig. 10");
+  at("the counterpart of the paper's Fig. 12");
   EXPECT_GE(count_of(report, "<details>"), 3u + 3u + 5u);
   at("fe_law: phase portrait: slider velocity over slider position");
   EXPECT_EQ(report.find("phase_portrait.png</figcaption>"), std::string::npos);

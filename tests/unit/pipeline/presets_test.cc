@@ -27,6 +27,8 @@ namespace
            "fit: {weighting: absolute}\nmbd_runs: []\n";
   }
 
+  std::string pipeline_text(const std::string &fast_measured) { return pipeline(fast_measured); }
+
   PipelineConfig read(const test_support::ScratchDir &dir, const std::string &fast_measured)
   {
     test_support::write_text(dir.file("p.yaml"), pipeline(fast_measured));
@@ -96,4 +98,32 @@ TEST(Presets, BadMeasurementsNameTheKey)
   EXPECT_NE(m.find("presets.fast.measured.fe_case_time"), std::string::npos) << m;
   m = error_for("measured: {note: x, error_F_max: {}, colour: red}");
   EXPECT_NE(m.find("presets.fast.measured.colour"), std::string::npos) << m;
+}
+
+// The rolling study's own measured time (rolling_time, null = not measured) and its error
+// entry: `rolling` may name an error only when the pipeline has a rolling study.
+TEST(Presets, RollingTimeAndErrorNeedTheRollingStudy)
+{
+  const std::string m = "measured: {note: x, rolling_time: 42, error_F_max: "
+                        "{rolling: {percent: null, where: not yet}}}";
+  const std::string without = error_for(m);
+  EXPECT_NE(without.find("presets.fast.measured.error_F_max.rolling"), std::string::npos) << without;
+  test_support::ScratchDir dir("presets_rolling");
+  test_support::write_text(dir.file("p.yaml"), pipeline_text(m) + "rolling: {scene: r.yaml}\n");
+  const auto c = read_pipeline_config(dir.file("p.yaml"));
+  ASSERT_TRUE(c.preset_measured.at("fast").rolling_time.has_value());
+  EXPECT_EQ(*c.preset_measured.at("fast").rolling_time, 42.0);
+  const auto s = presets_summary(c);
+  EXPECT_EQ(s[0]["measured"]["rolling_time"]["value"], 42.0);
+  EXPECT_EQ(s[0]["measured"]["rolling_time"]["unit"], "s");
+  EXPECT_TRUE(s[0]["measured"]["error_F_max"]["rolling"]["percent"].is_null());
+  // null: not measured
+  test_support::write_text(dir.file("q.yaml"),
+                           pipeline_text("measured: {note: x, rolling_time: null, error_F_max: {}}") +
+                             "rolling: {scene: r.yaml}\n");
+  const auto q = read_pipeline_config(dir.file("q.yaml"));
+  EXPECT_FALSE(q.preset_measured.at("fast").rolling_time.has_value());
+  EXPECT_TRUE(presets_summary(q)[0]["measured"]["rolling_time"].is_null());
+  const std::string bad = error_for("measured: {note: x, rolling_time: -1, error_F_max: {}}");
+  EXPECT_NE(bad.find("presets.fast.measured.rolling_time"), std::string::npos) << bad;
 }

@@ -75,3 +75,23 @@ TEST(RunEta, TheImpactSweepHasItsOwnTime)
   ASSERT_TRUE(unknown.time_left().has_value());
   EXPECT_TRUE(unknown.time_left()->lower_bound);
 }
+
+// The rolling study is one task with its own measured time, like the impact sweep: taken out
+// of the pipeline time the other tasks share; unknown (null) → a lower bound.
+TEST(RunEta, TheRollingStudyHasItsOwnTime)
+{
+  // others: (200 − 10·10 − 60 − 20)/4 = 5 s each
+  const RunEta eta({{"fe_stage", 10}, {"fe_impact", 1}, {"fe_rolling", 1}, {"fit_stage", 4}},
+                   10.0, 200.0, 60.0, 20.0);
+  ASSERT_TRUE(eta.time_left().has_value());
+  EXPECT_NEAR(eta.time_left()->seconds, 10 * 10.0 + 60.0 + 20.0 + 4 * 5.0, 1e-9);
+  EXPECT_FALSE(eta.time_left()->lower_bound);
+  RunEta unknown({{"fe_stage", 2}, {"fe_rolling", 1}, {"fit_stage", 2}}, 10.0, 50.0);
+  ASSERT_TRUE(unknown.time_left().has_value());
+  EXPECT_TRUE(unknown.time_left()->lower_bound);
+  // (50 − 2·10)/2 = 15 s per fit: the rolling task is not one of the "others"
+  EXPECT_NEAR(unknown.time_left()->seconds, 2 * 10.0 + 2 * 15.0, 1e-9);
+  // once it ran, its measured time counts
+  unknown.finished("fe_rolling", true, 7.0);
+  EXPECT_FALSE(unknown.time_left()->lower_bound);
+}
