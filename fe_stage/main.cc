@@ -327,8 +327,10 @@ namespace
             manifest->add_output(profile_path);
             manifest->extra()["rolling"] = fe::rolling_summary_json(
               result.rolling, result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
+            // the slip stages go to the plot as text: the manifest is written after it
             if (plots && !result.rolling_steps.empty() &&
-                run_plot_script("fe_rolling", {dir + "/rolling.png", dir}))
+                run_plot_script("fe_rolling", {dir + "/rolling.png", dir,
+                                               manifest->extra()["rolling"].dump()}))
               manifest->add_output(dir + "/rolling.png");
           }
         for (const auto &f : result.field_files)

@@ -187,9 +187,14 @@ namespace clearjoint::fe::detail
                        1e-30});
                   return (inertial - rs.torque_journal) / torque_scale;
                 };
+                // the bracket: spinning up, between the last rate and the rolling rate;
+                // rolling already (within 5 % of it), a narrow one at the last rate — the root
+                // moves little from step to step and the torque is steep there (stick), so
+                // the wide bracket cost 2–3 more evaluations a step, each a material Newton
+                // solve (the bracket widens itself if the root lies outside)
                 const double a = gamma_rate;
                 const double roll = motion.rolling_rate(t1);
-                const double b = std::abs(roll - a) > 1e-3 * roll ? roll : a + 1e-2 * roll;
+                const double b = std::abs(roll - a) > 5e-2 * roll ? roll : a + 2e-4 * roll;
                 const auto root = rolling::solve_increasing(g, a, b, 1e-6,
                                                             1e-10 * roll,
                                                             R.max_spin_iterations);

@@ -1,7 +1,8 @@
 """FE rolling study plots (fe_stage study rolling; the paper's §3.4, Figs. 10–12).
 
-    scripts/plot.py fe_rolling OUT.png CASE_DIR
-        from CASE_DIR/rolling_history.csv and CASE_DIR/rolling_strain_profile.csv:
+    scripts/plot.py fe_rolling OUT.png CASE_DIR [ROLLING_JSON]
+        ROLLING_JSON: the manifest's "rolling" block as text (fe_stage passes it; without it
+        the slip stages are read from CASE_DIR/manifest.json). From CASE_DIR/rolling_history.csv and CASE_DIR/rolling_strain_profile.csv:
         the spin rates φ̇ (bearing) and γ̇ (journal) against time, exact and by the paper's
         Eqs. 7–8 (Fig. 10); the slip speed at the contact with the slip stages; the contact
         forces; the energy balance (drive and push work against stored elastic energy,
@@ -17,18 +18,24 @@ from plotting._common import read_table
 
 
 def main(argv):
-    if len(argv) != 2:
+    if len(argv) not in (2, 3):
         print(__doc__)
         return 1
-    out, folder = argv
+    out, folder = argv[:2]
     _, _, h = read_table(os.path.join(folder, "rolling_history.csv"))
     profile_path = os.path.join(folder, "rolling_strain_profile.csv")
     p = read_table(profile_path)[2] if os.path.exists(profile_path) else None
+    # the slip stages, as fe_stage puts them in the manifest's "rolling" block: given as a
+    # JSON argument (the plot runs before the manifest is written), or read from a manifest
+    # already there (re-plotting a finished run)
     stages = None
-    summary_path = os.path.join(folder, "summary.json")
-    if os.path.exists(summary_path):
-        with open(summary_path) as f:
-            stages = json.load(f).get("rolling", {}).get("slip_stages")
+    if len(argv) == 3:
+        stages = json.loads(argv[2]).get("slip_stages")
+    else:
+        manifest_path = os.path.join(folder, "manifest.json")
+        if os.path.exists(manifest_path):
+            with open(manifest_path) as f:
+                stages = json.load(f).get("rolling", {}).get("slip_stages")
     t_ms = [x * 1e3 for x in h["time"]]
 
     fig, axes = plt.subplots(2, 3, figsize=(15, 8))
