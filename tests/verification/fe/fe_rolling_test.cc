@@ -48,7 +48,8 @@ TEST(FeRolling, FrictionlessJournalDoesNotSpinAndThePushWorkIsStored)
   // of the push's work)
   EXPECT_LT(std::abs(last.work_drive), 1e-2 * last.work_push);
   // the push's work (trapezoid rule over 8 steps of a curve F ∝ δ^~1.1) is the stored energy:
-  // measured 0.05 % apart; 1 % leaves room for the rule's error on other meshes
+  // measured 0.22 % apart (0.05 % with the gap at the reference position); 1 % leaves room
+  // for the rule's error on other meshes
   EXPECT_NEAR(last.elastic_energy, last.work_push, 1e-2 * last.work_push);
   // and the balance with the drive's work closes to the same order
   EXPECT_LT(std::abs(last.energy_balance_error), 1e-2 * last.work_push);
