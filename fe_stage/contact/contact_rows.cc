@@ -80,6 +80,19 @@ namespace clearjoint::fe::detail
         }
   }
 
+  /// The load at each contact node, with the shares of the hanging nodes beside it (as the
+  /// traction K u − b is read in evaluate_contact): the friction rows' constant part (below).
+  void ContactModel::set_contact_load_offsets()
+  {
+    TrilinosWrappers::MPI::Vector load = dynamic_load_;
+    condense_hanging(load);
+    TrilinosWrappers::MPI::Vector load_ghosted(owned_, relevant_, comm_);
+    load_ghosted = load;
+    for (auto &cn : nodes_)
+      for (unsigned int c = 0; c < dim; ++c)
+        cn.load_offset[c] = load_ghosted[cn.dofs[c]];
+  }
+
   /// The friction force on a slipping node s, linearised about the last iterate (semi-smooth
   /// Newton, docs/fe.md): with t = P_T M (K u)_s the node's tangential contact force (M leaves
   /// out DoFs fixed by a symmetry plane: their reaction is not friction), λ = n·(K u)_s, the
@@ -213,10 +226,10 @@ namespace clearjoint::fe::detail
                 M(r * dim + a, q * dim + bb) += wr * kc * Q[a][bb] * points[q].second;
           rhs(r * dim + a) = -wr * kc * Qb[a];
         }
-    // Elastoplastic: the traction is K u − b, so F(u) has the constant part
+    // Dynamic and elastoplastic: the traction is K u − b, so F(u) has the constant part
     // F_b = −μŵ (n·b_s) − κ Q M b_s (b_s the load at the node), moved to the right-hand side
     // of the node's rows (+) and its partners' (−w_p).
-    if (plastic_)
+    if (plastic_ || dynamic_)
       {
         const Tensor<1, dim> Fb = -scene_.contact.mu * (cn.n * cn.load_offset) * cn.slip_direction -
                                   cn.kappa * (Q * held_components(cn, cn.load_offset));

@@ -245,6 +245,9 @@ namespace clearjoint::fe::detail
     void friction_node_matrix(const ContactNode &cn, double c, double delta, FullMatrix<double> &M,
                               Vector<double> &rhs, std::vector<types::global_dof_index> &ext) const;
     void condense_hanging(TrilinosWrappers::MPI::Vector &r);
+    /// Each contact node's share of the step's known load b (dynamic_load_: the traction is
+    /// K u − b in the dynamic and elastoplastic solves), for the friction rows (collective).
+    void set_contact_load_offsets();
     void write_fields(unsigned int counter, double delta);
     /// Von Mises against scene.material.yield_stress at every quadrature point (collective);
     /// optionally each cell's volume fraction above yield (the plastic_zone field).

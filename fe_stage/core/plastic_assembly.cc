@@ -145,15 +145,7 @@ namespace clearjoint::fe::detail
     dynamic_load_.compress(VectorOperation::add);
     info.n_plastic_points = Utilities::MPI::sum(info.n_plastic_points, comm_);
 
-    // the load at each contact node, with the shares of the hanging nodes beside it (as the
-    // traction K u − b is read): the friction rows' constant part (contact_rows.cc)
-    TrilinosWrappers::MPI::Vector load = dynamic_load_;
-    condense_hanging(load);
-    TrilinosWrappers::MPI::Vector load_ghosted(owned_, relevant_, comm_);
-    load_ghosted = load;
-    for (auto &cn : nodes_)
-      for (unsigned int c = 0; c < dim; ++c)
-        cn.load_offset[c] = load_ghosted[cn.dofs[c]];
+    set_contact_load_offsets();
     return info;
   }
 

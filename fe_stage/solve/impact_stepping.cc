@@ -247,6 +247,7 @@ namespace clearjoint::fe::detail
                 K_elastic_.vmult(tmp, u);
                 tmp -= lambda;
                 dynamic_load_.add(I.alpha, tmp);
+                set_contact_load_offsets();  // the friction rows read the traction K u − b
                 const double d_hat = d + dt * d_rate + dt * dt * (0.5 - hht.beta()) * d_acc;
                 solution_owned_ = u_hat;
                 solution_ = solution_owned_;
