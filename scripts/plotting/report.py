@@ -25,8 +25,24 @@ from plotting._report_mbd import headline_table, mbd_section
 from plotting._report_rolling import rolling_headline, rolling_section
 
 
+# What each preset error (presets.<p>.measured.error_F_max.<name>) is the error of: F(δ_max) for
+# a quasi-static FE study; the impact study's peak force; the rolling study's plastic dissipation
+# (pipeline.yaml, docs/pipeline.md "Presets' measured error and cost").
+ERROR_OF = {"impact": "peak force", "rolling": "plastic dissipation"}
+
+# The presets' measured times [s]: key in measured, column heading, format, and the summary
+# section whose presence shows the column even when no preset has measured it (None: always).
+PRESET_TIMES = [("fe_case_time", "one FE curve", "{:.3g}", None),
+                ("impact_time", "FE impact sweep", "{:.3g}", "impact"),
+                ("rolling_time", "FE rolling study", "{:.3g}", "rolling"),
+                ("pipeline_time", "whole pipeline", "{:.0f}", None)]
+
+
 def preset_section(summary):
-    """Every preset's measured cost and error of F(δ_max) per FE study; the chosen one marked."""
+    """Every preset's measured cost (DoFs, times of one FE curve, the impact sweep, the rolling
+    study and the whole pipeline) and error per FE study (of F(δ_max); the impact study's of its
+    peak force, the rolling study's of its plastic dissipation), each error with where it was
+    measured; the chosen preset marked. A null value reads "not measured"."""
     presets = summary.get("presets") or []
     if not presets:
         return ""
@@ -35,17 +51,29 @@ def preset_section(summary):
         for name in ((p.get("measured") or {}).get("error_F_max") or {}):
             if name not in studies:
                 studies.append(name)
+    times = [t for t in PRESET_TIMES
+             if t[3] is None or summary.get(t[3])
+             or any((p.get("measured") or {}).get(t[0]) for p in presets)]
 
-    def quantity(q, fmt):
-        return "not measured" if not q else fmt.format(q["value"])
+    def quantity(q, fmt, unit):
+        if not q:
+            return "not measured"
+        shown = fmt.format(q["value"])
+        return shown if q.get("unit", unit) == unit else f"{shown} {html.escape(q['unit'])}"
+
+    def error_heading(s):
+        return f"error of {ERROR_OF.get(s, 'F(δ_max)')}, {html.escape(s)} [%]"
 
     rows = ["<h2 id='presets'>Presets: measured cost and error</h2>",
-            "<p>Estimated relative error of the force at δ_max per FE study (against a Richardson "
-            "extrapolation over the mesh levels) and cost, as measured "
-            "(docs/benchmarks.md). “not yet measured” means no number exists yet.</p>",
-            "<table><tr><th>preset</th><th>FE scene settings</th><th>FE DoFs</th>"
-            "<th>one FE curve [s]</th><th>whole pipeline [s]</th>" +
-            "".join(f"<th>error F(δ_max), {html.escape(s)}</th>" for s in studies) +
+            "<p>Estimated relative error per FE study — of the force at δ_max (against a Richardson "
+            "extrapolation over the mesh levels), of the impact study's peak force, of the rolling "
+            "study's plastic dissipation (over the time steps) — and cost, as measured "
+            "(docs/benchmarks.md, docs/fe.md). Point at an error to see where it was measured "
+            "(also listed below the table). “not measured” and “not yet measured” mean no number "
+            "exists yet.</p>",
+            "<table><tr><th>preset</th><th>FE scene settings</th><th>FE DoFs [1]</th>" +
+            "".join(f"<th>{label} [s]</th>" for _, label, _, _ in times) +
+            "".join(f"<th>{error_heading(s)}</th>" for s in studies) +
             "<th>source</th></tr>"]
     for p in presets:
         m = p.get("measured") or {}
@@ -55,7 +83,7 @@ def preset_section(summary):
             e = errors.get(s)
             if e is None:
                 cells.append("<td>not stated</td>")
-            elif e["percent"] is None:
+            elif e.get("percent") is None:
                 cells.append(f"<td title='{html.escape(e['where'])}'><em>not yet measured</em></td>")
             else:
                 cells.append(f"<td title='{html.escape(e['where'])}'>{e['percent']:.3g} %</td>")
@@ -63,18 +91,24 @@ def preset_section(summary):
         name = html.escape(p["name"]) + (" <strong>(this run)</strong>" if p.get("chosen") else "")
         style = " style='background:#ffe9b3'" if p.get("chosen") else ""
         rows.append(f"<tr{style}><td>{name}</td><td>{html.escape(settings)}</td>"
-                    f"<td>{quantity(m.get('fe_dofs'), '{:.0f}')}</td>"
-                    f"<td>{quantity(m.get('fe_case_time'), '{:.3g}')}</td>"
-                    f"<td>{quantity(m.get('pipeline_time'), '{:.0f}')}</td>" + "".join(cells) +
+                    f"<td>{quantity(m.get('fe_dofs'), '{:.0f}', '1')}</td>" +
+                    "".join(f"<td>{quantity(m.get(key), fmt, 's')}</td>" for key, _, fmt, _ in times) +
+                    "".join(cells) +
                     f"<td>{html.escape(m.get('note', 'no measurements stated'))}</td></tr>")
     rows.append("</table>")
-    wheres = sorted({(s, e["where"]) for p in presets
-                     for s, e in ((p.get("measured") or {}).get("error_F_max") or {}).items()})
-    if wheres:
-        rows.append("<p>Where each error was measured: " +
-                    "; ".join(f"{html.escape(s)}: {html.escape(w)}" for s, w in wheres) + ".</p>")
+    # Where each error was measured, per column, each distinct text once with its presets.
+    items = []
+    for s in studies:
+        wheres = {}
+        for p in presets:
+            e = ((p.get("measured") or {}).get("error_F_max") or {}).get(s)
+            if e is not None:
+                wheres.setdefault(e["where"], []).append(p["name"])
+        items += [f"<li>{html.escape(s)} ({html.escape(', '.join(names))}): {html.escape(w)}</li>"
+                  for w, names in wheres.items()]
+    if items:
+        rows.append("<p>Where each error was measured:</p><ul>" + "".join(items) + "</ul>")
     return "".join(rows)
-
 
 
 def timing_section(summary):
