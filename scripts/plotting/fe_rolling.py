@@ -27,7 +27,7 @@ def main(argv):
     p = read_table(profile_path)[2] if os.path.exists(profile_path) else None
     # the slip stages, as fe_stage puts them in the manifest's "rolling" block: given as a
     # JSON argument (the plot runs before the manifest is written), or read from a manifest
-    # already there (re-plotting a finished run)
+    # already there (re-plotting a finished run; the block is under "extra")
     stages = None
     if len(argv) == 3:
         stages = json.loads(argv[2]).get("slip_stages")
@@ -35,7 +35,8 @@ def main(argv):
         manifest_path = os.path.join(folder, "manifest.json")
         if os.path.exists(manifest_path):
             with open(manifest_path) as f:
-                stages = json.load(f).get("rolling", {}).get("slip_stages")
+                manifest = json.load(f)
+            stages = ((manifest.get("extra") or {}).get("rolling") or {}).get("slip_stages")
     t_ms = [x * 1e3 for x in h["time"]]
 
     fig, axes = plt.subplots(2, 3, figsize=(15, 8))
