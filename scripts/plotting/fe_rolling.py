@@ -17,6 +17,32 @@ import matplotlib.pyplot as plt
 from plotting._common import read_table
 
 
+# the slip stages of fe_stage's manifest (rolling.slip_stages) marked in the slip-speed panel
+SLIP_STAGES = [("end_of_slip", "end of gross slip"), ("settled", "settled")]
+
+
+def stage_markers(stages, t_span_ms):
+    """The slip stages to mark, as [(t [ms], label)] in time order: stages at the same time (within
+    1 % of the plotted span t_span_ms [ms]) share one marker whose label names them all, with
+    the time, e.g. "end of gross slip = settled, 40 ms"; none when the stages were not found."""
+    if not stages or not stages.get("found"):
+        return []
+    tol = 0.01 * abs(t_span_ms[1] - t_span_ms[0])
+    groups = []  # [[t [ms], [labels]]]
+    for key, label in SLIP_STAGES:
+        value = (stages.get(key) or {}).get("value")
+        if value is None:
+            continue
+        t = value * 1e3
+        for g in groups:
+            if abs(g[0] - t) <= tol:
+                g[1].append(label)
+                break
+        else:
+            groups.append([t, [label]])
+    return [(t, f"{' = '.join(labels)}, {t:.3g} ms") for t, labels in sorted(groups)]
+
+
 def main(argv):
     if len(argv) not in (2, 3):
         print(__doc__)
@@ -53,11 +79,20 @@ def main(argv):
     ax = axes[0][1]
     ax.plot(t_ms, h["slip_speed"], "o-", ms=2)
     ax.axhline(0.0, color="k", lw=0.5)
-    if stages and stages.get("found"):
-        for key, lab in [("end_of_slip", "end of gross slip"), ("settled", "settled")]:
-            ax.axvline(stages[key]["value"] * 1e3, color="C3", ls=":", lw=1)
-            ax.text(stages[key]["value"] * 1e3, ax.get_ylim()[1], " " + lab, fontsize=7,
-                    va="top", color="C3")
+    t_span = (t_ms[0], t_ms[-1]) if t_ms else (0.0, 1.0)
+    markers = stage_markers(stages, t_span)
+    if markers:  # room above the curve for the labels' rows
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(lo, hi + (0.06 + 0.07 * len(markers)) * (hi - lo))
+    for i, (t, label) in enumerate(markers):
+        ax.axvline(t, color="C3", ls=":", lw=1)
+        # in axes fraction upwards, one line lower per marker so that near ones do not overlap;
+        # to the left of a line in the right half of the panel, so that it stays inside
+        right = t > 0.5 * (t_span[0] + t_span[1])
+        ax.text(t, 0.98 - 0.06 * i, f"{label} " if right else f" {label}", fontsize=7,
+                va="top", ha="right" if right else "left", color="C3",
+                transform=ax.get_xaxis_transform(),
+                bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=1))
     ax.set_xlabel("t [ms]")
     ax.set_ylabel("slip speed ω_B (R_B + δ) − γ̇ R_J [m/s]")
     ax.set_title("relative speed at the contact (slip stages)")

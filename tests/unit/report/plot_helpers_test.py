@@ -2,7 +2,8 @@
 """The plot helpers of issue 15 item 8: FE legends never show run_pipeline's temporary folder
 name, a log axis over one decade carries several readable tick labels, and the report's overlay
 of all MBD runs (item 3) gives each run one colour in every panel — also in the journal orbit,
-which the ideal joint (no clearance joint) does not have.
+which the ideal joint (no clearance joint) does not have. The rolling plot's slip stages at the
+same time share one marker and one label (they printed on top of each other), apart each their own.
 
     plot_helpers_test.py
 """
@@ -18,6 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from plotting._report_common import readable_log_axis  # noqa: E402
 from plotting import _report_mbd  # noqa: E402
 from plotting.fe import folder_label  # noqa: E402
+from plotting.fe_rolling import stage_markers  # noqa: E402
 
 
 class FakeRun:
@@ -79,6 +81,18 @@ def main():
     bad += check(len(labels) >= 3, f"x tick labels in the data range: {labels}")
     bad += check(all("10^" not in l and "$" not in l for l in labels), f"plain numbers: {labels}")
     plt.close(fig)
+
+    # slip stages as in fe_stage's manifest (rolling.slip_stages), times in s; the plot in ms
+    def stages(end, settled):
+        return {"found": True, "end_of_slip": {"value": end, "unit": "s"},
+                "settled": {"value": settled, "unit": "s"}}
+    same = stage_markers(stages(0.04, 0.04), (0.0, 40.0))
+    bad += check(same == [(40.0, "end of gross slip = settled, 40 ms")], f"stages at one time: {same}")
+    apart = stage_markers(stages(0.0125, 0.03), (0.0, 40.0))
+    bad += check(apart == [(12.5, "end of gross slip, 12.5 ms"), (30.0, "settled, 30 ms")],
+                 f"stages apart: {apart}")
+    bad += check(stage_markers({"found": False}, (0.0, 40.0)) == [] and stage_markers(None, (0, 1)) == [],
+                 "no markers when the stages were not found")
 
     panels = overlay_colours()
     reference = panels.get("Fig. 14: slider velocity", {})
