@@ -51,13 +51,18 @@ namespace clearjoint::fe::rolling
     s.v_final = v[n - 1];
     if (!(s.v_max > 0.0))
       return s;
-    std::size_t i_fall = n - 1;
+    // stage (i) ends where the relative speed first falls below fall_fraction of its largest
+    // value; if it never does before the end, the stages are not located (the run ended in
+    // gross slip, or the slip speed only wanders about its level)
+    std::size_t i_fall = n;
     for (std::size_t i = i_max; i < n; ++i)
       if (std::abs(v[i]) < fall_fraction * s.v_max)
         {
           i_fall = i;
           break;
         }
+    if (i_fall == n)
+      return s;
     // stage (iii) starts after the last step outside the band about the final speed
     std::size_t i_settle = i_fall;
     for (std::size_t i = i_fall; i < n; ++i)

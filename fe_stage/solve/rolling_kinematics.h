@@ -69,7 +69,8 @@ namespace clearjoint::fe::rolling
   /// within `settle_band` (of that largest value) of its final value; (iii) the stable rest.
   struct SlipStages
   {
-    bool found = false;       // false: fewer than 3 steps, or no slip at all
+    bool found = false;       // false: fewer than 3 steps, no slip at all, or the relative
+                              //   speed never fell below the fraction before the end
     double v_max = 0.0;       // [m/s] largest relative speed
     double end_of_slip = 0.0; // [s] end of stage (i)
     double settled = 0.0;     // [s] start of stage (iii)

@@ -349,8 +349,10 @@ def _slip_stages(run):
         q = st.get(key)
         unit = q.get("unit", "") if isinstance(q, dict) else ""
         rows.append((label, _fmt(value_of(q), fmt, unit)))
-    note = "" if found else ("<p>No slip stages were found in this run (too few steps, or the "
-                             "slip speed did not settle): the times above are not meaningful.</p>")
+    note = "" if found else ("<p>No slip stages were found in this run (too few steps, no slip, or "
+                             "the slip speed never fell below half its largest value before the "
+                             "end: the run ended in gross slip or before the journal caught up): "
+                             "the times above are not meaningful.</p>")
     return ("<h3>Slip stages (fe_stage's manifest)</h3><table><tr><th>stage</th><th>value</th></tr>" +
             "".join(f"<tr><td>{esc(a)}</td><td>{esc(b)}</td></tr>" for a, b in rows) +
             "</table>" + note)

@@ -108,6 +108,10 @@ TEST(RollingKinematics, SlipStagesOnASyntheticHistory)
   EXPECT_NEAR(s.settled, 0.2 - 0.1 * 0.05 / 0.98, 1.01e-3);
   EXPECT_FALSE(slip_stages({0.0, 1.0}, {1.0, 1.0}).found);          // too short
   EXPECT_FALSE(slip_stages({0.0, 1.0, 2.0}, {0.0, 0.0, 0.0}).found);  // no slip at all
+  // the speed rises to its largest value at the end and never falls: no stage is located
+  // (before, both stages were reported at the last sample)
+  EXPECT_FALSE(slip_stages({0.0, 1.0, 2.0, 3.0}, {0.0, 0.2, 0.25, 0.3}).found);
+  EXPECT_FALSE(slip_stages({0.0, 1.0, 2.0, 3.0}, {0.0, 0.3, 0.2, 0.25}).found);  // wanders
 }
 
 TEST(RollingKinematics, RootFinder)
