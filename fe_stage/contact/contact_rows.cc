@@ -80,6 +80,19 @@ namespace clearjoint::fe::detail
         }
   }
 
+  void ContactModel::start_from_rest()
+  {
+    solution_owned_ = 0.0;
+    solution_ = 0.0;
+    for (auto &cn : nodes_)
+      {
+        cn.active = false;
+        cn.stick = true;
+        cn.relative = cn.relative_converged = Tensor<1, dim>();
+        cn.obstacle_u = cn.obstacle_u_converged = Tensor<1, dim>();
+      }
+  }
+
   /// The load at each contact node, with the shares of the hanging nodes beside it (as the
   /// traction K u − b is read in evaluate_contact): the friction rows' constant part (below).
   void ContactModel::set_contact_load_offsets()

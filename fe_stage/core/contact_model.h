@@ -245,6 +245,14 @@ namespace clearjoint::fe::detail
     void friction_node_matrix(const ContactNode &cn, double c, double delta, FullMatrix<double> &M,
                               Vector<double> &rhs, std::vector<types::global_dof_index> &ext) const;
     void condense_hanging(TrilinosWrappers::MPI::Vector &r);
+    /// Every study's start: zero displacement, no contact, every node sticking with no slip
+    /// history and the obstacle's surface points unmoved.
+    void start_from_rest();
+    /// [s] since the model was made (the runs' setup and wall times).
+    double elapsed() const
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
     /// Each contact node's share of the step's known load b (dynamic_load_: the traction is
     /// K u − b in the dynamic and elastoplastic solves), for the friction rows (collective).
     void set_contact_load_offsets();

@@ -49,9 +49,6 @@ namespace clearjoint::fe::detail
   {
     RunResult result;
     result.n_ranks = n_ranks_;
-    auto seconds = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    };
     const auto &I = scene_.impact;
     const auto &L = scene_.loading;
     auto &S = result.impact;
@@ -61,7 +58,7 @@ namespace clearjoint::fe::detail
     result.n_cells = tria_.n_global_active_cells();
     result.symmetry_factor = symmetry_factor_;
     result.h_min = h_min_;
-    result.setup_time = seconds();
+    result.setup_time = elapsed();
     S.velocity_in = I.velocity;
     S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, below
     S.alpha = I.alpha;
@@ -82,14 +79,14 @@ namespace clearjoint::fe::detail
                       [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
       {
         result.message = "static probe of the contact stiffness: " + result.message;
-        result.wall_time = seconds();
+        result.wall_time = elapsed();
         return result;
       }
     if (!(f_probe > 0.0))
       {
         result.message = "the static probe at delta = " + format_value(delta_probe) +
                          " m found no contact force (mesh too coarse where the journal touches)";
-        result.wall_time = seconds();
+        result.wall_time = elapsed();
         return result;
       }
     const double delta_estimate = I.velocity * std::sqrt(m_J * delta_probe / f_probe);
@@ -105,7 +102,7 @@ namespace clearjoint::fe::detail
       targets.push_back(delta_curve * k / L.n_increments);
     const bool curve_ok =
       push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
-        r.wall_time = seconds();
+        r.wall_time = elapsed();
         result.increments.push_back(r);
         if (options_.on_increment)
           options_.on_increment(r);
@@ -113,7 +110,7 @@ namespace clearjoint::fe::detail
     if (!curve_ok)
       {
         result.message = "quasi-static reference curve: " + result.message;
-        result.wall_time = seconds();
+        result.wall_time = elapsed();
         return result;
       }
     S.contact_stiffness = interpolate_curve(result.increments, delta_estimate) / delta_estimate;
@@ -141,14 +138,7 @@ namespace clearjoint::fe::detail
       }
     const HhtAlpha hht(I.alpha, "impact.alpha", scene_.source_file);
     set_dynamic_operator(hht.coefficients(dt));
-    solution_owned_ = 0.0;
-    solution_ = 0.0;
-    for (auto &cn : nodes_)
-      {
-        cn.active = false;
-        cn.stick = true;
-        cn.relative = cn.relative_converged = Tensor<1, dim>();
-      }
+    start_from_rest();
     TrilinosWrappers::MPI::Vector u(owned_, comm_), v(owned_, comm_), a(owned_, comm_),
       lambda(owned_, comm_), u_new(owned_, comm_), v_new(owned_, comm_), a_new(owned_, comm_),
       lambda_new(owned_, comm_), tmp(owned_, comm_), u_peak(owned_, comm_);
@@ -217,7 +207,7 @@ namespace clearjoint::fe::detail
         evaluate_contact(0.0);
         write_fields(0, 0.0);
       }
-    const double wall_dynamic_start = seconds();
+    const double wall_dynamic_start = elapsed();
     unsigned int step = 0;
     for (; step < I.max_steps && t < t_end * (1.0 - 1e-12); ++step)
       {
@@ -324,7 +314,7 @@ namespace clearjoint::fe::detail
                                      std::to_string(rec.cuts) + " cuts: " + f.reason;
                     if (rank_ == 0)
                       log::error("fe_stage: " + result.message);
-                    result.wall_time = seconds();
+                    result.wall_time = elapsed();
                     result.field_files = field_files_;
                     return result;
                   }
@@ -404,7 +394,7 @@ namespace clearjoint::fe::detail
         rec.work_contact = work_contact;
         rec.numerical_dissipation = ledger.dissipation;
         rec.n_active = inc.n_active;
-        rec.wall_time = seconds();
+        rec.wall_time = elapsed();
         result.dynamic_steps.push_back(rec);
         if (F > S.peak_force)
           {
@@ -482,7 +472,7 @@ namespace clearjoint::fe::detail
       {
         result.message = "impact.max_steps = " + std::to_string(I.max_steps) +
                          " reached at t = " + format_value(t) + " s before the end time";
-        result.wall_time = seconds();
+        result.wall_time = elapsed();
         result.field_files = field_files_;
         return result;
       }
@@ -519,7 +509,7 @@ namespace clearjoint::fe::detail
         log_yield_check(result.yield_check);
       }
     result.complete = true;
-    result.wall_time = seconds();
+    result.wall_time = elapsed();
     result.field_files = field_files_;
     if (rank_ == 0 && fields)
       result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");

@@ -15,14 +15,7 @@ namespace clearjoint::fe::detail
     const std::function<void(unsigned int, IncrementRecord &)> &on_converged)
   {
     const auto &L = scene_.loading;
-    solution_owned_ = 0.0;
-    solution_ = 0.0;
-    for (auto &cn : nodes_)
-      {
-        cn.active = false;
-        cn.stick = true;
-        cn.relative = cn.relative_converged = Tensor<1, dim>();
-      }
+    start_from_rest();
     double delta_done = 0.0, delta_previous = 0.0;
     bool have_previous = false;
     TrilinosWrappers::MPI::Vector solution_previous(owned_, comm_);
@@ -178,9 +171,6 @@ namespace clearjoint::fe::detail
       return run_rolling();
     RunResult result;
     result.n_ranks = n_ranks_;
-    auto seconds = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    };
     const auto &L = scene_.loading;
     std::vector<double> targets;
     for (unsigned int inc = 1; inc <= L.n_increments; ++inc)
@@ -198,7 +188,7 @@ namespace clearjoint::fe::detail
         prepare_mesh();
         if (cycle == scene_.mesh.adaptive_cycles)
           break;
-        const double t0 = seconds();
+        const double t0 = elapsed();
         AdaptiveCycle c;
         c.n_dofs = dof_handler_.n_dofs();
         c.n_cells = tria_.n_global_active_cells();
@@ -208,10 +198,10 @@ namespace clearjoint::fe::detail
             }))
           {
             result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
-            result.wall_time = seconds();
+            result.wall_time = elapsed();
             return result;
           }
-        c.wall_time = seconds() - t0;
+        c.wall_time = elapsed() - t0;
         result.adaptive_cycles.push_back(c);
         if (rank_ == 0)
           {
@@ -228,7 +218,7 @@ namespace clearjoint::fe::detail
     result.n_cells = tria_.n_global_active_cells();
     result.symmetry_factor = symmetry_factor_;
     result.h_min = h_min_;
-    result.setup_time = seconds();
+    result.setup_time = elapsed();
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
       std::filesystem::create_directories(options_.output_dir + "/fields");
@@ -283,7 +273,7 @@ namespace clearjoint::fe::detail
     };
     const bool complete =
       push_through(targets, result.message, [&](const unsigned int inc, IncrementRecord &rec) {
-        rec.wall_time = seconds();
+        rec.wall_time = elapsed();
         result.increments.push_back(rec);
         if (options_.on_increment)
           options_.on_increment(rec);
@@ -293,7 +283,7 @@ namespace clearjoint::fe::detail
       });
     if (!complete)
       {
-        result.wall_time = seconds();
+        result.wall_time = elapsed();
         result.field_files = field_files_;
         if (!result.increments.empty())
           {
@@ -322,7 +312,7 @@ namespace clearjoint::fe::detail
       }
     result.yield_check = check_yield(nullptr);
     log_yield_check(result.yield_check);
-    result.wall_time = seconds();
+    result.wall_time = elapsed();
     if (rank_ == 0)
       log::info("fe_stage: time in contact assembly " + log::format_duration(t_assemble_) +
                 ", linear solves " + log::format_duration(t_solve_) + " (of which AMG setup " +

@@ -70,9 +70,6 @@ namespace clearjoint::fe::detail
   {
     RunResult result;
     result.n_ranks = n_ranks_;
-    auto seconds = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    };
     const auto &R = scene_.rolling;
     const auto &L = scene_.loading;
     const auto &G = scene_.geometry;
@@ -84,7 +81,7 @@ namespace clearjoint::fe::detail
     result.n_cells = tria_.n_global_active_cells();
     result.symmetry_factor = symmetry_factor_;
     result.h_min = h_min_;
-    result.setup_time = seconds();
+    result.setup_time = elapsed();
 
     const rolling::Motion motion{R.omega_B, R.ramp_time, L.delta_max, G.c_r, G.R_B, G.R_J()};
     const double t_end = rolling_end_time(scene_);
@@ -106,15 +103,7 @@ namespace clearjoint::fe::detail
                 format_value(inertia) + " kg m^2, mu " + format_value(scene_.contact.mu) +
                 ", setup " + log::format_duration(result.setup_time));
 
-    solution_owned_ = 0.0;
-    solution_ = 0.0;
-    for (auto &cn : nodes_)
-      {
-        cn.active = false;
-        cn.stick = true;
-        cn.relative = cn.relative_converged = Tensor<1, dim>();
-        cn.obstacle_u = cn.obstacle_u_converged = Tensor<1, dim>();
-      }
+    start_from_rest();
     // the bore node at the bottom of the mid-plane: it touches the journal at t = 0 (paper
     // Fig. 9's N_B); the generated ring has a vertex there
     int tracked = -1;
@@ -147,7 +136,7 @@ namespace clearjoint::fe::detail
     double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction_work = 0.0;
     double torque_drive_prev = 0.0, force_prev = 0.0;
     std::vector<double> times, slips;
-    const double wall_steps_start = seconds();
+    const double wall_steps_start = elapsed();
     unsigned int step = 0;
     // the step size carries over: a step that needed cuts starts the next one at its own size,
     // which doubles (up to the nominal) after two steps without a cut (as the impact study)
@@ -329,7 +318,7 @@ namespace clearjoint::fe::detail
           {c1[0] + pJ[0] - c0[0], c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0}, G.R_J());
         rec.phi_rate_paper = rec.phi_paper / t1;
         rec.gamma_rate_paper = rec.gamma_paper / t1;
-        rec.wall_time = seconds();
+        rec.wall_time = elapsed();
         torque_drive_prev = rec.torque_drive;
         force_prev = rec.force_normal;
         gamma = rec.gamma;
@@ -354,7 +343,7 @@ namespace clearjoint::fe::detail
         result.increments.push_back(inc);
         if (rank_ == 0)
           {
-            const double per_second = (seconds() - wall_steps_start) / t;
+            const double per_second = (elapsed() - wall_steps_start) / t;
             log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(t) +
                       " s, delta " + format_value(rec.delta) + " m, F " +
                       format_value(rec.force_normal) + " N, spin " +
@@ -395,7 +384,7 @@ namespace clearjoint::fe::detail
       }
     result.field_files = field_files_;
     result.complete = result.message.empty();
-    result.wall_time = seconds();
+    result.wall_time = elapsed();
     return result;
   }
 } // namespace clearjoint::fe::detail
