@@ -33,6 +33,7 @@ namespace clearjoint::fe
       {
         case JournalLoading::end_faces: return "end_faces";
         case JournalLoading::axis_line: return "axis_line";
+        case JournalLoading::core: return "core";
         case JournalLoading::rigid: return "rigid";
       }
     return "?";
@@ -76,7 +77,7 @@ namespace clearjoint::fe
                                         Study::patch;
     // The misalignment study's journal is rigid unless the scene says otherwise (SPEC §2: the
     // end-face loading drives the contact rim); validate_scene rejects any other choice.
-    // The impact study's journal is rigid unless the scene says end_faces or axis_line: then it
+    // The impact study's journal is rigid unless the scene says end_faces, axis_line or core: then it
     // is deformable, free in the time steps, and its quasi-static reference curve is pushed
     // that way (the thickness study's loading).
     if (s.study == Study::misalignment || s.study == Study::impact)
@@ -178,9 +179,10 @@ namespace clearjoint::fe
         auto l = top.object("loading");
         auto &L = s.loading;
         const std::string journal =
-          l.string_or("journal", to_string(L.journal), {"end_faces", "axis_line", "rigid"});
+          l.string_or("journal", to_string(L.journal), {"end_faces", "axis_line", "core", "rigid"});
         L.journal = journal == "end_faces" ? JournalLoading::end_faces :
                     journal == "axis_line" ? JournalLoading::axis_line :
+                    journal == "core"      ? JournalLoading::core :
                                              JournalLoading::rigid;
         L.delta_max = l.number_or("delta_max", L.delta_max, Range::positive("m"));
         L.n_increments = uint_or(l, "n_increments", L.n_increments, 1, 100000);
@@ -441,7 +443,8 @@ namespace clearjoint::fe
                            "rigid for study misalignment",
                            "SPEC §2: with end_faces or axis_line loading the rim that carries the "
                            "contact is itself driven (a line load whose force does not converge "
-                           "with the mesh); the tilted journal is rigid");
+                           "with the mesh); the tilted journal is rigid (the core loading needs a "
+                           "tilted journal mesh, not built yet)");
         const auto jg = joint_geometry(G);
         geometry::check_tilt(jg, geometry::radians(s.misalignment.theta_deg), f,
                              "misalignment.theta_deg");
@@ -458,7 +461,7 @@ namespace clearjoint::fe
           throw InputError(f, "contact.pairing", to_string(s.contact.pairing),
                            "automatic when the other body is rigid",
                            "pairing couples two deformable bodies: set loading.journal to "
-                           "end_faces or axis_line (or verification.deformable_indenter)");
+                           "end_faces, axis_line or core (or verification.deformable_indenter)");
         if (deformable_journal && s.contact.pairing == Pairing::node_to_node &&
             s.mesh.adaptive_cycles > 0)
           throw InputError(f, "contact.pairing", "node_to_node",
@@ -652,7 +655,8 @@ namespace clearjoint::fe
       << "                      #   meets the bore (automatic = mortar; node_to_node: the\n"
       << "                      #   generated joint's nodes on common rays)\n"
       << "loading:\n"
-      << "  journal: end_faces  # end_faces | axis_line (the paper's) | rigid (rigid journal)\n"
+      << "  journal: end_faces  # end_faces | axis_line (the paper's) | core (the inner core\n"
+      << "                      #   r <= R_J/2 moved rigidly) | rigid (rigid journal)\n"
       << "                      #   study misalignment: rigid (its default and only choice)\n"
       << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
       << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
@@ -693,7 +697,7 @@ namespace clearjoint::fe
       << "  indenter_height: " << d.verification.indenter_height
       << "  # [m] height of a deformable indenter (its top is pushed by delta)\n"
       << "impact:               # study impact (paper 3.2): the journal (mass rho*pi*R_J^2*L_J; rigid\n"
-      << "                      #   unless loading.journal is end_faces or axis_line: deformable and\n"
+      << "                      #   unless loading.journal is end_faces, axis_line or core: deformable and\n"
       << "                      #   free, its quasi-static curve pushed that way) starts at first\n"
       << "                      #   touch moving toward the bearing (-y)\n"
       << "  velocity: " << d.impact.velocity << "       # [m/s] speed at first touch, (0, 100)\n"

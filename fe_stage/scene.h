@@ -35,8 +35,10 @@ namespace clearjoint::fe
 
   /// How the journal is loaded (SPEC §2): `end_faces` (default) drives u_y = −δ on the journal's
   /// end face(s); `axis_line` drives only the journal's axis (the paper's choice; drifts with
-  /// mesh size); `rigid` replaces the journal by a rigid cylinder (only the bearing is meshed).
-  enum class JournalLoading { end_faces, axis_line, rigid };
+  /// mesh size); `core` moves the journal's inner core r ≤ R_J/2 rigidly, u = (0, −δ, 0), the
+  /// outer part deformable; `rigid` replaces the journal by a rigid cylinder (only the bearing
+  /// is meshed).
+  enum class JournalLoading { end_faces, axis_line, core, rigid };
 
   enum class LinearSolver { automatic, cg_amg, direct };
 

@@ -1,6 +1,9 @@
 // Fixed constraints: hanging nodes, symmetry planes, supports and the journal load (δ = 1, scaled).
 #include "fe_stage/core/contact_model.h"
 
+#include <cmath>
+#include <set>
+
 namespace clearjoint::fe::detail
 {
   /// Hanging nodes, symmetry planes, supports and the journal load at δ = 1 on the locally
@@ -60,32 +63,38 @@ namespace clearjoint::fe::detail
                   }
               }
           }
-        else  // axis_line: the journal's y-DoFs on its axis x = 0, y = −c_r
+        else
           {
+            // axis_line: the journal's y-DoFs on its axis x = 0, y = −c_r; core: every DoF of
+            // the journal's points within R_J/2 of that axis, u = (0, −1, 0) (a rigid core
+            // translated, SPEC §2)
+            const bool core = scene_.loading.journal == JournalLoading::core;
             const double tol = 1e-8 * scene_.geometry.R_B;
-            std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell()), axis_dofs;
+            const double r_core = 0.5 * scene_.geometry.R_J();
+            auto driven = [&](const Point<dim> &p) {
+              const double r = std::hypot(p[0], p[1] + scene_.geometry.c_r);
+              return core ? r <= r_core + tol : r < tol;
+            };
+            std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
+            std::set<types::global_dof_index> seen;
             for (const auto &cell : dof_handler_.active_cell_iterators())
               if ((cell->is_locally_owned() || cell->is_ghost()) && cell->material_id() == 1)
                 {
                   cell->get_dof_indices(dofs);
                   for (unsigned int i = 0; i < dofs.size(); ++i)
-                    if (fe_->system_to_component_index(i).first == 1)
-                      {
-                        const Point<dim> &p = support.at(dofs[i]);
-                        if (std::abs(p[0]) < tol && std::abs(p[1] + scene_.geometry.c_r) < tol &&
-                            std::find(axis_dofs.begin(), axis_dofs.end(), dofs[i]) ==
-                              axis_dofs.end())
-                          {
-                            axis_dofs.push_back(dofs[i]);
-                            if (owned_.is_element(dofs[i]))
-                              loaded_y_dofs_.push_back(dofs[i]);
-                            if (!fixed_constraints_.is_constrained(dofs[i]))
-                              {
-                                fixed_constraints_.add_line(dofs[i]);
-                                fixed_constraints_.set_inhomogeneity(dofs[i], -1.0);
-                              }
-                          }
-                      }
+                    {
+                      const unsigned int component = fe_->system_to_component_index(i).first;
+                      if ((component != 1 && !core) || !driven(support.at(dofs[i])) ||
+                          !seen.insert(dofs[i]).second)
+                        continue;
+                      if (component == 1 && owned_.is_element(dofs[i]))
+                        loaded_y_dofs_.push_back(dofs[i]);
+                      if (!fixed_constraints_.is_constrained(dofs[i]))
+                        {
+                          fixed_constraints_.add_line(dofs[i]);
+                          fixed_constraints_.set_inhomogeneity(dofs[i], component == 1 ? -1.0 : 0.0);
+                        }
+                    }
                 }
           }
         loaded_sorted_ = loaded_y_dofs_;

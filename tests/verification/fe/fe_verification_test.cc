@@ -426,7 +426,7 @@ TEST(FeRadial, EquilibriumMonotonicityAndQuarterEqualsFull)
 // does not penetrate the bearing at any contact node.
 TEST(FeTwoBody, ContactForceEqualsSupportAndLoadReactions)
 {
-  for (const std::string journal : {"end_faces", "axis_line"})
+  for (const std::string journal : {"end_faces", "axis_line", "core"})
     {
       const FeScene s = scene(coarse_two_body(journal));
       const RunResult r = run(s);
@@ -441,19 +441,28 @@ TEST(FeTwoBody, ContactForceEqualsSupportAndLoadReactions)
     }
 }
 
-// Compliance adds up: the rigid journal gives the stiffest contact, a journal driven on its end
-// faces is softer, one driven only on its axis line softer still (SPEC §2).
-TEST(FeTwoBody, RigidStifferThanEndFacesStifferThanAxisLine)
+// Compliance adds up: the rigid journal gives the stiffest contact; a journal driven on its end
+// faces, or moved by its rigid inner core (r ≤ R_J/2, SPEC §2), adds the journal's own
+// compliance; one driven only on its axis line is softer still (SPEC §2). Core and end faces
+// load this short journal (L_J = 18 mm, R_J = 9.5 mm) almost alike: measured 19950.5 against
+// 19967.9 N (0.09 %), so their order is not asserted.
+TEST(FeTwoBody, RigidStifferThanEndFacesOrCoreStifferThanAxisLine)
 {
   const RunResult rigid = run(scene(coarse_radial));
+  const RunResult core = run(scene(coarse_two_body("core")));
   const RunResult ends = run(scene(coarse_two_body("end_faces")));
   const RunResult axis = run(scene(coarse_two_body("axis_line")));
-  ASSERT_TRUE(rigid.complete && ends.complete && axis.complete);
-  const double Fr = rigid.increments.back().force, Fe = ends.increments.back().force,
-               Fa = axis.increments.back().force;
-  std::printf("F(delta_max): rigid %.1f N, end_faces %.1f N, axis_line %.1f N\n", Fr, Fe, Fa);
+  ASSERT_TRUE(rigid.complete && core.complete && ends.complete && axis.complete);
+  const double Fr = rigid.increments.back().force, Fc = core.increments.back().force,
+               Fe = ends.increments.back().force, Fa = axis.increments.back().force;
+  std::printf("F(delta_max): rigid %.1f N, core %.1f N, end_faces %.1f N, axis_line %.1f N\n",
+              Fr, Fc, Fe, Fa);
   EXPECT_GT(Fr, Fe);
   EXPECT_GT(Fe, Fa);
+  EXPECT_GT(Fr, Fc);
+  EXPECT_GT(Fc, Fa);
+  // the core's outer half under the contact: softer than rigid by what the end faces show
+  EXPECT_NEAR(Fc, Fe, 0.05 * (Fr - Fa));
 }
 
 // The two-body quarter model equals the full two-body model (symmetry factor).
@@ -527,6 +536,7 @@ TEST(FeMpi, TwoRanksMatchOneRank)
   expect_ranks_agree(scene(coarse_radial));
   expect_ranks_agree(scene(coarse_two_body("end_faces")));
   expect_ranks_agree(scene(coarse_two_body("axis_line")));
+  expect_ranks_agree(scene(coarse_two_body("core")));
   FeScene hanging = scene(coarse_two_body("end_faces"));
   hanging.mesh.contact_refinements = 1;
   hanging.mesh.contact_window_deg = 20.0;  // hanging nodes inside the contact zone
