@@ -4,6 +4,8 @@
 // Hüeber–Stadler–Wohlmuth (2008), in the projection form of contact/coulomb_ssn.h.
 #include "fe_stage/core/contact_model.h"
 
+#include <cstdio>
+
 namespace clearjoint::fe::detail
 {
   ContactModel::ActiveSetChange ContactModel::update_active_set(const double c,
@@ -17,6 +19,7 @@ namespace clearjoint::fe::detail
     // residual |t − μλŵ| falls quadratically.
     unsigned int n_changed = 0;
     double slip_residual = 0.0, force_scale = 0.0;
+    std::string changed;
     const double mu = scene_.contact.mu;
     for (auto &cn : nodes_)
       {
@@ -43,11 +46,25 @@ namespace clearjoint::fe::detail
         if (cn.owned && now)
           force_scale = std::max(force_scale, cn.lambda);
         if (cn.owned && (now != cn.active || (friction_ && now && stick != cn.stick)))
-          ++n_changed;
+          {
+            ++n_changed;
+            // name the first few (contact chatter is read off these, in mm)
+            if (n_changed <= 4)
+              {
+                auto state = [&](const bool active, const bool sticks) {
+                  return !active ? "open" : !friction_ ? "closed" : sticks ? "stick" : "slip";
+                };
+                char where[96];
+                std::snprintf(where, sizeof where, "(%.4g, %.4g, %.4g) mm ", 1e3 * cn.X[0],
+                              1e3 * cn.X[1], 1e3 * cn.X[2]);
+                changed += (changed.empty() ? "" : ", ") + std::string(where) +
+                           state(cn.active, cn.stick) + " -> " + state(now, stick);
+              }
+          }
         cn.active = now;
         cn.stick = stick;
       }
     return {Utilities::MPI::sum(n_changed, comm_), Utilities::MPI::max(slip_residual, comm_),
-            Utilities::MPI::max(force_scale, comm_)};
+            Utilities::MPI::max(force_scale, comm_), changed};
   }
 } // namespace clearjoint::fe::detail

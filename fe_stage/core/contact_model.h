@@ -171,6 +171,8 @@ namespace clearjoint::fe::detail
       double slip_residual = 0.0;  // [N] largest |t − μλŵ| at nodes that slipped in the
                                    // solve and still slip (all ranks): Coulomb's slip law
       double force_scale = 0.0;    // [N] largest normal nodal force λ (all ranks)
+      std::string changed;         // the first few changed nodes, "(x, y, z) mm
+                                   // stick→slip, …" (this rank's; for messages)
     };
     ActiveSetChange update_active_set(double c, double eps_g);
     // c_T / c of this increment's iterations: contact.tangential_scale, lowered when the

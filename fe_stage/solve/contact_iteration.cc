@@ -77,7 +77,9 @@ namespace clearjoint::fe::detail
           log::debug("  delta " + format_value(delta) + " m, iteration " +
                      std::to_string(it + 1) + ": " + std::to_string(change.n_changed) +
                      " nodes changed, slip-law residual " + format_value(change.slip_residual) +
-                     " N (largest nodal force " + format_value(change.force_scale) + " N)");
+                     " N (largest nodal force " + format_value(change.force_scale) + " N)" +
+                     (change.changed.empty() ? "" : "; rank " + std::to_string(rank_) + ": " +
+                                                      change.changed));
         if (change.n_changed == 0 && slip_settled)
           {
             ++it;
@@ -87,6 +89,7 @@ namespace clearjoint::fe::detail
           throw StepFailure{"active set did not settle in " + std::to_string(it + 1) +
                             " iterations (" + std::to_string(change.n_changed) +
                             " nodes still changing" +
+                            (change.changed.empty() ? "" : ", e.g. " + change.changed) +
                             (slip_settled ? "" : ", slip-law residual " +
                                                    format_value(change.slip_residual) + " N") +
                             ")"};

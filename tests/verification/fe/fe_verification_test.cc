@@ -634,3 +634,18 @@ TEST(FeMisalignment, TiltedForceWellBelowAlignedAndInEquilibrium)
       EXPECT_LT(inc.max_penetration, 1e-9 * 0.05e-3);  // exact at the contact nodes
     }
 }
+
+// A contact iteration that does not settle names the nodes that still change and how (the
+// contact chatter an analyst looks for), in mm, in the failure's message: here the first
+// iteration of the coarse joint cannot have settled (every node starts open).
+TEST(FeTwoBody, AnUnsettledActiveSetNamesItsNodes)
+{
+  FeScene s = scene(coarse_two_body("end_faces"));
+  s.contact.max_iterations = 1;
+  s.loading.max_cuts = 0;
+  const RunResult r = run(s);
+  ASSERT_FALSE(r.complete);
+  EXPECT_NE(r.message.find("active set did not settle in 1 iterations"), std::string::npos)
+    << r.message;
+  EXPECT_NE(r.message.find(" mm open -> closed"), std::string::npos) << r.message;
+}
