@@ -43,8 +43,8 @@ namespace clearjoint::fe::detail
   /// x = X + u_k (each material Newton iteration calls this again), ĝ = g(x) + n(x)·(u − u_k):
   /// there the plastic wake drags the bore's nodes tens of µm along the surface, and a normal
   /// from X would no longer pass through the journal's axis — the frictionless contact would
-  /// then exert a moment on the journal and do work, and the drive's torque would be off by a
-  /// quarter (measured; docs/fe.md "Rolling study").
+  /// then exert a moment on the journal and do work, and the drive's torque came out 35 % low
+  /// (measured; docs/fe.md "Rolling study").
   void ContactModel::set_obstacle_position(const double delta)
   {
     if (rolling_)
