@@ -192,18 +192,14 @@ namespace clearjoint::pipeline
     return r;
   }
 
-  /// The FE impact sweep (one fe_stage run: the scene's sweep.velocity), and, where the MBD
-  /// half is built, its comparison with the law of the same geometry (impact_compare).
-  void PipelineRunner::run_impact(const std::map<std::string, std::map<std::string, Done>> &laws)
+  /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>: under mpirun
+  /// with the pipeline's ranks, the scene and the files it names (a mesh, say) as inputs.
+  Task PipelineRunner::fe_stage_task(const nlohmann::json &scene_json, const std::string &scene,
+                                     const std::string &name, const std::string &stage) const
   {
-    const ImpactStudy &impact = *config_.impact;
-    const std::string run = run_dir();
-    log::info("FE impact study: " + impact.scene);
     Task fe;
-    const nlohmann::json scene_json = compose_scene(config_, impact.scene, "fe", {});
-    const std::string scene = write_scene(scene_json, impact.scene, "fe_impact");
-    fe.name = "fe/impact";
-    fe.stage = "fe_impact";  // its own time in the ETA: five impacts, not one FE curve
+    fe.name = name;
+    fe.stage = stage;
     if (config_.mpi_ranks > 1)
       fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
                      std::to_string(config_.mpi_ranks)};
@@ -214,7 +210,21 @@ namespace clearjoint::pipeline
     fe.input_files = {scene};
     for (const auto &f : files_named_in(scene_json))
       fe.input_files.push_back(f);
-    fe.output_dir = run + "/fe/impact";
+    fe.output_dir = run_dir() + "/" + name;
+    return fe;
+  }
+
+  /// The FE impact sweep (one fe_stage run: the scene's sweep.velocity), and, where the MBD
+  /// half is built, its comparison with the law of the same geometry (impact_compare).
+  void PipelineRunner::run_impact(const std::map<std::string, std::map<std::string, Done>> &laws)
+  {
+    const ImpactStudy &impact = *config_.impact;
+    const std::string run = run_dir();
+    log::info("FE impact study: " + impact.scene);
+    const nlohmann::json scene_json = compose_scene(config_, impact.scene, "fe", {});
+    const std::string scene = write_scene(scene_json, impact.scene, "fe_impact");
+    // its own stage in the ETA: five impacts, not one FE curve
+    const Task fe = fe_stage_task(scene_json, scene, "fe/impact", "fe_impact");
     const TaskResult fe_result = execute(fe, "fe");
     std::string law;
     if (impact.law.file)
@@ -257,22 +267,10 @@ namespace clearjoint::pipeline
     const RollingStudy &rolling = *config_.rolling;
     const std::string run = run_dir();
     log::info("FE rolling study: " + rolling.scene);
-    Task fe;
     const nlohmann::json scene_json = rolling_scene();
     const std::string scene = write_scene(scene_json, rolling.scene, "fe_rolling");
-    fe.name = "fe/rolling";
-    fe.stage = "fe_rolling";  // its own time in the ETA: a time history, not one FE curve
-    if (config_.mpi_ranks > 1)
-      fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
-                     std::to_string(config_.mpi_ranks)};
-    fe.executable = stage_executable("fe_stage");
-    fe.args = {scene, "--output", "{out}"};
-    if (!options_.plots)
-      fe.args.push_back("--no-plots");
-    fe.input_files = {scene};
-    for (const auto &f : files_named_in(scene_json))
-      fe.input_files.push_back(f);
-    fe.output_dir = run + "/fe/rolling";
+    // its own stage in the ETA: a time history, not one FE curve
+    const Task fe = fe_stage_task(scene_json, scene, "fe/rolling", "fe_rolling");
     summary_["rolling"] = {{"scene", scene}, {"fe_dir", fe.output_dir}, {"status", "complete"}};
     // Nothing downstream needs it: outside its stage (--only mbd, say) a missing result is
     // reported, not an error.
@@ -355,23 +353,12 @@ namespace clearjoint::pipeline
       {
         const double value = study.values[i];
         const std::string label = study.parameter + "=" + value_label(value);
-        Task fe;
-        const nlohmann::json scene_json = fe_case_scene(study, value, false, fe.depends_on);
+        std::vector<std::string> mesh_tasks;  // a .geo's mesh task, if any
+        const nlohmann::json scene_json = fe_case_scene(study, value, false, mesh_tasks);
         const std::string scene =
           write_scene(scene_json, study.scene, "fe_" + study.name + "_" + label);
-        fe.name = "fe/" + study.name + "/" + label;
-        fe.stage = "fe_stage";
-        if (config_.mpi_ranks > 1)
-          fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
-                         std::to_string(config_.mpi_ranks)};
-        fe.executable = stage_executable("fe_stage");
-        fe.args = {scene, "--output", "{out}"};
-        if (!options_.plots)
-          fe.args.push_back("--no-plots");
-        fe.input_files = {scene};
-        for (const auto &f : files_named_in(scene_json))  // a mesh file's content, say
-          fe.input_files.push_back(f);
-        fe.output_dir = run + "/fe/" + study.name + "/" + label;
+        Task fe = fe_stage_task(scene_json, scene, "fe/" + study.name + "/" + label, "fe_stage");
+        fe.depends_on = mesh_tasks;
         const TaskResult fe_result = execute(fe, "fe");
         const std::string csv = fe.output_dir + "/force_penetration.csv";
 

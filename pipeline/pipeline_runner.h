@@ -48,6 +48,9 @@ namespace clearjoint::pipeline
     /// .geo in geometry.mesh replaced by the mesh its task writes (dry_run: checked only).
     nlohmann::json fe_case_scene(const FeStudy &study, double value, bool dry_run,
                                  std::vector<std::string> &depends_on);
+    /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>.
+    Task fe_stage_task(const nlohmann::json &scene_json, const std::string &scene,
+                       const std::string &name, const std::string &stage) const;
     /// The FE impact sweep and its comparison with the MBD law (config_.impact).
     void run_impact(const std::map<std::string, std::map<std::string, Done>> &laws);
     /// The FE rolling study (config_.rolling): one fe_stage task, fe/rolling. It is a first
