@@ -175,17 +175,22 @@ def _incomplete_reasons(run):
     return reasons
 
 
+def _plot_columns(ax, x, table, specs):
+    """Each (column, style, label) of `table` present in the run, against x."""
+    for col, style, label in specs:
+        values = _column(table, col)
+        if values:
+            ax.plot(x, values, style, marker="o", ms=2.5, label=label)
+
+
 def _spin_figure(run):
     h = run.history
     t = [x * 1e3 for x in h["time"]]
     fig, ax = plt.subplots(figsize=(7.5, 4.2))
-    for col, style, label in [("phi_rate", "C0-", "φ̇ bearing (driven), exact"),
-                              ("phi_rate_paper", "C0--", "φ̇ by the paper's Eqs. 4–5, 7"),
-                              ("gamma_rate", "C1-", "γ̇ journal (torque balance), exact"),
-                              ("gamma_rate_paper", "C1--", "γ̇ by the paper's Eqs. 6, 8")]:
-        values = _column(h, col)
-        if values:
-            ax.plot(t, values, style, marker="o", ms=2.5, label=label)
+    _plot_columns(ax, t, h, [("phi_rate", "C0-", "φ̇ bearing (driven), exact"),
+                             ("phi_rate_paper", "C0--", "φ̇ by the paper's Eqs. 4–5, 7"),
+                             ("gamma_rate", "C1-", "γ̇ journal (torque balance), exact"),
+                             ("gamma_rate_paper", "C1--", "γ̇ by the paper's Eqs. 6, 8")])
     rate = value_of(get(run.summary, "rolling_rate"))
     if rate:
         ax.axhline(rate, color="k", ls=":", lw=1,
@@ -251,13 +256,10 @@ def _profile_figure(run):
     xlabel = "arc along the bore from the contact point [mm]" if _column(p, "arc") else \
         "angle from the contact point [°]"
     fig, ax = plt.subplots(figsize=(7.5, 4.2))
-    for col, style, label in [("strain_radial", "C0-", "radial"),
-                              ("strain_tangential", "C1-", "tangential"),
-                              ("strain_axial", "C2-", "axial"),
-                              ("plastic_strain", "k--", "equivalent plastic")]:
-        values = _column(p, col)
-        if values:
-            ax.plot(arc, values, style, marker="o", ms=2.5, label=label)
+    _plot_columns(ax, arc, p, [("strain_radial", "C0-", "radial"),
+                               ("strain_tangential", "C1-", "tangential"),
+                               ("strain_axial", "C2-", "axial"),
+                               ("plastic_strain", "k--", "equivalent plastic")])
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(xlabel)
     ax.set_ylabel("strain at the bore [1]")
