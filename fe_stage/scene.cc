@@ -207,6 +207,7 @@ namespace clearjoint::fe
         M.adaptive_cycles = uint_or(m, "adaptive_cycles", M.adaptive_cycles, 0, 8);
         M.adaptive_fraction =
           m.number_or("adaptive_fraction", M.adaptive_fraction, Range::open(0.0, 1.0, ""));
+        M.adaptive_increments = uint_or(m, "adaptive_increments", M.adaptive_increments, 1, 1000);
         m.finish();
       }
     if (top.has("solver"))
@@ -474,12 +475,6 @@ namespace clearjoint::fe
                            "the block and its indenter are meshed independently: their "
                            "nodes do not face each other");
       }
-    if (s.mesh.adaptive_cycles > 0 && s.contact.mu > 0.0)
-      throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
-                       "0 when contact.mu > 0",
-                       "friction on adaptively refined meshes is not supported yet: on "
-                       "Kelly-refined contact zones the stick/slip Newton iteration does not "
-                       "settle (docs/fe.md); set contact.mu: 0 for adaptive runs");
     if (!G.mesh.empty())
       check_mesh_against_scene(s);
     if (joint && s.loading.delta_max >= G.R_J())
@@ -676,6 +671,8 @@ namespace clearjoint::fe
       << "   # 0..8 cycles of (curve, Kelly indicator, refine) before the recorded curve\n"
       << "  adaptive_fraction: " << d.mesh.adaptive_fraction
       << " # (0, 1) of the cells refined per cycle, those with the largest indicators\n"
+      << "  adaptive_increments: " << d.mesh.adaptive_increments
+      << "  # 1..1000 increments of the push on each marking mesh (the curve: n_increments)\n"
       << "solver:\n"
       << "  linear: automatic   # automatic | cg_amg | direct\n"
       << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
@@ -785,7 +782,8 @@ namespace clearjoint::fe
                  {"contact_refinements", s.mesh.contact_refinements},
                  {"contact_window_deg", s.mesh.contact_window_deg},
                  {"adaptive_cycles", s.mesh.adaptive_cycles},
-                 {"adaptive_fraction", s.mesh.adaptive_fraction}};
+                 {"adaptive_fraction", s.mesh.adaptive_fraction},
+                 {"adaptive_increments", s.mesh.adaptive_increments}};
     const char *lin = s.solver.linear == LinearSolver::automatic ? "automatic" :
                       s.solver.linear == LinearSolver::cg_amg    ? "cg_amg" :
                                                                    "direct";

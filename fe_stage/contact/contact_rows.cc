@@ -128,14 +128,28 @@ namespace clearjoint::fe::detail
     const auto &Kc = contact_cell_matrices_[k];
     const unsigned int n = dofs.size();
     ext = dofs;
-    // per slipping node: the rows F(u) over the cell's columns (3 × n)
-    std::vector<std::pair<const ContactNode *, FullMatrix<double>>> rows_of;
+    // The slipping nodes whose force (K u)_s this cell adds to: those among its DoFs, and
+    // those a hanging DoF of the cell hangs from. The second kind matters wherever hanging
+    // nodes lie inside the contact zone (adaptive meshes): a cell beside a hanging node need
+    // not hold the node's masters, yet its K(h, :) reaches them through condense_hanging, as
+    // the evaluation reads the force. Without those terms the Newton matrix was not the
+    // derivative of the slip law it is checked against, and the stick/slip iteration stalled
+    // or cycled on Kelly-refined contact zones (docs/fe.md).
+    std::set<unsigned int> touched;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const auto it = slipping_.find(dofs[i]);
-        if (it == slipping_.end())
-          continue;
-        const ContactNode &cn = nodes_[it->second];
+        if (const auto it = slipping_dof_.find(dofs[i]); it != slipping_dof_.end())
+          touched.insert(it->second);
+        if (const auto *entries = hanging_constraints_.get_constraint_entries(dofs[i]))
+          for (const auto &entry : *entries)
+            if (const auto it = slipping_dof_.find(entry.first); it != slipping_dof_.end())
+              touched.insert(it->second);
+      }
+    // per slipping node: the rows F(u) over the cell's columns (3 × n)
+    std::vector<std::pair<const ContactNode *, FullMatrix<double>>> rows_of;
+    for (const unsigned int node : touched)
+      {
+        const ContactNode &cn = nodes_[node];
         // (K u)_s over the cell's columns, with the rows of hanging DoFs that hang from s
         FullMatrix<double> Ks(dim, n);
         for (unsigned int r = 0; r < n; ++r)
@@ -170,6 +184,9 @@ namespace clearjoint::fe::detail
               }
           }
         rows_of.emplace_back(&cn, std::move(F));
+        for (const auto d : cn.dofs)  // the node itself, when only its hanging DoFs are here
+          if (std::find(ext.begin(), ext.end(), d) == ext.end())
+            ext.push_back(d);
         for (const auto &p : cn.partners)
           for (const auto d : p.dofs)
             if (std::find(ext.begin(), ext.end(), d) == ext.end())

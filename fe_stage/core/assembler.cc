@@ -109,10 +109,15 @@ namespace clearjoint::fe::detail
                  // into a vector whose last operation was an assignment is collective
     Vector<double> cell_rhs(fe_->n_dofs_per_cell());
     slipping_.clear();
+    slipping_dof_.clear();
     if (friction_)
       for (unsigned int i = 0; i < nodes_.size(); ++i)
         if (nodes_[i].candidate && nodes_[i].active && !nodes_[i].stick)
-          slipping_[nodes_[i].dofs[0]] = i;
+          {
+            slipping_[nodes_[i].dofs[0]] = i;
+            for (const auto d : nodes_[i].dofs)
+              slipping_dof_[d] = i;
+          }
     nonsymmetric_ = Utilities::MPI::max(slipping_.empty() ? 0u : 1u, comm_) > 0;
     FullMatrix<double> friction_matrix;
     std::vector<types::global_dof_index> friction_dofs;

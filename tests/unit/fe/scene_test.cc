@@ -122,12 +122,16 @@ TEST(FeScene, ContactPairing)
                {"contact.pairing", "mortar"});
   expect_error("schema: clearjoint.fe/1\ncontact: {pairing: mortar}\nloading: {journal: rigid}\n",
                {"contact.pairing", "rigid", "loading.journal"});
-  // adaptive refinement breaks the common rays; friction on adaptive meshes is not supported
+  // adaptive refinement breaks the common rays; friction runs on adaptive meshes
   expect_error("schema: clearjoint.fe/1\ncontact: {mu: 0, pairing: node_to_node}\n"
                "mesh: {adaptive_cycles: 2}\n",
                {"contact.pairing", "adaptive_cycles"});
-  expect_error("schema: clearjoint.fe/1\nmesh: {adaptive_cycles: 2}\n",
-               {"mesh.adaptive_cycles", "contact.mu"});
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nmesh: {adaptive_cycles: 2}\n").contact.mu, 0.1);
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nmesh: {adaptive_increments: 5}\n")
+              .mesh.adaptive_increments,
+            5u);
+  expect_error("schema: clearjoint.fe/1\nmesh: {adaptive_increments: 0}\n",
+               {"mesh.adaptive_increments", "1000"});
   EXPECT_EQ(parse("schema: clearjoint.fe/1\ncontact: {mu: 0}\nmesh: {adaptive_cycles: 2}\n")
               .mesh.adaptive_cycles,
             2u);
