@@ -23,6 +23,10 @@ active-set iterations summed over the increments beside the wall time.
 with /usr/bin/python3 where the default python3 lacks it).
 
 Every loading runs on any number of ranks (the forces agree with one rank to 1e-6).
+
+--adaptive N also runs the base mesh (level 0) with N adaptive cycles (mesh.adaptive_cycles) per
+journal and rank count: a row per marking mesh and one for the recorded curve's mesh, whose
+error is taken against the uniform levels' Richardson value, beside the run's own estimate.
 """
 import argparse
 import csv
@@ -34,8 +38,11 @@ import subprocess
 import sys
 
 
-def run_case(args, journal, level, ranks):
-    name = f"{args.study}_{journal}_mu{args.mu:g}_{args.pairing}_L{level}_np{ranks}"
+def run_case(args, journal, level, ranks, adaptive=0):
+    """One fe_stage run on mesh level `level`, or (adaptive > 0) on the base mesh with that many
+    adaptive cycles before the recorded curve."""
+    name = f"{args.study}_{journal}_mu{args.mu:g}_{args.pairing}_" + \
+        (f"A{adaptive}" if adaptive else f"L{level}") + f"_np{ranks}"
     out = os.path.join(args.work, name)
     scene = os.path.join(args.work, name + ".yaml")
     with open(scene, "w") as f:
@@ -44,7 +51,7 @@ def run_case(args, journal, level, ranks):
         f.write(f"schema: clearjoint.fe/1\ncontact: {{mu: {args.mu}, pairing: {args.pairing}}}\noutput: {{fields: false}}\n"
                 "solver: {linear: cg_amg}\n"
                 f"mesh: {{n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 1, "
-                f"global_refinements: {level}}}\n"
+                f"global_refinements: {level}, adaptive_cycles: {adaptive}}}\n"
                 f"loading: {{journal: {journal}, n_increments: {args.increments}}}\n")
     cmd = ["/usr/bin/time", "-v"]
     if ranks > 1:
@@ -64,8 +71,18 @@ def run_case(args, journal, level, ranks):
                                   if not l.startswith("#"))]
     force = float(rows[-1][rows[0].index("force")])
     iterations = sum(int(float(r[rows[0].index("contact_iterations")])) for r in rows[1:])
-    return {"journal": journal, "level": level, "ranks": ranks, "dofs": manifest["extra"]["n_dofs"],
-            "wall": wall_s, "rss_mb": rss / 1024.0, "force": force, "iterations": iterations}
+    result = {"journal": journal, "level": level, "ranks": ranks, "dofs": manifest["extra"]["n_dofs"],
+              "wall": wall_s, "rss_mb": rss / 1024.0, "force": force, "iterations": iterations}
+    if adaptive:
+        a = manifest["extra"]["adaptive"]
+        result["level"] = f"adaptive {adaptive}"
+        result["cycles"] = [(c["n_dofs"], c["force_at_delta_max"]["value"], c["contact_iterations"],
+                             c["wall_time"]["value"]) for c in a["cycles"]]
+        est = a.get("estimated_error_F_max")
+        result["own_estimate"] = est["value"] if est else None
+        # the marking meshes' iterations are not in the curve's CSV
+        result["iterations"] = sum(c[2] for c in result["cycles"])
+    return result
 
 
 def main():
@@ -85,6 +102,10 @@ def main():
     ap.add_argument("--pairing", choices=["automatic", "node_to_node", "mortar"], default="automatic",
                     help="contact.pairing of a deformable journal")
     ap.add_argument("--plot", help="PNG: DoFs and wall time against the estimated error")
+    ap.add_argument("--adaptive", type=int, default=0, metavar="CYCLES",
+                    help="also run the base mesh with this many adaptive cycles (mesh.adaptive_cycles) "
+                         "per journal and rank count; its error is taken against the uniform levels' "
+                         "Richardson value, beside the run's own estimate")
     args = ap.parse_args()
     if args.from_table:
         return replot(args)
@@ -96,11 +117,12 @@ def main():
     results = []
     for journal in args.journals:
         for ranks in args.ranks:
-            for level in args.levels:
-                r = run_case(args, journal, level, ranks)
+            for level in args.levels + ([None] if args.adaptive else []):
+                r = run_case(args, journal, 0 if level is None else level, ranks,
+                             adaptive=args.adaptive if level is None else 0)
                 if r:
                     results.append(r)
-                    print(f"# {journal} L{level} np{ranks}: {r['dofs']} DoFs, {r['wall']:.1f} s, "
+                    print(f"# {journal} {r['level']} np{ranks}: {r['dofs']} DoFs, {r['wall']:.1f} s, "
                           f"F = {r['force']:.1f} N", file=sys.stderr, flush=True)
     print(f"study {args.study}" + (f", theta = {args.theta} deg" if args.study == "misalignment" else "")
           + f", mu = {args.mu:g}, pairing {args.pairing}")
@@ -108,8 +130,10 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|")
     for journal in args.journals:
         for ranks in args.ranks:
-            rs = sorted((r for r in results if r["journal"] == journal and r["ranks"] == ranks),
-                        key=lambda r: r["level"])
+            rs = sorted((r for r in results if r["journal"] == journal and r["ranks"] == ranks
+                         and "cycles" not in r), key=lambda r: r["level"])
+            adaptive = [r for r in results if r["journal"] == journal and r["ranks"] == ranks
+                        and "cycles" in r]
             F_inf, p = None, None
             if len(rs) >= 3:
                 F0, F1, F2 = (r["force"] for r in rs[-3:])
@@ -123,6 +147,19 @@ def main():
                       f"{r['rss_mb']:.0f} | {r['force']:.1f} | {err} | {r['iterations']} |")
             if F_inf:
                 print(f"| {journal} | {ranks} | Richardson | | | | {F_inf:.1f} | p = {p:.2f} |")
+            for r in adaptive:
+                # each marking mesh, then the recorded curve's mesh (the whole run's time and memory)
+                for k, (dofs, force, its, wall) in enumerate(r["cycles"]):
+                    err = f"{abs(force - F_inf) / abs(F_inf) * 100:.2f} %" if F_inf else "n/a"
+                    last = k + 1 == len(r["cycles"])
+                    label = f"{r['level']}: " + ("curve" if last else f"mesh {k}")
+                    cost = f"{r['wall']:.1f} (run)" if last else f"{wall:.1f}"
+                    rss = f"{r['rss_mb']:.0f}" if last else ""
+                    own = (f" (own estimate {r['own_estimate'] * 100:.2f} %)"
+                           if last and r["own_estimate"] is not None else "")
+                    print(f"| {journal} | {ranks} | {label} | {dofs} | {cost} | {rss} | {force:.1f} | "
+                          f"{err}{own} | {its} |")
+                r["error"] = abs(r["force"] - F_inf) / abs(F_inf) if F_inf else None
     if args.plot:
         plot(args, results)
     return 0
@@ -158,15 +195,18 @@ def plot(args, results):
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
     for journal in args.journals:
         for ranks in args.ranks:
-            rs = [r for r in results if r["journal"] == journal and r["ranks"] == ranks
-                  and r.get("error")]
-            if not rs:
-                continue
-            label = f"{journal}, {ranks} rank{'s' if ranks > 1 else ''}"
-            e = [r["error"] * 100 for r in rs]
-            # cost on x, error on y, both growing away from the origin: no reversed axis
-            ax1.loglog([r["dofs"] for r in rs], e, "o-", label=label)
-            ax2.loglog([r["wall"] for r in rs], e, "o-", label=label)
+            for adaptive in (False, True):
+                rs = [r for r in results if r["journal"] == journal and r["ranks"] == ranks
+                      and r.get("error") and ("cycles" in r) == adaptive]
+                if not rs:
+                    continue
+                label = f"{journal}, {ranks} rank{'s' if ranks > 1 else ''}"
+                label += f", {rs[0]['level']} cycles" if adaptive else ", uniform levels"
+                e = [r["error"] * 100 for r in rs]
+                style = "s" if adaptive else "o-"
+                # cost on x, error on y, both growing away from the origin: no reversed axis
+                ax1.loglog([r["dofs"] for r in rs], e, style, label=label)
+                ax2.loglog([r["wall"] for r in rs], e, style, label=label)
     title = args.study + (f", θ = {args.theta}°" if args.study == "misalignment" else ", t_B = 4 mm")
     title += f", μ = {args.mu:g}" if args.mu else ", frictionless"
     for ax, x in ((ax1, "DoFs [1]"), (ax2, "wall time [s]")):

@@ -238,8 +238,10 @@ namespace clearjoint::fe::detail
       n = Tensor<1, dim>({normal[0], normal[1], normal[2]});
       return true;
     }
+    /// Solves A_ x = b to `relative_tolerance` × |b| (CG or GMRES with the AMG, or KLU);
+    /// returns the iterations. Throws StepFailure.
     unsigned int solve_linear(TrilinosWrappers::MPI::Vector &x,
-                              const TrilinosWrappers::MPI::Vector &b);
+                              const TrilinosWrappers::MPI::Vector &b, double relative_tolerance);
     void build_amg();
     void evaluate_contact(double delta);
     bool friction_cell_matrix(unsigned int k, FullMatrix<double> &M,

@@ -66,7 +66,8 @@ namespace clearjoint::fe::detail
   }
 
   unsigned int ContactModel::solve_linear(TrilinosWrappers::MPI::Vector &x,
-                                          const TrilinosWrappers::MPI::Vector &b)
+                                          const TrilinosWrappers::MPI::Vector &b,
+                                          const double relative_tolerance)
   {
     const double b_norm = b.l2_norm();
     if (!std::isfinite(b_norm))
@@ -95,8 +96,7 @@ namespace clearjoint::fe::detail
       {
         if (!amg_)
           build_amg();
-        SolverControl control(scene_.solver.max_linear_iterations,
-                              scene_.solver.tolerance * b_norm);
+        SolverControl control(scene_.solver.max_linear_iterations, relative_tolerance * b_norm);
         SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
         SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
           control,  // right preconditioning: the tolerance applies to the true residual
@@ -120,10 +120,15 @@ namespace clearjoint::fe::detail
                               " iterations (residual " + format_value(e.last_residual) + ")"};
           }
         const unsigned int its = control.last_step();
-        if (amg_reference_iterations_ == 0)
-          amg_reference_iterations_ = std::max(1u, its);
-        else if (its > 2 * amg_reference_iterations_ + 10)
-          amg_.reset();  // reuse only while it stays effective; rebuilt at the next solve
+        // the AMG's effectiveness is judged on the solves to the scene's tolerance only (a
+        // looser solve takes fewer iterations and would set too low a reference)
+        if (relative_tolerance <= scene_.solver.tolerance)
+          {
+            if (amg_reference_iterations_ == 0)
+              amg_reference_iterations_ = std::max(1u, its);
+            else if (its > 2 * amg_reference_iterations_ + 10)
+              amg_.reset();  // reuse only while it stays effective; rebuilt at the next solve
+          }
         return its;
       }
     throw StepFailure{"linear solver failed"};
