@@ -169,9 +169,17 @@ def replot(args):
     """--plot from a table printed earlier: the measured rows are not re-run."""
     row = re.compile(r"^\|\s*(\w+)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*([\d.]+)\s*\|"
                      r"\s*([\d.]+)\s*\|\s*([\d.]+)\s*\|\s*([\d.]+)\s*%\s*\|")
+    # an adaptive run's curve row: '| end_faces | 2 | adaptive 3: curve | 41115 | 33.9 (run) | ...'
+    adaptive_row = re.compile(r"^\|\s*(\w+)\s*\|\s*(\d+)\s*\|\s*(adaptive \d+): curve\s*\|\s*(\d+)\s*\|"
+                              r"\s*([\d.]+) \(run\)\s*\|\s*([\d.]+)\s*\|\s*([\d.]+)\s*\|\s*([\d.]+)\s*%")
     results = []
     with open(args.from_table) as f:
         for line in f:
+            a = adaptive_row.match(line.strip())
+            if a:
+                results.append({"journal": a.group(1), "ranks": int(a.group(2)), "level": a.group(3),
+                                "cycles": [], "dofs": int(a.group(4)), "wall": float(a.group(5)),
+                                "force": float(a.group(7)), "error": float(a.group(8)) / 100})
             m = row.match(line.strip())
             if m:
                 results.append({"journal": m.group(1), "ranks": int(m.group(2)),

@@ -220,6 +220,8 @@ namespace clearjoint::fe
     std::string adaptive_error_method;
     double adaptive_order = 0.0;   // [1] q of F = F_inf + C N^-q (0: not extrapolated)
     double adaptive_extrapolated_force = 0.0;  // [N] F_inf (0: not extrapolated)
+    /// mesh.adaptive_target_error > 0: whether the estimate reached it (within the cycles)
+    bool adaptive_target_reached = false;
     /// Study impact: `increments` hold the quasi-static curve of the same mesh (the reference
     /// the dynamic path is compared with), these the time steps.
     std::vector<DynamicStepRecord> dynamic_steps;

@@ -354,8 +354,16 @@ namespace
                                 ", adaptive_fraction = " +
                                 format_value(scene.mesh.adaptive_fraction) +
                                 " (Kelly indicator, fixed fraction of the cells)",
-                              "force_at_delta_max = F at the end of the curve on that mesh "
-                              "(full body); the last row is the recorded curve's mesh"});
+                              "force_at_delta_max = F at delta_max on that mesh (full body; "
+                              "marking meshes pushed in mesh.adaptive_increments = " +
+                                std::to_string(scene.mesh.adaptive_increments) +
+                                " steps); the last row is the recorded curve's mesh" +
+                                (scene.mesh.adaptive_target_error > 0.0 ?
+                                   std::string("; target error ") +
+                                     format_value(scene.mesh.adaptive_target_error) +
+                                     (result.adaptive_target_reached ? " reached" :
+                                                                       " NOT reached") :
+                                   std::string())});
             nlohmann::json rows = nlohmann::json::array();
             for (std::size_t k = 0; k < result.adaptive_cycles.size(); ++k)
               {
@@ -369,7 +377,13 @@ namespace
               }
             cycles.commit();
             manifest->add_output(path);
-            x["adaptive"] = {{"cycles", rows}, {"fraction", scene.mesh.adaptive_fraction}};
+            x["adaptive"] = {{"cycles", rows}, {"fraction", scene.mesh.adaptive_fraction},
+                             {"marking_increments", scene.mesh.adaptive_increments}};
+            if (scene.mesh.adaptive_target_error > 0.0)
+              x["adaptive"]["target_error"] = {
+                {"value", scene.mesh.adaptive_target_error}, {"unit", "1"},
+                {"reached", result.adaptive_target_reached},
+                {"max_cycles", scene.mesh.adaptive_cycles}};
             if (result.adaptive_error >= 0.0)
               x["adaptive"]["estimated_error_F_max"] = {
                 {"value", result.adaptive_error}, {"unit", "1"},

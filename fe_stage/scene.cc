@@ -208,6 +208,13 @@ namespace clearjoint::fe
         M.adaptive_fraction =
           m.number_or("adaptive_fraction", M.adaptive_fraction, Range::open(0.0, 1.0, ""));
         M.adaptive_increments = uint_or(m, "adaptive_increments", M.adaptive_increments, 1, 1000);
+        M.adaptive_target_error = m.number_or("adaptive_target_error", M.adaptive_target_error,
+                                              Range{.lo = 0.0, .hi = 0.5, .hi_open = true, .unit = ""});
+        // the estimate extrapolates through three meshes: a target needs two cycles at least
+        if (M.adaptive_target_error > 0.0 && M.adaptive_cycles < 2)
+          m.fail("adaptive_cycles", std::to_string(M.adaptive_cycles),
+                 "2..8 with mesh.adaptive_target_error > 0 (the most cycles allowed: the error "
+                 "is estimated by extrapolating through three meshes)");
         m.finish();
       }
     if (top.has("solver"))
@@ -673,6 +680,8 @@ namespace clearjoint::fe
       << " # (0, 1) of the cells refined per cycle, those with the largest indicators\n"
       << "  adaptive_increments: " << d.mesh.adaptive_increments
       << "  # 1..1000 increments of the push on each marking mesh (the curve: n_increments)\n"
+      << "  adaptive_target_error: " << d.mesh.adaptive_target_error
+      << "  # [0, 0.5) > 0: refine until the estimated error of F(delta_max) is at most this\n"
       << "solver:\n"
       << "  linear: automatic   # automatic | cg_amg | direct\n"
       << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
@@ -783,7 +792,8 @@ namespace clearjoint::fe
                  {"contact_window_deg", s.mesh.contact_window_deg},
                  {"adaptive_cycles", s.mesh.adaptive_cycles},
                  {"adaptive_fraction", s.mesh.adaptive_fraction},
-                 {"adaptive_increments", s.mesh.adaptive_increments}};
+                 {"adaptive_increments", s.mesh.adaptive_increments},
+                 {"adaptive_target_error", s.mesh.adaptive_target_error}};
     const char *lin = s.solver.linear == LinearSolver::automatic ? "automatic" :
                       s.solver.linear == LinearSolver::cg_amg    ? "cg_amg" :
                                                                    "direct";

@@ -26,6 +26,7 @@
 #include "fe_stage/material/j2_plasticity.h"
 #include "fe_stage/material/linear_elastic.h"
 #include "fe_stage/mesh/boundary_ids.h"
+#include "fe_stage/solve/adaptive_estimate.h"
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/study/study.h"
@@ -159,7 +160,6 @@ namespace clearjoint::fe::detail
     };
     RollingSolve solve_rolling_state(double delta);
     void refine_adaptively();
-    void estimate_adaptive_error(RunResult &result) const;
     /// One increment to `delta` from the current state; throws StepFailure.
     IncrementRecord solve_increment(double delta);
     // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)

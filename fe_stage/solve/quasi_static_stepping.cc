@@ -123,46 +123,6 @@ namespace clearjoint::fe::detail
     tria_.execute_coarsening_and_refinement();
   }
 
-  /// The error of F(δ_max) on the last mesh from the adaptive sequence F_k on N_k DoFs: with
-  /// three or more meshes F_k = F_∞ + C N_k^(−q) through the last three (q by bisection; a
-  /// generalised Richardson extrapolation, as the uniform levels' in docs/benchmarks.md);
-  /// otherwise, or when the last three are not monotone, the last cycle's change, which only
-  /// bounds the error from below — the method says which.
-  void ContactModel::estimate_adaptive_error(RunResult &result) const
-  {
-    const auto &c = result.adaptive_cycles;
-    if (c.size() < 2)
-      return;
-    const std::size_t k = c.size() - 1;
-    const double F2 = c[k].force, F1 = c[k - 1].force;
-    result.adaptive_error = std::abs(F2 - F1) / std::abs(F2);
-    result.adaptive_error_method = "change in the last cycle (a lower bound)";
-    if (c.size() < 3)
-      return;
-    const double F0 = c[k - 2].force;
-    const double N0 = c[k - 2].n_dofs, N1 = c[k - 1].n_dofs, N2 = c[k].n_dofs;
-    const double r = (F0 - F1) / (F1 - F2);
-    if (!(r > 0.0) || !(N2 > N1 && N1 > N0))
-      return;
-    auto ratio = [&](const double q) {
-      return (std::pow(N0, -q) - std::pow(N1, -q)) / (std::pow(N1, -q) - std::pow(N2, -q));
-    };
-    // ratio(q) grows with q from (log N1 − log N0)/(log N2 − log N1) at q → 0
-    double lo = 1e-3, hi = 20.0;
-    if (!(ratio(lo) < r && ratio(hi) > r))
-      return;
-    for (int i = 0; i < 200 && hi - lo > 1e-12; ++i)
-      (ratio(0.5 * (lo + hi)) < r ? lo : hi) = 0.5 * (lo + hi);
-    const double q = 0.5 * (lo + hi);
-    const double F_inf =
-      F2 - (F1 - F2) * std::pow(N2, -q) / (std::pow(N1, -q) - std::pow(N2, -q));
-    result.adaptive_order = q;
-    result.adaptive_extrapolated_force = F_inf;
-    result.adaptive_error = std::abs(F2 - F_inf) / std::abs(F_inf);
-    result.adaptive_error_method = "extrapolation of the last three meshes, F = F_inf + C N^-q, "
-                                   "q = " + format_value(q);
-  }
-
   RunResult ContactModel::run()
   {
     if (plan_.dynamic)
@@ -188,6 +148,11 @@ namespace clearjoint::fe::detail
       marking_targets.push_back(inc == scene_.mesh.adaptive_increments ?
                                   L.delta_max :
                                   inc * (L.delta_max / scene_.mesh.adaptive_increments));
+    // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
+    // estimate, extrapolated through the last three, meets it — the curve is then computed on
+    // that mesh — or at adaptive_cycles, the most allowed.
+    const double target = scene_.mesh.adaptive_target_error;
+    bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
     for (unsigned int cycle = 0; cycle <= scene_.mesh.adaptive_cycles; ++cycle)
       {
         if (cycle > 0)
@@ -219,6 +184,19 @@ namespace clearjoint::fe::detail
                           cycle + 1, scene_.mesh.adaptive_cycles, c.n_cells, c.n_dofs, c.force,
                           c.contact_iterations, log::format_duration(c.wall_time).c_str());
             log::info(buf);
+          }
+        if (target > 0.0)
+          {
+            const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+            if (rank_ == 0 && e.error >= 0.0)
+              log::info("fe_stage: estimated error of F(delta_max) " +
+                        format_value(100.0 * e.error) + " % (" + e.method + "), target " +
+                        format_value(100.0 * target) + " %");
+            if (adaptive_target_met(e, target))
+              {
+                last_mesh_marked = true;
+                break;
+              }
           }
       }
     result.n_dofs = dof_handler_.n_dofs();
@@ -302,7 +280,8 @@ namespace clearjoint::fe::detail
     result.complete = true;
     if (!result.adaptive_cycles.empty())
       {
-        // the curve's F(δ_max) on the final mesh closes the sequence
+        // the curve's F(δ_max) on the final mesh closes the sequence (in place of that mesh's
+        // marking run when the target stopped the cycles there: the same mesh)
         AdaptiveCycle last;
         last.n_dofs = result.n_dofs;
         last.n_cells = result.n_cells;
@@ -310,12 +289,26 @@ namespace clearjoint::fe::detail
         last.wall_time = result.increments.back().wall_time - result.setup_time;
         for (const auto &r : result.increments)
           last.contact_iterations += r.contact_iterations;
-        result.adaptive_cycles.push_back(last);
-        estimate_adaptive_error(result);
+        if (last_mesh_marked)
+          result.adaptive_cycles.back() = last;
+        else
+          result.adaptive_cycles.push_back(last);
+        const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+        result.adaptive_error = e.error;
+        result.adaptive_error_method = e.method;
+        result.adaptive_order = e.order;
+        result.adaptive_extrapolated_force = e.extrapolated_force;
+        result.adaptive_target_reached = adaptive_target_met(e, target);
         if (rank_ == 0 && result.adaptive_error >= 0.0)
           log::info("fe_stage: estimated error of F(delta_max) on the final mesh " +
                     format_value(100.0 * result.adaptive_error) + " % (" +
                     result.adaptive_error_method + ")");
+        if (rank_ == 0 && target > 0.0 && !result.adaptive_target_reached)
+          log::warning("fe_stage: the target error " + format_value(100.0 * target) +
+                       " % (mesh.adaptive_target_error) was not reached in " +
+                       std::to_string(scene_.mesh.adaptive_cycles) +
+                       " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
+                       "last mesh, with the estimate above");
       }
     result.yield_check = check_yield(nullptr);
     log_yield_check(result.yield_check);

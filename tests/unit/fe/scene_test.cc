@@ -132,6 +132,14 @@ TEST(FeScene, ContactPairing)
             5u);
   expect_error("schema: clearjoint.fe/1\nmesh: {adaptive_increments: 0}\n",
                {"mesh.adaptive_increments", "1000"});
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nmesh: {adaptive_cycles: 4, adaptive_target_error: 0.01}\n")
+              .mesh.adaptive_target_error,
+            0.01);
+  expect_error("schema: clearjoint.fe/1\nmesh: {adaptive_cycles: 4, adaptive_target_error: -0.1}\n",
+               {"mesh.adaptive_target_error", "0.5"});
+  // the estimate extrapolates through three meshes: a target needs two cycles or more
+  expect_error("schema: clearjoint.fe/1\nmesh: {adaptive_target_error: 0.01}\n",
+               {"mesh.adaptive_cycles", "adaptive_target_error"});
   EXPECT_EQ(parse("schema: clearjoint.fe/1\ncontact: {mu: 0}\nmesh: {adaptive_cycles: 2}\n")
               .mesh.adaptive_cycles,
             2u);

@@ -421,6 +421,41 @@ TEST(FeAdaptive, FrictionOnKellyRefinedContactZones)
   expect_coulomb_holds(r, 0.1, "adaptive, mu = 0.1");
 }
 
+// A target error instead of a number of cycles (mesh.adaptive_target_error, issue 11 item 4):
+// the cycles stop at the first mesh whose extrapolated estimate meets the target, and the curve
+// is computed there; a target out of reach runs every allowed cycle and says so.
+TEST(FeAdaptive, TargetErrorStopsTheCyclesWhereTheEstimateMeetsIt)
+{
+  const std::string base = "contact: {mu: 0.1}\n"
+                           "loading: {journal: rigid, n_increments: 3}\n"
+                           "mesh: {n_circumferential: 8, n_axial: 2, n_radial: 1, "
+                           "contact_refinements: 1, adaptive_fraction: 0.2, ";
+  const double F_ref = 22128.8;  // [N] as in FrictionOnKellyRefinedContactZones
+  FeScene s = scene(base + "adaptive_cycles: 5, adaptive_target_error: 0.01}\n");
+  const RunResult r = run(s);
+  ASSERT_TRUE(r.complete) << r.message;
+  const double error = std::abs(r.increments.back().force / F_ref - 1.0);
+  std::printf("target 1 %%: %zu meshes, %lu DoFs, estimate %.3f %% (%s), true %.3f %%\n",
+              r.adaptive_cycles.size(), r.n_dofs, 100.0 * r.adaptive_error,
+              r.adaptive_error_method.c_str(), 100.0 * error);
+  EXPECT_TRUE(r.adaptive_target_reached);
+  EXPECT_LE(r.adaptive_error, 0.01);
+  // an extrapolation needs three meshes; 1 % is met long before the fifth cycle (measured on
+  // the third mesh, 9 k DoFs: estimate 0.30 %)
+  EXPECT_GE(r.adaptive_cycles.size(), 3u);
+  EXPECT_LT(r.adaptive_cycles.size(), 6u);
+  EXPECT_EQ(r.adaptive_cycles.back().n_dofs, r.n_dofs);  // the curve's mesh closes the list
+  EXPECT_DOUBLE_EQ(r.adaptive_cycles.back().force, r.increments.back().force);
+  EXPECT_LT(error, 0.01);  // and the error itself meets the target (measured 0.52 %)
+
+  // out of reach in two cycles: every cycle runs, the run completes and says so
+  const RunResult u = run(scene(base + "adaptive_cycles: 2, adaptive_target_error: 1e-5}\n"));
+  ASSERT_TRUE(u.complete) << u.message;
+  EXPECT_FALSE(u.adaptive_target_reached);
+  EXPECT_EQ(u.adaptive_cycles.size(), 3u);
+  EXPECT_GT(u.adaptive_error, 1e-5);
+}
+
 // The method's own parameter: the active-set constant c only steers the iteration; the
 // converged solution satisfies n·u = −g0 exactly at active nodes, so F must not change when c
 // is made 10x and 1000x larger (issue 3 item 3 asks < 0.5 % for 10x; we demand solver accuracy).
