@@ -208,8 +208,9 @@ namespace clearjoint::fe
         M.adaptive_fraction =
           m.number_or("adaptive_fraction", M.adaptive_fraction, Range::open(0.0, 1.0, ""));
         M.adaptive_increments = uint_or(m, "adaptive_increments", M.adaptive_increments, 1, 1000);
-        M.adaptive_target_error = m.number_or("adaptive_target_error", M.adaptive_target_error,
-                                              Range{.lo = 0.0, .hi = 0.5, .hi_open = true, .unit = ""});
+        M.adaptive_target_error =
+          m.number_or("adaptive_target_error", M.adaptive_target_error,
+                      Range{.lo = 0.0, .hi = 0.5, .hi_open = true, .unit = ""});
         // the estimate extrapolates through three meshes: a target needs two cycles at least
         if (M.adaptive_target_error > 0.0 && M.adaptive_cycles < 2)
           m.fail("adaptive_cycles", std::to_string(M.adaptive_cycles),
