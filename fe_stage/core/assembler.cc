@@ -114,7 +114,7 @@ namespace clearjoint::fe::detail
       for (unsigned int i = 0; i < nodes_.size(); ++i)
         if (nodes_[i].candidate && nodes_[i].active && !nodes_[i].stick)
           {
-            slipping_[nodes_[i].dofs[0]] = i;
+            slipping_.push_back(i);
             for (const auto d : nodes_[i].dofs)
               slipping_dof_[d] = i;
           }
@@ -135,7 +135,7 @@ namespace clearjoint::fe::detail
                                                   contact_cell_dofs_[k], A_, rhs_);
         }
     Vector<double> node_rhs;
-    for (const auto &[x_dof, i] : slipping_)
+    for (const unsigned int i : slipping_)
       if (nodes_[i].owned)  // once per node over all ranks
         {
           friction_node_matrix(nodes_[i], tangential_scale_ * c, delta,

@@ -294,8 +294,8 @@ namespace clearjoint::fe::detail
     bool journal_driven_ = true;                    // false: a deformable journal is free
     bool friction_ = false;                         // contact.mu > 0
     bool nonsymmetric_ = false;                     // slipping nodes in A_ (GMRES, not CG)
-    std::map<types::global_dof_index, unsigned int> slipping_;  // x-DoF → node (this iteration)
-    std::map<types::global_dof_index, unsigned int> slipping_dof_;  // any of its DoFs → node
+    std::vector<unsigned int> slipping_;  // nodes slipping in this iteration (indices, ascending)
+    std::map<types::global_dof_index, unsigned int> slipping_dof_;  // any of their DoFs → node
     AffineConstraints<double> constraints_;         // + contact lines of the active set
     TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions);
                                                     // dynamic: c_m M + c_k K

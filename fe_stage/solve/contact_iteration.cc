@@ -66,7 +66,7 @@ namespace clearjoint::fe::detail
             // the friction rows' own check: at a node that slipped in this solve the solved
             // tangential force must be the linearised slip law it was given (round-off)
             double mismatch = 0.0;
-            for (const auto &[dof, i] : slipping_)
+            for (const unsigned int i : slipping_)
               if (nodes_[i].owned)
                 {
                   const ContactNode &cn = nodes_[i];

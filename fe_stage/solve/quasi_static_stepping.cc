@@ -132,10 +132,14 @@ namespace clearjoint::fe::detail
     RunResult result;
     result.n_ranks = n_ranks_;
     const auto &L = scene_.loading;
-    std::vector<double> targets;
-    for (unsigned int inc = 1; inc <= L.n_increments; ++inc)
-      targets.push_back(inc == L.n_increments ? L.delta_max :
-                                                inc * (L.delta_max / L.n_increments));
+    // the push to δ_max in n equal increments (the last exactly δ_max)
+    auto equal_steps = [&](const unsigned int n) {
+      std::vector<double> t;
+      for (unsigned int inc = 1; inc <= n; ++inc)
+        t.push_back(inc == n ? L.delta_max : inc * (L.delta_max / n));
+      return t;
+    };
+    const std::vector<double> targets = equal_steps(L.n_increments);
     make_grid();
     // Adaptive cycles (mesh.adaptive_cycles): the push is computed on the current mesh (not
     // recorded), F(δ_max) kept, and the cells where Kelly's indicator is largest refined; the
@@ -143,11 +147,7 @@ namespace clearjoint::fe::detail
     // mesh.adaptive_increments equal steps: only the state at δ_max is used there, and it
     // hardly depends on the path (μ = 0.1: 1 to 20 increments within 5e-6 of F, docs/fe.md),
     // so the sequence F_k(N_k) that gives the error estimate stays comparable with friction.
-    std::vector<double> marking_targets;
-    for (unsigned int inc = 1; inc <= scene_.mesh.adaptive_increments; ++inc)
-      marking_targets.push_back(inc == scene_.mesh.adaptive_increments ?
-                                  L.delta_max :
-                                  inc * (L.delta_max / scene_.mesh.adaptive_increments));
+    const std::vector<double> marking_targets = equal_steps(scene_.mesh.adaptive_increments);
     // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
     // estimate, extrapolated through the last three, meets it — the curve is then computed on
     // that mesh — or at adaptive_cycles, the most allowed.
