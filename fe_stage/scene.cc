@@ -50,6 +50,17 @@ namespace clearjoint::fe
     return "?";
   }
 
+  std::string to_string(const Contact::MortarSlave s)
+  {
+    switch (s)
+      {
+        case Contact::MortarSlave::automatic: return "automatic";
+        case Contact::MortarSlave::bore: return "bore";
+        case Contact::MortarSlave::journal: return "journal";
+      }
+    return "?";
+  }
+
   namespace
   {
     unsigned int uint_or(StrictObject &o, const std::string &key, unsigned int fallback, long lo,
@@ -172,6 +183,11 @@ namespace clearjoint::fe
         C.pairing = pairing == "node_to_node" ? Contact::Pairing::node_to_node :
                     pairing == "mortar"       ? Contact::Pairing::mortar :
                                                 Contact::Pairing::automatic;
+        const std::string slave =
+          c.string_or("mortar_slave", "automatic", {"automatic", "bore", "journal"});
+        C.mortar_slave = slave == "bore"    ? Contact::MortarSlave::bore :
+                         slave == "journal" ? Contact::MortarSlave::journal :
+                                              Contact::MortarSlave::automatic;
         c.finish();
       }
     if (top.has("loading"))
@@ -447,13 +463,24 @@ namespace clearjoint::fe
         throw InputError(f, "sweep.velocity", format_value(v), "(0, 100) m/s");
     if (s.study == Study::misalignment)
       {
-        if (s.loading.journal != JournalLoading::rigid)
+        if (s.loading.journal != JournalLoading::rigid && s.loading.journal != JournalLoading::core)
           throw InputError(f, "loading.journal", to_string(s.loading.journal),
-                           "rigid for study misalignment",
+                           "rigid or core for study misalignment",
                            "SPEC §2: with end_faces or axis_line loading the rim that carries the "
                            "contact is itself driven (a line load whose force does not converge "
-                           "with the mesh); the tilted journal is rigid (the core loading needs a "
-                           "tilted journal mesh, not built yet)");
+                           "with the mesh)");
+        if (s.loading.journal == JournalLoading::core && !G.mesh.empty())
+          throw InputError(f, "loading.journal", "core",
+                           "rigid for study misalignment with geometry.mesh",
+                           "the deformable tilted journal is generated (meshed aligned, then "
+                           "turned by theta); a Gmsh journal is not tilted");
+        if (s.loading.journal == JournalLoading::core &&
+            s.contact.mortar_slave == Contact::MortarSlave::bore)
+          throw InputError(f, "contact.mortar_slave", "bore",
+                           "journal or automatic for study misalignment",
+                           "the tilted journal bears on the bore with its rim: the bore faces "
+                           "around the rim's trace are only partly covered by the journal, and "
+                           "their nodes would drop out of the contact exactly where it is");
         const auto jg = joint_geometry(G);
         geometry::check_tilt(jg, geometry::radians(s.misalignment.theta_deg), f,
                              "misalignment.theta_deg");
@@ -477,11 +504,32 @@ namespace clearjoint::fe
                            "mortar or automatic with mesh.adaptive_cycles > 0",
                            "adaptive refinement refines the bore and the journal differently, "
                            "so their nodes no longer lie on common rays");
+        if (deformable_journal && s.contact.pairing == Pairing::node_to_node &&
+            s.study == Study::misalignment)
+          throw InputError(f, "contact.pairing", "node_to_node",
+                           "mortar or automatic for study misalignment",
+                           "the tilted journal's nodes do not lie on the bore's rays");
         if (deformable_indenter && s.contact.pairing == Pairing::node_to_node)
           throw InputError(f, "contact.pairing", "node_to_node",
                            "mortar or automatic for the verification blocks",
                            "the block and its indenter are meshed independently: their "
                            "nodes do not face each other");
+      }
+    if (s.contact.mortar_slave != Contact::MortarSlave::automatic)
+      {
+        const bool deformable_journal = joint && s.loading.journal != JournalLoading::rigid;
+        if (!deformable_journal || s.contact.pairing == Pairing::node_to_node)
+          throw InputError(f, "contact.mortar_slave", to_string(s.contact.mortar_slave),
+                           "automatic unless a deformable journal meets the bore by mortar",
+                           "set loading.journal to end_faces, axis_line or core, and "
+                           "contact.pairing to mortar or automatic");
+        if (s.contact.mortar_slave == Contact::MortarSlave::journal &&
+            s.loading.journal != JournalLoading::core)
+          throw InputError(f, "contact.mortar_slave", "journal",
+                           "bore or automatic with loading.journal " +
+                             to_string(s.loading.journal),
+                           "the slave's nodes carry the contact constraints, and the journal's "
+                           "surface nodes are driven by that loading: use loading.journal core");
       }
     if (!G.mesh.empty())
       check_mesh_against_scene(s);
@@ -657,10 +705,14 @@ namespace clearjoint::fe
       << "  pairing: automatic  # automatic | node_to_node | mortar: how a deformable journal\n"
       << "                      #   meets the bore (automatic = mortar; node_to_node: the\n"
       << "                      #   generated joint's nodes on common rays)\n"
+      << "  mortar_slave: automatic  # automatic | bore | journal: the mortar surface that\n"
+      << "                      #   carries the constraints (journal: loading.journal core\n"
+      << "                      #   only); automatic = journal for the tilted journal of\n"
+      << "                      #   study misalignment, bore otherwise\n"
       << "loading:\n"
       << "  journal: end_faces  # end_faces | axis_line (the paper's) | core (the inner core\n"
       << "                      #   r <= R_J/2 moved rigidly) | rigid (rigid journal)\n"
-      << "                      #   study misalignment: rigid (its default and only choice)\n"
+      << "                      #   study misalignment: rigid (default) or core\n"
       << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
       << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
       << "  max_cuts: " << d.loading.max_cuts << "        # halvings of a failed increment\n"
@@ -779,7 +831,8 @@ namespace clearjoint::fe
     j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
                     {"max_iterations", s.contact.max_iterations},
                     {"tangential_scale", s.contact.tangential_scale},
-                    {"pairing", to_string(s.contact.pairing)}};
+                    {"pairing", to_string(s.contact.pairing)},
+                    {"mortar_slave", to_string(s.contact.mortar_slave)}};
     j["loading"] = {{"journal", to_string(s.loading.journal)},
                     {"delta_max", s.loading.delta_max},
                     {"n_increments", s.loading.n_increments},

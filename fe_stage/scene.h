@@ -99,6 +99,11 @@ namespace clearjoint::fe
     /// generated meshes' common rays, or dual mortar (any two meshes). automatic: mortar (the
     /// joint with a deformable journal, generated or Gmsh, and the verification blocks).
     enum class Pairing { automatic, node_to_node, mortar } pairing = Pairing::automatic;
+    /// Which joint surface is the mortar slave (carries the constraints): the bore, or the
+    /// journal's surface (then the journal must be driven at its core, so that no surface
+    /// node is driven). automatic: the journal for the tilted journal of the misalignment
+    /// study (its rim bears on the bore), the bore otherwise.
+    enum class MortarSlave { automatic, bore, journal } mortar_slave = MortarSlave::automatic;
   };
 
   struct Loading
@@ -273,4 +278,5 @@ namespace clearjoint::fe
   std::string to_string(Study s);
   std::string to_string(JournalLoading l);
   std::string to_string(Contact::Pairing p);
+  std::string to_string(Contact::MortarSlave s);
 } // namespace clearjoint::fe

@@ -17,7 +17,7 @@ namespace clearjoint::fe::detail
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == slave_surface_id())
             {
               fv.reinit(cell, f);
               cell_w = 0.0;

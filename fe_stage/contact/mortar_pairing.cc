@@ -13,23 +13,39 @@ namespace clearjoint::fe::detail
   ///   blocks: slave = the block's top face (the plane y = 0, n = −e_y into the block),
   ///           master = the indenter's bottom;
   ///   joint:  slave = the bore's faces that lie over the journal's length (n radial, into the
-  ///           bearing), master = the journal's cylindrical surface.
+  ///           bearing), master = the journal's cylindrical surface;
+  ///   joint, plan_.journal_is_slave (the tilted journal): slave = the journal's cylindrical
+  ///           surface (n toward its own axis, into the journal), master = the bore.
   void ContactModel::find_mortar_contact_nodes(
     const std::map<types::global_dof_index, Point<dim>> &support,
     std::map<types::global_dof_index, ContactNode> &by_x_dof)
   {
     const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
-    const types::boundary_id master_id = joint ? bid_journal_surface : bid_indenter_surface;
+    const bool journal_slave = joint && plan_.journal_is_slave;
+    const types::boundary_id slave_id = slave_surface_id();
+    const types::boundary_id master_id =
+      journal_slave ? bid_contact : joint ? bid_journal_surface : bid_indenter_surface;
     auto slave_normal = [&](const Point<dim> &X) {
       if (!joint)
         return Tensor<1, dim>({0.0, -1.0, 0.0});
+      if (journal_slave)
+        {
+          // −(radial direction from the journal's own axis), turned with the journal
+          const Point<dim> l = journal_local(X);
+          const double r = std::hypot(l[0], l[1] + scene_.geometry.c_r);
+          const auto n = plan_.journal_pose.rotate({-l[0] / r, -(l[1] + scene_.geometry.c_r) / r, 0.0});
+          return Tensor<1, dim>({n[0], n[1], n[2]});
+        }
       const double r = std::hypot(X[0], X[1]);
       return Tensor<1, dim>({X[0] / r, X[1] / r, 0.0});
     };
-    // Joint: a bore face beyond the journal's end faces no journal face, and a dual basis
-    // function is non-zero on its whole face, so such a face would make the rim nodes it
+    // Bore as slave: a bore face beyond the journal's end faces no journal face, and a dual
+    // basis function is non-zero on its whole face, so such a face would make the rim nodes it
     // shares incomplete (and drop them) — it is left out: the journal's ends are mesh planes.
-    const double z_end = joint ? plan_.obstacle.half_length * (1.0 + 1e-9) : 0.0;
+    // (The journal as slave lies wholly over the longer bore.)
+    const double z_end = joint && !journal_slave ?
+                           plan_.obstacle.half_length * (1.0 + 1e-9) :
+                           std::numeric_limits<double>::infinity();
 
     std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
     using NodeDofs = std::array<types::global_dof_index, dim>;
@@ -78,7 +94,7 @@ namespace clearjoint::fe::detail
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned() || cell->is_ghost())
         for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == slave_id)
             {
               const auto nodes = face_node_dofs(cell, f, face_dofs);
               if (joint && std::any_of(nodes.begin(), nodes.end(), [&](const NodeDofs &d) {

@@ -66,12 +66,13 @@ namespace clearjoint::fe::detail
         else
           {
             // axis_line: the journal's y-DoFs on its axis x = 0, y = −c_r; core: every DoF of
-            // the journal's points within R_J/2 of that axis, u = (0, −1, 0) (a rigid core
-            // translated, SPEC §2)
+            // the journal's points within R_J/2 of that axis (the tilted journal's: its own),
+            // u = (0, −1, 0) (a rigid core translated, SPEC §2)
             const bool core = scene_.loading.journal == JournalLoading::core;
             const double tol = 1e-8 * scene_.geometry.R_B;
             const double r_core = 0.5 * scene_.geometry.R_J();
-            auto driven = [&](const Point<dim> &p) {
+            auto driven = [&](const Point<dim> &X) {
+              const Point<dim> p = journal_local(X);  // from the (tilted) journal's axis
               const double r = std::hypot(p[0], p[1] + scene_.geometry.c_r);
               return core ? r <= r_core + tol : r < tol;
             };

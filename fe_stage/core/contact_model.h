@@ -200,6 +200,29 @@ namespace clearjoint::fe::detail
     {
       return held_components(cn, cn.traction);
     }
+    /// The boundary whose nodes carry the contact constraints: the bore (or the block's top),
+    /// or the journal's surface when it is the mortar slave.
+    types::boundary_id slave_surface_id() const
+    {
+      return plan_.pairing == StudyPlan::Pairing::mortar && plan_.journal_is_slave ?
+               bid_journal_surface :
+               bid_contact;
+    }
+    /// +1 when the slave is the bore (or the block), −1 when it is the journal: the force on
+    /// the bearing is this times the force on the slave's nodes.
+    double slave_sign() const { return slave_surface_id() == bid_journal_surface ? -1.0 : 1.0; }
+    /// A point of the deformable journal where it sits → the aligned journal as meshed (its
+    /// axis e_z through (0, −c_r, 0)), and back (plan_.journal_pose; identity unless tilted).
+    Point<dim> journal_local(const Point<dim> &X) const
+    {
+      const auto l = plan_.journal_pose.to_local({X[0], X[1], X[2]});
+      return Point<dim>(l[0], l[1], l[2]);
+    }
+    Point<dim> journal_world(const Point<dim> &x) const
+    {
+      const auto X = plan_.journal_pose.to_world({x[0], x[1], x[2]});
+      return Point<dim>(X[0], X[1], X[2]);
+    }
     /// Sets the node's constrained component: the largest component of the normal n
     /// (|n_c| > 0.3) whose DoF is not already constrained. False if there is none (a hanging or
     /// supported node: it follows its masters and is no contact node).

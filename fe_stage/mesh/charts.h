@@ -4,6 +4,7 @@
 
 #include <deal.II/base/numbers.h>
 #include "fe_stage/core/dim.h"
+#include "fe_stage/mesh/journal_pose.h"
 
 #include <deal.II/base/point.h>
 #include <deal.II/grid/manifold.h>
@@ -83,5 +84,35 @@ namespace clearjoint::fe::detail
   private:
     double c_r_, R_J_;
     bool journal_;
+  };
+
+  /// The journal's RayChart carried along with the journal's rigid placement (JournalPose): the
+  /// tilted journal of the misalignment study refines onto its own, tilted, cylinder.
+  class PlacedChart : public ChartManifold<dim, dim, dim>
+  {
+  public:
+    PlacedChart(const RayChart &aligned, const JournalPose &pose)
+      : ChartManifold<dim, dim, dim>(Tensor<1, dim>({2.0 * numbers::PI, 0.0, 0.0}))
+      , aligned_(aligned), pose_(pose)
+    {}
+    Point<dim> pull_back(const Point<dim> &X) const override
+    {
+      const auto l = pose_.to_local({X[0], X[1], X[2]});
+      return aligned_.pull_back(Point<dim>(l[0], l[1], l[2]));
+    }
+    Point<dim> push_forward(const Point<dim> &c) const override
+    {
+      const Point<dim> l = aligned_.push_forward(c);
+      const auto X = pose_.to_world({l[0], l[1], l[2]});
+      return Point<dim>(X[0], X[1], X[2]);
+    }
+    std::unique_ptr<Manifold<dim, dim>> clone() const override
+    {
+      return std::make_unique<PlacedChart>(aligned_, pose_);
+    }
+
+  private:
+    RayChart aligned_;
+    JournalPose pose_;
   };
 } // namespace clearjoint::fe::detail

@@ -81,7 +81,13 @@ namespace clearjoint::fe::detail
       sl.insert(sl.end(), half.begin(), half.end());
       return sl;
     };
-    const std::vector<double> journal_slices = mirror(half_slices);
+    // A deformable tilted journal is meshed aligned over its own length ±L_J/2 (the same
+    // number of slices) and then placed by plan_.journal_pose.
+    std::vector<double> journal_half_slices = half_slices;
+    if (misaligned && journal)
+      for (unsigned int k = 0; k <= n_in; ++k)
+        journal_half_slices[k] = 0.5 * G.L_J() * k / n_in;
+    const std::vector<double> journal_slices = mirror(journal_half_slices);
     for (unsigned int k = 1; k <= n_out; ++k)
       half_slices.push_back(zJ + (zB - zJ) * k / n_out);
     const std::vector<double> bearing_slices = mirror(half_slices);
@@ -198,6 +204,8 @@ namespace clearjoint::fe::detail
         journal2d.create_triangulation(jv, jc, SubCellData());
         Triangulation<dim> journal3d;
         GridGenerator::extrude_triangulation(journal2d, journal_slices, journal3d, true);
+        if (!plan_.journal_pose.identity())
+          GridTools::transform([&](const Point<dim> &p) { return journal_world(p); }, journal3d);
         append_body(journal3d, 1, all_vertices, all_cells);
       }
 
@@ -214,7 +222,8 @@ namespace clearjoint::fe::detail
             // ring cells: all vertices at s ≥ s0 − tol on the journal chart
             bool ring = true;
             for (const auto v : cell->vertex_indices())
-              ring = ring && journal_chart.pull_back(cell->vertex(v))[1] > 0.6 - 1e-6;
+              ring = ring &&
+                     journal_chart.pull_back(journal_local(cell->vertex(v)))[1] > 0.6 - 1e-6;
             cell->set_all_manifold_ids(ring ? 1 : numbers::flat_manifold_id);
           }
         else
@@ -239,15 +248,17 @@ namespace clearjoint::fe::detail
                 on_inner = on_inner && std::abs(rv - G.R_B) < tol;
                 on_outer = on_outer && std::abs(rv - R_o) < tol;
                 on_x0 = on_x0 && std::abs(p[0]) < tol;
+                const Point<dim> l = journal_local(p);  // the journal as meshed
                 on_journal =
-                  on_journal && std::abs(std::hypot(p[0], p[1] + G.c_r) - G.R_J()) < tol;
+                  on_journal && std::abs(std::hypot(l[0], l[1] + G.c_r) - G.R_J()) < tol;
               }
             types::boundary_id id = bid_free;
             if (cell->material_id() == 1)
               {
+                const double z_end = misaligned ? 0.5 * G.L_J() : zJ;
                 if (on_journal)
                   id = bid_journal_surface;
-                else if (std::abs(std::abs(c[2]) - zJ) < tol)
+                else if (std::abs(std::abs(journal_local(c)[2]) - z_end) < tol)
                   id = bid_journal_end;
                 else if (!full && on_x0)
                   id = bid_sym_x;
@@ -270,7 +281,10 @@ namespace clearjoint::fe::detail
 
     tria_.copy_triangulation(serial);
     tria_.set_manifold(0, bearing_chart);
-    tria_.set_manifold(1, journal_chart);
+    if (plan_.journal_pose.identity())
+      tria_.set_manifold(1, journal_chart);
+    else
+      tria_.set_manifold(1, PlacedChart(journal_chart, plan_.journal_pose));
 
     refine_joint_mesh();
     symmetry_factor_ = (full ? 1.0 : 2.0) * (full_z ? 1.0 : 2.0);
@@ -344,7 +358,17 @@ namespace clearjoint::fe::detail
             {
               if (by_gap)
                 {
-                  if (bore_gap_below(cell, 2.0 * scene_.loading.delta_max))
+                  // a deformable journal's cell only at its surface (its inner cells span
+                  // wide angles about the bearing axis and would all be refined)
+                  bool at_surface = cell->material_id() == 0;
+                  for (const auto v : cell->vertex_indices())
+                    {
+                      const Point<dim> l = journal_local(cell->vertex(v));
+                      at_surface = at_surface ||
+                                   std::hypot(l[0], l[1] + scene_.geometry.c_r) >
+                                     scene_.geometry.R_J() - 0.5 * cell->diameter();
+                    }
+                  if (at_surface && bore_gap_below(cell, 2.0 * scene_.loading.delta_max))
                     cell->set_refine_flag();
                   continue;
                 }

@@ -60,9 +60,10 @@ namespace clearjoint::fe::detail
   double f_contact = 0.0, max_pen = 0.0;
   double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
   unsigned int n_act = 0, n_slip = 0;
-  // the y-force a node's contact passes on: normal only, or with its friction force
-  auto contact_force_y = [&](const ContactNode &cn) {
-    return friction_ ? cn.traction[1] : cn.lambda * cn.n[1];
+  // the y-force a node's contact passes on to the bearing: normal only, or with its friction
+  // force (the force on the slave node; on the bearing the opposite when the journal is slave)
+  auto contact_force_y = [&, sign = slave_sign()](const ContactNode &cn) {
+    return sign * (friction_ ? cn.traction[1] : cn.lambda * cn.n[1]);
   };
   Point<dim> deepest;
   for (const auto &cn : nodes_)

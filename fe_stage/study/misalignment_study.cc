@@ -1,5 +1,7 @@
-// The misalignment study (paper §3.3): the rigid journal tilted by θ in the y–z plane about
-// its centre, lowered until its lowest rim point touches the bore, then pushed (−y).
+// The misalignment study (paper §3.3): the journal tilted by θ in the y–z plane about its
+// centre, lowered until its lowest rim point touches the bore, then pushed (−y): rigid, or
+// deformable and pushed at its inner core (SPEC §2, so that no driven point lies on the rim
+// that carries the contact), its surface then the mortar slave.
 #include "fe_stage/study/study.h"
 
 #include "common/units.h"
@@ -19,6 +21,10 @@ namespace clearjoint::fe
     p.obstacle.tilt = theta;
     p.obstacle.offset = G.R_B - 0.5 * G.L_J() * std::sin(theta) - G.R_J() * std::cos(theta);
     p.tilted = true;
+    p.journal_pose.tilt = theta;
+    p.journal_pose.centre_y = -p.obstacle.offset;
+    if (p.deformable_partner && scene.contact.mortar_slave == Contact::MortarSlave::automatic)
+      p.journal_is_slave = true;
     return p;
   }
 } // namespace clearjoint::fe

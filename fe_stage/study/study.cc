@@ -21,6 +21,8 @@ namespace clearjoint::fe
                     StudyPlan::Pairing::common_rays :
                     StudyPlan::Pairing::mortar;
     p.body_names = {"bearing", "journal"};
+    p.journal_pose.aligned_centre_y = p.journal_pose.centre_y = -scene.geometry.c_r;
+    p.journal_is_slave = scene.contact.mortar_slave == Contact::MortarSlave::journal;
     return p;
   }
 

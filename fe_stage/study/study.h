@@ -5,6 +5,7 @@
 #pragma once
 
 #include "fe_stage/contact/rigid_obstacle.h"
+#include "fe_stage/mesh/journal_pose.h"
 #include "fe_stage/scene.h"
 
 #include <array>
@@ -26,6 +27,14 @@ namespace clearjoint::fe
     /// where its surface lies (the candidate search and the refinement toward the contact).
     RigidObstacle obstacle;
     enum class Pairing { obstacle, common_rays, mortar } pairing = Pairing::obstacle;
+    /// Mortar on the joint: the journal's surface is the slave side (its nodes carry the
+    /// constraints) and the bore the master. Needed where the journal bears on the bore with
+    /// its rim: a bore face around the rim's trace is only partly covered by the journal, its
+    /// dual basis then has no partner on part of the face and its nodes would be dropped; the
+    /// journal's surface lies wholly over the (longer) bore. Otherwise the bore is the slave.
+    bool journal_is_slave = false;
+    /// Where a deformable generated journal sits (identity: aligned, as meshed).
+    JournalPose journal_pose;
     /// Joint: the journal tilted by obstacle.tilt (the whole length is modelled, an axial
     /// slice goes through the first touch point, the contact refinement follows the gap).
     bool tilted = false;

@@ -103,9 +103,32 @@ TEST(FeScene, JournalLoadingOptions)
             JournalLoading::core);
   expect_error("schema: clearjoint.fe/1\nloading: {journal: spring}\n",
                {"loading.journal", "end_faces", "core"});
-  // the tilted deformable journal is not meshed yet: core is refused for misalignment
-  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\nloading: {journal: core}\n",
-               {"loading.journal", "rigid for study misalignment"});
+  // the tilted journal is rigid or core-loaded: end_faces/axis_line drive the contact rim
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nstudy: misalignment\nloading: {journal: core}\n")
+              .loading.journal,
+            JournalLoading::core);
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\nloading: {journal: end_faces}\n",
+               {"loading.journal", "rigid or core for study misalignment"});
+}
+
+// contact.mortar_slave: which joint surface carries the mortar constraints. The journal's
+// surface only when no surface node of it is driven (core loading), and the bore cannot be the
+// slave under the tilted journal's rim (its faces there are only partly covered).
+TEST(FeScene, MortarSlave)
+{
+  const FeScene s = parse("schema: clearjoint.fe/1\ncontact: {mortar_slave: journal}\n"
+                          "loading: {journal: core}\n");
+  EXPECT_EQ(s.contact.mortar_slave, Contact::MortarSlave::journal);
+  expect_error("schema: clearjoint.fe/1\ncontact: {mortar_slave: journal}\n",
+               {"contact.mortar_slave", "journal", "loading.journal core"});
+  expect_error("schema: clearjoint.fe/1\ncontact: {mortar_slave: bore}\n"
+               "loading: {journal: rigid}\n",
+               {"contact.mortar_slave", "bore", "deformable journal"});
+  expect_error("schema: clearjoint.fe/1\nstudy: misalignment\ncontact: {mortar_slave: bore}\n"
+               "loading: {journal: core}\n",
+               {"contact.mortar_slave", "journal or automatic for study misalignment"});
+  expect_error("schema: clearjoint.fe/1\ncontact: {mortar_slave: left}\n",
+               {"contact.mortar_slave", "automatic", "bore", "journal"});
 }
 
 // contact.pairing couples two deformable bodies: node_to_node (the generated joint's common

@@ -68,6 +68,35 @@ TEST(StudyPlan, TiltedJournalTouchesAtItsLowestRimPoint)
     }
 }
 
+// The core-loaded deformable tilted journal: placed by the pose that puts its lowest rim point
+// on the rigid tilted journal's first touch point, paired by mortar with its own surface as the
+// slave (the rim bears on the bore); the aligned journal keeps the bore as the slave.
+TEST(StudyPlan, DeformableTiltedJournalIsPlacedLikeTheRigidOneAndIsTheSlave)
+{
+  FeScene scene;
+  scene.study = Study::misalignment;
+  scene.loading.journal = JournalLoading::core;
+  scene.misalignment.theta_deg = 2.0;
+  const StudyPlan p = plan_study(scene);
+  EXPECT_TRUE(p.deformable_partner);
+  EXPECT_EQ(p.pairing, StudyPlan::Pairing::mortar);
+  EXPECT_TRUE(p.journal_is_slave);
+  const auto &G = scene.geometry;
+  const auto P1 = p.journal_pose.to_world({0.0, -G.c_r - G.R_J(), -0.5 * G.L_J()});
+  double g0;
+  Vec3 n;
+  ASSERT_TRUE(p.obstacle.gap({P1[0], P1[1], P1[2]}, 0.0, g0, n));
+  EXPECT_NEAR(g0, 0.0, 1e-15);
+  EXPECT_NEAR(P1[1], -G.R_B, 1e-15);
+
+  FeScene radial;
+  radial.loading.journal = JournalLoading::core;
+  EXPECT_FALSE(plan_study(radial).journal_is_slave);
+  EXPECT_TRUE(plan_study(radial).journal_pose.identity());
+  radial.contact.mortar_slave = Contact::MortarSlave::journal;
+  EXPECT_TRUE(plan_study(radial).journal_is_slave);
+}
+
 TEST(StudyPlan, VerificationBlocks)
 {
   FeScene scene;
