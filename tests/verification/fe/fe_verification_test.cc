@@ -561,6 +561,19 @@ TEST(FeTwoBody, QuarterEqualsFull)
     }
 }
 
+namespace
+{
+  // A coarse half model of the tilted joint: the contact zone refined twice around the rim
+  // patch (about 8 k DoFs).
+  std::string coarse_misaligned(const double theta_deg)
+  {
+    return "study: misalignment\ncontact: {mu: 0}\n"
+           "misalignment: {theta_deg: " + std::to_string(theta_deg) + "}\n"
+           "mesh: {n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 2}\n"
+           "loading: {n_increments: 4}\n";
+  }
+} // namespace
+
 // Issue 3 item 6: two MPI ranks give F within 1e-6 relative of one rank. Run under
 // `mpirun -np 2` by ctest (fe_mpi_np2_matches_np1); with one rank it compares a run with
 // itself and is skipped.
@@ -638,6 +651,12 @@ TEST(FeMpi, TwoRanksMatchOneRank)
   adaptive_friction.mesh.adaptive_cycles = 1;
   adaptive_friction.contact.mu = 0.1;
   expect_ranks_agree(adaptive_friction);
+  // the tilted deformable journal as the mortar slave, the bore's faces gathered on every
+  // rank, with friction
+  FeScene tilted = scene(coarse_misaligned(1.0));
+  tilted.loading.journal = JournalLoading::core;
+  tilted.contact.mu = 0.1;
+  expect_ranks_agree(tilted);
   // dual mortar between non-matching meshes (master faces gathered on every rank)
   expect_ranks_agree(scene("study: patch\ncontact: {mu: 0}\nloading: {n_increments: 2}\n"
                            "verification: {n_cells: 4, contact_refinements: 0, "
@@ -666,19 +685,6 @@ TEST(FeTwoBody, HangingNodesInsideTheContactZone)
       EXPECT_LT(inc.max_penetration, 1e-9 * s.loading.delta_max);
     }
 }
-
-namespace
-{
-  // A coarse half model of the tilted joint: the contact zone refined twice around the rim
-  // patch (about 8 k DoFs).
-  std::string coarse_misaligned(const double theta_deg)
-  {
-    return "study: misalignment\ncontact: {mu: 0}\n"
-           "misalignment: {theta_deg: " + std::to_string(theta_deg) + "}\n"
-           "mesh: {n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 2}\n"
-           "loading: {n_increments: 4}\n";
-  }
-} // namespace
 
 // The misalignment study at θ = 0 is the aligned joint: its half model (both rims, the whole
 // length) gives the quarter model's rigid-journal force. 0.5 %: the two meshes differ (axial
