@@ -50,6 +50,11 @@ namespace clearjoint::fe
     return "?";
   }
 
+  std::string to_string(const Contact::Sliding s)
+  {
+    return s == Contact::Sliding::finite ? "finite" : "small";
+  }
+
   std::string to_string(const Contact::MortarSlave s)
   {
     switch (s)
@@ -188,6 +193,9 @@ namespace clearjoint::fe
         C.mortar_slave = slave == "bore"    ? Contact::MortarSlave::bore :
                          slave == "journal" ? Contact::MortarSlave::journal :
                                               Contact::MortarSlave::automatic;
+        C.sliding = c.string_or("sliding", "small", {"small", "finite"}) == "finite" ?
+                      Contact::Sliding::finite :
+                      Contact::Sliding::small;
         c.finish();
       }
     if (top.has("loading"))
@@ -203,6 +211,8 @@ namespace clearjoint::fe
         L.delta_max = l.number_or("delta_max", L.delta_max, Range::positive("m"));
         L.n_increments = uint_or(l, "n_increments", L.n_increments, 1, 100000);
         L.max_cuts = uint_or(l, "max_cuts", L.max_cuts, 0, 20);
+        L.axial_offset = l.number_or("axial_offset", L.axial_offset, Range::closed(-1.0, 1.0, "m"));
+        L.axial_slide = l.number_or("axial_slide", L.axial_slide, Range::closed(-1.0, 1.0, "m"));
         l.finish();
       }
     if (top.has("mesh"))
@@ -515,6 +525,47 @@ namespace clearjoint::fe
                            "the block and its indenter are meshed independently: their "
                            "nodes do not face each other");
       }
+    // An axially moved journal: its ends no longer lie on the bore's mesh planes, so its
+    // surface must be the mortar slave (it lies wholly over the longer bore), and it must stay
+    // within the bore (beyond the bore's end its faces would have no partner).
+    const bool axially_moved = s.loading.axial_offset != 0.0 || s.loading.axial_slide != 0.0;
+    if (axially_moved)
+      {
+        const char *key = s.loading.axial_offset != 0.0 ? "loading.axial_offset" :
+                                                           "loading.axial_slide";
+        const std::string value = format_value(s.loading.axial_offset != 0.0 ?
+                                                 s.loading.axial_offset :
+                                                 s.loading.axial_slide);
+        if (s.study != Study::radial || s.loading.journal != JournalLoading::core ||
+            !G.mesh.empty())
+          throw InputError(f, key, value, "0 unless study radial with loading.journal core",
+                           "the journal is moved axially at its core; a generated mesh only");
+        if (s.contact.mortar_slave == Contact::MortarSlave::bore ||
+            s.contact.pairing == Pairing::node_to_node)
+          throw InputError(f, key, value, "0 with contact.mortar_slave bore or node_to_node",
+                           "the journal's ends leave the bore's mesh planes: the journal's "
+                           "surface must be the mortar slave (contact.mortar_slave automatic)");
+        const double c_a = G.c_a * (1.0 + 1e-12);
+        if (std::abs(s.loading.axial_offset) > c_a)
+          throw InputError(f, "loading.axial_offset", format_value(s.loading.axial_offset),
+                           "[-c_a, c_a] = [-" + format_value(G.c_a) + ", " +
+                             format_value(G.c_a) + "] m",
+                           "the journal must stay within the bore");
+        if (std::abs(s.loading.axial_offset + s.loading.axial_slide) > c_a)
+          throw InputError(f, "loading.axial_slide", format_value(s.loading.axial_slide),
+                           "axial_offset + axial_slide within [-c_a, c_a] = [-" +
+                             format_value(G.c_a) + ", " + format_value(G.c_a) + "] m",
+                           "the journal must stay within the bore");
+      }
+    if (s.contact.sliding == Contact::Sliding::finite &&
+        (!(joint ? s.loading.journal != JournalLoading::rigid :
+                   s.verification.deformable_indenter) ||
+         s.contact.pairing == Pairing::node_to_node || s.study == Study::impact))
+      throw InputError(f, "contact.sliding", "finite",
+                       "small unless two deformable bodies meet by mortar (quasi-static)",
+                       "finite sliding redoes the mortar search at the deformed surfaces after "
+                       "each increment; a rigid obstacle's gap is exact already, common rays "
+                       "cannot follow sliding, and the impact study's time steps do not redo it");
     if (s.contact.mortar_slave != Contact::MortarSlave::automatic)
       {
         const bool deformable_journal = joint && s.loading.journal != JournalLoading::rigid;
@@ -709,6 +760,9 @@ namespace clearjoint::fe
       << "                      #   carries the constraints (journal: loading.journal core\n"
       << "                      #   only); automatic = journal for the tilted journal of\n"
       << "                      #   study misalignment, bore otherwise\n"
+      << "  sliding: small      # small | finite: the mortar search once in the reference\n"
+      << "                      #   configuration, or again at the deformed surfaces after\n"
+      << "                      #   every increment (for sliding of a contact cell or more)\n"
       << "loading:\n"
       << "  journal: end_faces  # end_faces | axis_line (the paper's) | core (the inner core\n"
       << "                      #   r <= R_J/2 moved rigidly) | rigid (rigid journal)\n"
@@ -716,6 +770,9 @@ namespace clearjoint::fe
       << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
       << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
       << "  max_cuts: " << d.loading.max_cuts << "        # halvings of a failed increment\n"
+      << "  axial_offset: 0     # [m] core journal placed off the axial centre, |.| <= c_a\n"
+      << "  axial_slide: 0      # [m] the core also slides along z over the push (with\n"
+      << "                      #   contact.sliding finite), |offset + slide| <= c_a\n"
       << "mesh:\n"
       << "  degree: " << d.mesh.degree << "            # 1 or 2 (Q1/Q2 hexahedra, curved mapping)\n"
       << "  n_circumferential: " << d.mesh.n_circumferential
@@ -832,11 +889,14 @@ namespace clearjoint::fe
                     {"max_iterations", s.contact.max_iterations},
                     {"tangential_scale", s.contact.tangential_scale},
                     {"pairing", to_string(s.contact.pairing)},
-                    {"mortar_slave", to_string(s.contact.mortar_slave)}};
+                    {"mortar_slave", to_string(s.contact.mortar_slave)},
+                    {"sliding", to_string(s.contact.sliding)}};
     j["loading"] = {{"journal", to_string(s.loading.journal)},
                     {"delta_max", s.loading.delta_max},
                     {"n_increments", s.loading.n_increments},
-                    {"max_cuts", s.loading.max_cuts}};
+                    {"max_cuts", s.loading.max_cuts},
+                    {"axial_offset", s.loading.axial_offset},
+                    {"axial_slide", s.loading.axial_slide}};
     j["mesh"] = {{"degree", s.mesh.degree},
                  {"n_circumferential", s.mesh.n_circumferential},
                  {"n_radial", s.mesh.n_radial},

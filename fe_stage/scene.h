@@ -104,6 +104,11 @@ namespace clearjoint::fe
     /// node is driven). automatic: the journal for the tilted journal of the misalignment
     /// study (its rim bears on the bore), the bore otherwise.
     enum class MortarSlave { automatic, bore, journal } mortar_slave = MortarSlave::automatic;
+    /// small: the mortar coupling of two deformable bodies is found once, in the reference
+    /// configuration (fine while the surfaces slide much less than a contact cell); finite: it
+    /// is found again at the deformed surfaces after every converged increment (Abaqus's
+    /// small/finite sliding).
+    enum class Sliding { small, finite } sliding = Sliding::small;
   };
 
   struct Loading
@@ -112,6 +117,12 @@ namespace clearjoint::fe
     double delta_max = 0.05e-3;  // [m] final push beyond first touch
     unsigned int n_increments = 10;
     unsigned int max_cuts = 3;  // an increment that fails is halved at most this many times
+    /// [m] core loading, study radial: the journal placed this far along +z off the axial
+    /// centre at δ = 0, and the core moved this much more along +z over the push (in
+    /// proportion to δ, reached at δ_max). The journal must stay within the bore:
+    /// |axial_offset|, |axial_offset + axial_slide| ≤ c_a.
+    double axial_offset = 0.0;
+    double axial_slide = 0.0;
   };
 
   struct Mesh
@@ -279,4 +290,5 @@ namespace clearjoint::fe
   std::string to_string(JournalLoading l);
   std::string to_string(Contact::Pairing p);
   std::string to_string(Contact::MortarSlave s);
+  std::string to_string(Contact::Sliding s);
 } // namespace clearjoint::fe

@@ -16,10 +16,24 @@ namespace clearjoint::fe::detail
   ///           bearing), master = the journal's cylindrical surface;
   ///   joint, plan_.journal_is_slave (the tilted journal): slave = the journal's cylindrical
   ///           surface (n toward its own axis, into the journal), master = the bore.
+  ///
+  /// With `u` (ghosted; contact.sliding finite) the coupling is found between the surfaces as
+  /// deformed by u, x = X + u, and each node's g0 is set so that its linearised gap at u is the
+  /// weighted gap found there: ĝ(u) = g0 + n·(u_s − Σ_m C_sm u_m) = g̃(x). Normals stay those of
+  /// the reference surfaces (small deformation of each body; the sliding is between them).
   void ContactModel::find_mortar_contact_nodes(
     const std::map<types::global_dof_index, Point<dim>> &support,
-    std::map<types::global_dof_index, ContactNode> &by_x_dof)
+    std::map<types::global_dof_index, ContactNode> &by_x_dof,
+    const TrilinosWrappers::MPI::Vector *u)
   {
+    // a node's position in the configuration searched: X, or X + u
+    auto position = [&](const std::array<types::global_dof_index, dim> &d) {
+      Point<dim> x = support.at(d[0]);
+      if (u)
+        for (unsigned int c = 0; c < dim; ++c)
+          x[c] += (*u)[d[c]];
+      return x;
+    };
     const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
     const bool journal_slave = joint && plan_.journal_is_slave;
     const types::boundary_id slave_id = slave_surface_id();
@@ -50,8 +64,9 @@ namespace clearjoint::fe::detail
     std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
     using NodeDofs = std::array<types::global_dof_index, dim>;
     // Master faces from every rank (the face facing a slave node is often on no cell this
-    // rank sees): per face its node count, then per node 3 DoFs, the position and whether its
-    // y-DoF is driven by the load (the journal's rim under end-face loading).
+    // rank sees): per face its node count, then per node 3 DoFs, the position searched, whether
+    // its y-DoF is driven by the load (the journal's rim under end-face loading) and its
+    // displacement (0 in the reference search).
     std::vector<double> mine;
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -62,21 +77,24 @@ namespace clearjoint::fe::detail
               mine.push_back(double(nodes.size()));
               for (const auto &d : nodes)
                 {
-                  const Point<dim> &X = support.at(d[0]);
+                  const Point<dim> x = position(d);
                   const bool driven =
                     std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), d[1]);
-                  mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), X[0],
-                                           X[1], X[2], driven ? 1.0 : 0.0});
+                  mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0],
+                                           x[1], x[2], driven ? 1.0 : 0.0});
+                  for (unsigned int c = 0; c < dim; ++c)
+                    mine.push_back(u ? (*u)[d[c]] : 0.0);
                 }
             }
     std::vector<mortar::Face> master;
     std::map<long, std::pair<NodeDofs, bool>> master_dofs;
+    std::map<long, Tensor<1, dim>> master_u;
     for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
       for (std::size_t i = 0; i < part.size();)
         {
           const unsigned int nn = static_cast<unsigned int>(part[i++]);
           mortar::Face face;
-          for (unsigned int k = 0; k < nn; ++k, i += 7)
+          for (unsigned int k = 0; k < nn; ++k, i += 10)
             {
               NodeDofs d;
               for (unsigned int c = 0; c < dim; ++c)
@@ -84,6 +102,7 @@ namespace clearjoint::fe::detail
               face.nodes.push_back(static_cast<long>(d[0]));
               face.X.push_back({part[i + 3], part[i + 4], part[i + 5]});
               master_dofs[static_cast<long>(d[0])] = {d, part[i + 6] != 0.0};
+              master_u[static_cast<long>(d[0])] = Tensor<1, dim>({part[i + 7], part[i + 8], part[i + 9]});
             }
           master.push_back(std::move(face));
         }
@@ -104,9 +123,9 @@ namespace clearjoint::fe::detail
               mortar::Face face;
               for (const auto &d : nodes)
                 {
-                  const Point<dim> &X = support.at(d[0]);
+                  const Point<dim> x = position(d);
                   face.nodes.push_back(static_cast<long>(d[0]));
-                  face.X.push_back({X[0], X[1], X[2]});
+                  face.X.push_back({x[0], x[1], x[2]});
                   slave_dofs[static_cast<long>(d[0])] = d;
                 }
               slave.push_back(std::move(face));
@@ -144,11 +163,18 @@ namespace clearjoint::fe::detail
         cn.g0 = cp.gap;
         cn.two_body = true;
         cn.candidate = cp.gap <= window_gap;
+        Tensor<1, dim> relative;  // u_s − Σ C_sm u_m (0 in the reference search)
+        if (u)
+          for (unsigned int c = 0; c < dim; ++c)
+            relative[c] = (*u)[dofs[c]];
         for (const auto &[m, w] : cp.masters)
           {
             const auto &[mdofs, driven] = master_dofs.at(m);
             cn.partners.push_back({mdofs, w, driven});
+            relative -= w * master_u.at(m);
           }
+        cn.g0 -= cn.n * relative;
+        cn.gap = cp.gap;  // the weighted gap where it was searched (follow_sliding compares)
         by_x_dof.emplace(dofs[0], cn);
       }
   }

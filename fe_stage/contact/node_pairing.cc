@@ -70,7 +70,7 @@ namespace clearjoint::fe::detail
             }
       }
     if (mortar)
-      find_mortar_contact_nodes(support, by_x_dof);
+      find_mortar_contact_nodes(support, by_x_dof, search_displacement_);
     else
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned() || cell->is_ghost())

@@ -112,7 +112,18 @@ namespace clearjoint::fe::detail
     void build_fixed_constraints();
     void find_contact_nodes();
     void find_mortar_contact_nodes(const std::map<types::global_dof_index, Point<dim>> &support,
-                                   std::map<types::global_dof_index, ContactNode> &by_x_dof);
+                                   std::map<types::global_dof_index, ContactNode> &by_x_dof,
+                                   const TrilinosWrappers::MPI::Vector *u = nullptr);
+    /// contact.sliding finite: the mortar search again at the converged deformed surfaces
+    /// (contact/sliding.cc); slip then counts from u_start. Returns how far the coupling moved.
+    double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start);
+    /// Where the joint's mortar search looks (find_contact_nodes): the reference surfaces, or
+    /// those displaced by this ghosted vector (follow_sliding's rebuild).
+    const TrilinosWrappers::MPI::Vector *search_displacement_ = nullptr;
+    unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
+    unsigned int n_sliding_resolves_ = 0;  // settle_sliding: increments solved again
+    IncrementRecord settle_sliding(double delta, const TrilinosWrappers::MPI::Vector &u_start,
+                                   IncrementRecord rec);
     void make_matrices();
     void set_fixed_constraints_for(double delta);
     void assemble_static();

@@ -17,7 +17,7 @@ namespace clearjoint::fe::detail
     const bool misaligned = plan_.tilted;
     // the rolling study: the whole ring (the contact travels round it), the mid-plane kept
     const bool full = scene_.full_model || plan_.rolling;
-    const bool full_z = scene_.full_model || misaligned;
+    const bool full_z = scene_.full_model || plan_.full_length;
     const bool journal = scene_.loading.journal != JournalLoading::rigid;
     const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
     const unsigned int n_r =
@@ -84,7 +84,7 @@ namespace clearjoint::fe::detail
     // A deformable tilted journal is meshed aligned over its own length ±L_J/2 (the same
     // number of slices) and then placed by plan_.journal_pose.
     std::vector<double> journal_half_slices = half_slices;
-    if (misaligned && journal)
+    if (!plan_.journal_pose.identity() && journal)
       for (unsigned int k = 0; k <= n_in; ++k)
         journal_half_slices[k] = 0.5 * G.L_J() * k / n_in;
     const std::vector<double> journal_slices = mirror(journal_half_slices);
@@ -255,7 +255,7 @@ namespace clearjoint::fe::detail
             types::boundary_id id = bid_free;
             if (cell->material_id() == 1)
               {
-                const double z_end = misaligned ? 0.5 * G.L_J() : zJ;
+                const double z_end = 0.5 * G.L_J();  // as meshed (zJ when aligned)
                 if (on_journal)
                   id = bid_journal_surface;
                 else if (std::abs(std::abs(journal_local(c)[2]) - z_end) < tol)

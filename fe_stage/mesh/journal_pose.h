@@ -1,7 +1,7 @@
 // Where the generated deformable journal sits. The journal is meshed aligned (axis e_z through
 // (0, −c_r, 0), touching the bore at its bottom) and then placed rigidly: turned by θ about the
-// x-axis through its centre and moved so that the centre lies at (0, centre_y, 0). Its axis is
-// then a = (0, sin θ, cos θ), as the misalignment study's rigid tilted cylinder. No deal.II:
+// x-axis through its centre and moved so that the centre lies at (0, centre_y, centre_z). Its
+// axis is then a = (0, sin θ, cos θ), as the misalignment study's rigid tilted cylinder. No deal.II:
 // unit-tested in tests/unit/fe/journal_pose_test.cc.
 #pragma once
 
@@ -16,6 +16,7 @@ namespace clearjoint::fe
     double tilt = 0.0;              // [rad] θ, about +x
     double aligned_centre_y = 0.0;  // [m] the centre's y as meshed (−c_r)
     double centre_y = 0.0;          // [m] the centre's y as placed
+    double centre_z = 0.0;          // [m] the centre's z as placed (an axial offset)
 
     /// R v: e_x stays, e_y → (0, cos θ, −sin θ), e_z → (0, sin θ, cos θ).
     Vec rotate(const Vec &v) const
@@ -33,14 +34,17 @@ namespace clearjoint::fe
     Vec to_world(const Vec &local) const
     {
       const Vec r = rotate({local[0], local[1] - aligned_centre_y, local[2]});
-      return {r[0], r[1] + centre_y, r[2]};
+      return {r[0], r[1] + centre_y, r[2] + centre_z};
     }
     /// The inverse of to_world.
     Vec to_local(const Vec &world) const
     {
-      const Vec r = rotate_back({world[0], world[1] - centre_y, world[2]});
+      const Vec r = rotate_back({world[0], world[1] - centre_y, world[2] - centre_z});
       return {r[0], r[1] + aligned_centre_y, r[2]};
     }
-    bool identity() const { return tilt == 0.0 && centre_y == aligned_centre_y; }
+    bool identity() const
+    {
+      return tilt == 0.0 && centre_y == aligned_centre_y && centre_z == 0.0;
+    }
   };
 } // namespace clearjoint::fe

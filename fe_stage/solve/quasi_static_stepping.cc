@@ -50,6 +50,9 @@ namespace clearjoint::fe::detail
                         cn.active = true;
                   }
                 rec = solve_increment(try_delta);
+                if (scene_.contact.sliding == Contact::Sliding::finite &&
+                    plan_.pairing == StudyPlan::Pairing::mortar)
+                  rec = settle_sliding(try_delta, saved, rec);
                 for (auto &cn : nodes_)
                   cn.relative_converged = cn.relative;  // friction: slip counts from here
                 solution_previous = saved;
@@ -86,6 +89,40 @@ namespace clearjoint::fe::detail
         on_converged(inc, rec);
       }
     return true;
+  }
+
+  /// Finite sliding: the mortar search again at the converged surfaces, and the increment
+  /// solved again with the new coupling (slip counted from the increment's start `u_start`)
+  /// until the coupling stops moving — Σ_m |ΔC_sm| and |Δgap|/δ_max below 1e-3 at every
+  /// node: then the converged state is in equilibrium with the partners that face it. At most
+  /// 10 searches; a coupling still moving then fails the increment (it is cut).
+  IncrementRecord ContactModel::settle_sliding(const double delta,
+                                               const TrilinosWrappers::MPI::Vector &u_start,
+                                               IncrementRecord rec)
+  {
+    constexpr unsigned int max_searches = 10;
+    constexpr double settled = 1e-3;
+    unsigned int its = rec.contact_iterations, linear = rec.linear_iterations;
+    for (unsigned int search = 1;; ++search)
+      {
+        const double change = follow_sliding(u_start);
+        if (rank_ == 0)
+          log::debug("fe_stage: finite sliding: search " + std::to_string(search) +
+                    ", coupling moved by " + format_value(change));
+        if (change <= settled)
+          break;
+        if (search == max_searches)
+          throw StepFailure{"finite sliding: the contact coupling still moved by " +
+                            format_value(change) + " after " + std::to_string(max_searches) +
+                            " searches (the surfaces slide too far in one increment)"};
+        rec = solve_increment(delta);
+        its += rec.contact_iterations;
+        linear += rec.linear_iterations;
+        ++n_sliding_resolves_;
+      }
+    rec.contact_iterations = its;
+    rec.linear_iterations = linear;
+    return rec;
   }
 
   /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
@@ -310,6 +347,13 @@ namespace clearjoint::fe::detail
                        " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
                        "last mesh, with the estimate above");
       }
+    if (rank_ == 0 && scene_.contact.sliding == Contact::Sliding::finite &&
+        plan_.pairing == StudyPlan::Pairing::mortar)
+      log::info("fe_stage: finite sliding: the mortar search was redone after every converged "
+                "increment; " + std::to_string(n_sliding_rebuilds_) +
+                " times its partners needed a new sparsity pattern, " +
+                std::to_string(n_sliding_resolves_) + " increments solved again with the new "
+                "coupling");
     result.yield_check = check_yield(nullptr);
     log_yield_check(result.yield_check);
     result.wall_time = elapsed();

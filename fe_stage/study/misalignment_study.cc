@@ -21,6 +21,7 @@ namespace clearjoint::fe
     p.obstacle.tilt = theta;
     p.obstacle.offset = G.R_B - 0.5 * G.L_J() * std::sin(theta) - G.R_J() * std::cos(theta);
     p.tilted = true;
+    p.full_length = true;
     p.journal_pose.tilt = theta;
     p.journal_pose.centre_y = -p.obstacle.offset;
     if (p.deformable_partner && scene.contact.mortar_slave == Contact::MortarSlave::automatic)

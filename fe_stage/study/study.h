@@ -38,6 +38,9 @@ namespace clearjoint::fe
     /// Joint: the journal tilted by obstacle.tilt (the whole length is modelled, an axial
     /// slice goes through the first touch point, the contact refinement follows the gap).
     bool tilted = false;
+    /// The whole length is modelled (no z = 0 symmetry plane): the tilted journal, or one
+    /// moved axially (loading.axial_offset / axial_slide).
+    bool full_length = false;
     /// Block: the deformable indenter's bottom is Hertz's profile; the refinement is graded
     /// toward the contact point (patch: uniform).
     bool hertz = false;

@@ -131,6 +131,31 @@ TEST(FeScene, MortarSlave)
                {"contact.mortar_slave", "automatic", "bore", "journal"});
 }
 
+// contact.sliding and the axially moved core journal: finite sliding redoes the mortar search,
+// so it needs two deformable bodies coupled by mortar; the journal may move axially only with
+// core loading and must stay within the bore (|offset|, |offset + slide| ≤ c_a = 1 mm).
+TEST(FeScene, SlidingAndAxialMotion)
+{
+  const FeScene s = parse("schema: clearjoint.fe/1\ncontact: {sliding: finite}\n"
+                          "loading: {journal: core, axial_slide: 0.5e-3}\n");
+  EXPECT_EQ(s.contact.sliding, Contact::Sliding::finite);
+  EXPECT_DOUBLE_EQ(s.loading.axial_slide, 0.5e-3);
+  expect_error("schema: clearjoint.fe/1\ncontact: {sliding: finite}\nloading: {journal: rigid}\n",
+               {"contact.sliding", "finite", "small unless two deformable bodies"});
+  expect_error("schema: clearjoint.fe/1\ncontact: {sliding: large}\n",
+               {"contact.sliding", "small", "finite"});
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: end_faces, axial_offset: 1e-4}\n",
+               {"loading.axial_offset", "study radial with loading.journal core"});
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: core, axial_offset: 1.5e-3}\n",
+               {"loading.axial_offset", "[-c_a, c_a]"});
+  expect_error("schema: clearjoint.fe/1\nloading: {journal: core, axial_offset: 0.6e-3, "
+               "axial_slide: 0.6e-3}\n",
+               {"loading.axial_slide", "within [-c_a, c_a]"});
+  expect_error("schema: clearjoint.fe/1\ncontact: {mortar_slave: bore}\n"
+               "loading: {journal: core, axial_slide: 0.5e-3}\n",
+               {"loading.axial_slide", "mortar_slave bore"});
+}
+
 // contact.pairing couples two deformable bodies: node_to_node (the generated joint's common
 // rays) or dual mortar; it means nothing against a rigid journal, and the verification
 // blocks' independently meshed indenter has no facing nodes.
