@@ -12,8 +12,10 @@ namespace clearjoint::fe::detail
   /// node's active/stick state kept. Either way each node's g0 is set so that its linearised
   /// gap at the converged u is the weighted gap found there, and slip counts from u_start (the
   /// increment's start) with the new partners. Returns how far the coupling moved (the
-  /// largest over the candidate nodes of Σ_m |ΔC_sm| and |Δgap|/δ_max).
-  double ContactModel::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start)
+  /// largest over the candidate nodes of Σ_m |ΔC_sm| and |Δgap|/δ_max). `rebuild` forces the
+  /// rebuild: after a failed attempt restored nodes_ whose partners the pattern no longer has.
+  double ContactModel::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start,
+                                      const bool rebuild)
   {
     // How much the coupling moved: per node the sum of |C_new − C_old| over its partners
     // [1] and the change of its linearised gap at u [m] (against δ_max).
@@ -64,7 +66,7 @@ namespace clearjoint::fe::detail
         change = std::max({change, sum, gap_change});
       }
     // collective: every rank takes the same branch (the rebuild is collective)
-    fits = Utilities::MPI::min(fits ? 1u : 0u, comm_) == 1u;
+    fits = !rebuild && Utilities::MPI::min(fits ? 1u : 0u, comm_) == 1u;
     change = Utilities::MPI::max(change, comm_);
     if (fits)
       for (auto &cn : nodes_)

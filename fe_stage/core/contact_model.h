@@ -116,7 +116,7 @@ namespace clearjoint::fe::detail
                                    const TrilinosWrappers::MPI::Vector *u = nullptr);
     /// contact.sliding finite: the mortar search again at the converged deformed surfaces
     /// (contact/sliding.cc); slip then counts from u_start. Returns how far the coupling moved.
-    double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start);
+    double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, bool rebuild = false);
     /// Where the joint's mortar search looks (find_contact_nodes): the reference surfaces, or
     /// those displaced by this ghosted vector (follow_sliding's rebuild).
     const TrilinosWrappers::MPI::Vector *search_displacement_ = nullptr;

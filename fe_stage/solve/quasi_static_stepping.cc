@@ -32,6 +32,7 @@ namespace clearjoint::fe::detail
             // keep what converged so far, to restore after a failed attempt
             const TrilinosWrappers::MPI::Vector saved = solution_owned_;
             const std::vector<ContactNode> saved_nodes = nodes_;  // active set, friction
+            const unsigned int rebuilds_before = n_sliding_rebuilds_;
             try
               {
                 // Predictor: extrapolate the displacement linearly in δ from the last two
@@ -67,6 +68,10 @@ namespace clearjoint::fe::detail
                 solution_owned_ = saved;
                 solution_ = solution_owned_;
                 nodes_ = saved_nodes;
+                // finite sliding rebuilt the pattern for couplings of this attempt: pair the
+                // restored state again so that the pattern holds its partners
+                if (n_sliding_rebuilds_ != rebuilds_before)
+                  follow_sliding(saved, true);
                 if (cuts >= L.max_cuts)
                   {
                     message = "increment " + std::to_string(inc) + " to delta = " +
