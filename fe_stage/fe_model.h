@@ -222,6 +222,10 @@ namespace clearjoint::fe
     double adaptive_extrapolated_force = 0.0;  // [N] F_inf (0: not extrapolated)
     /// mesh.adaptive_target_error > 0: whether the estimate reached it (within the cycles)
     bool adaptive_target_reached = false;
+    /// contact.sliding finite: how often the mortar search's new partners needed a new
+    /// sparsity pattern, and how many increments were solved again with a new coupling
+    unsigned int sliding_rebuilds = 0;
+    unsigned int sliding_resolves = 0;
     /// Study impact: `increments` hold the quasi-static curve of the same mesh (the reference
     /// the dynamic path is compared with), these the time steps.
     std::vector<DynamicStepRecord> dynamic_steps;

@@ -392,6 +392,9 @@ namespace
               x["adaptive"]["extrapolated_force"] = {
                 {"value", result.adaptive_extrapolated_force}, {"unit", "N"}};
           }
+        if (scene.contact.sliding == fe::Contact::Sliding::finite)
+          x["finite_sliding"] = {{"pattern_rebuilds", result.sliding_rebuilds},
+                                 {"increments_solved_again", result.sliding_resolves}};
         x["n_dofs"] = result.n_dofs;
         x["n_cells"] = result.n_cells;
         x["n_mpi_ranks"] = result.n_ranks;

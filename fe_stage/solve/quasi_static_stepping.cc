@@ -352,6 +352,8 @@ namespace clearjoint::fe::detail
                        " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
                        "last mesh, with the estimate above");
       }
+    result.sliding_rebuilds = n_sliding_rebuilds_;
+    result.sliding_resolves = n_sliding_resolves_;
     if (rank_ == 0 && scene_.contact.sliding == Contact::Sliding::finite &&
         plan_.pairing == StudyPlan::Pairing::mortar)
       log::info("fe_stage: finite sliding: the mortar search was redone after every converged "

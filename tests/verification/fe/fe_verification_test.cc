@@ -821,6 +821,9 @@ TEST(FeTwoBody, FiniteSlidingFollowsAnAxialSlide)
   const double f_ref = offset.increments.back().force;
   EXPECT_NEAR(finite.increments.back().force / f_ref, 1.0, 1e-4);
   EXPECT_GT(std::abs(small.increments.back().force / f_ref - 1.0), 2e-3);
+  // the slide moved the partners: the coupling was redone (and solved again) in each increment
+  EXPECT_GE(finite.sliding_resolves, finite.increments.size());
+  EXPECT_EQ(small.sliding_resolves, 0u);
   for (const auto &inc : finite.increments)
     {
       // 1e-6: sums of K·u with u from a 1e-10 solve
