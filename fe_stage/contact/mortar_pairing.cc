@@ -46,8 +46,9 @@ namespace clearjoint::fe::detail
         {
           // −(radial direction from the journal's own axis), turned with the journal
           const Point<dim> l = journal_local(X);
-          const double r = std::hypot(l[0], l[1] + scene_.geometry.c_r);
-          const auto n = plan_.journal_pose.rotate({-l[0] / r, -(l[1] + scene_.geometry.c_r) / r, 0.0});
+          const double y = l[1] + scene_.geometry.c_r;
+          const double r = std::hypot(l[0], y);
+          const auto n = plan_.journal_pose.rotate({-l[0] / r, -y / r, 0.0});
           return Tensor<1, dim>({n[0], n[1], n[2]});
         }
       const double r = std::hypot(X[0], X[1]);
@@ -102,7 +103,8 @@ namespace clearjoint::fe::detail
               face.nodes.push_back(static_cast<long>(d[0]));
               face.X.push_back({part[i + 3], part[i + 4], part[i + 5]});
               master_dofs[static_cast<long>(d[0])] = {d, part[i + 6] != 0.0};
-              master_u[static_cast<long>(d[0])] = Tensor<1, dim>({part[i + 7], part[i + 8], part[i + 9]});
+              master_u[static_cast<long>(d[0])] =
+                Tensor<1, dim>({part[i + 7], part[i + 8], part[i + 9]});
             }
           master.push_back(std::move(face));
         }

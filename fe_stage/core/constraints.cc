@@ -94,7 +94,8 @@ namespace clearjoint::fe::detail
                         {
                           fixed_constraints_.add_line(dofs[i]);
                           // per unit δ: −1 along y; along z the axial slide's share
-                          const double slide = scene_.loading.axial_slide / scene_.loading.delta_max;
+                          const double slide =
+                            scene_.loading.axial_slide / scene_.loading.delta_max;
                           fixed_constraints_.set_inhomogeneity(
                             dofs[i], component == 1 ? -1.0 : component == 2 ? slide : 0.0);
                         }
