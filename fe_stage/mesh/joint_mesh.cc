@@ -81,8 +81,8 @@ namespace clearjoint::fe::detail
       sl.insert(sl.end(), half.begin(), half.end());
       return sl;
     };
-    // A deformable tilted journal is meshed aligned over its own length ±L_J/2 (the same
-    // number of slices) and then placed by plan_.journal_pose.
+    // A placed deformable journal (tilted, or moved axially) is meshed aligned over its own
+    // length ±L_J/2 (the same number of slices) and then moved by plan_.journal_pose.
     std::vector<double> journal_half_slices = half_slices;
     if (!plan_.journal_pose.identity() && journal)
       for (unsigned int k = 0; k <= n_in; ++k)

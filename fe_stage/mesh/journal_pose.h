@@ -1,8 +1,8 @@
 // Where the generated deformable journal sits. The journal is meshed aligned (axis e_z through
 // (0, −c_r, 0), touching the bore at its bottom) and then placed rigidly: turned by θ about the
 // x-axis through its centre and moved so that the centre lies at (0, centre_y, centre_z). Its
-// axis is then a = (0, sin θ, cos θ), as the misalignment study's rigid tilted cylinder. No deal.II:
-// unit-tested in tests/unit/fe/journal_pose_test.cc.
+// axis is then a = (0, sin θ, cos θ), as the misalignment study's rigid tilted cylinder.
+// No deal.II: unit-tested in tests/unit/fe/journal_pose_test.cc.
 #pragma once
 
 #include <array>
