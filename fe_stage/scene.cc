@@ -499,10 +499,11 @@ namespace clearjoint::fe
                                "sweep.theta_deg." + std::to_string(i));
       }
     using Pairing = Contact::Pairing;
+    // the other body is meshed (two deformable bodies: pairing, slave side, sliding apply)
+    const bool deformable_journal = joint && s.loading.journal != JournalLoading::rigid;
+    const bool deformable_indenter = !joint && s.verification.deformable_indenter;
     if (s.contact.pairing != Pairing::automatic)
       {
-        const bool deformable_journal = joint && s.loading.journal != JournalLoading::rigid;
-        const bool deformable_indenter = !joint && s.verification.deformable_indenter;
         if (!deformable_journal && !deformable_indenter)
           throw InputError(f, "contact.pairing", to_string(s.contact.pairing),
                            "automatic when the other body is rigid",
@@ -558,8 +559,7 @@ namespace clearjoint::fe
                            "the journal must stay within the bore");
       }
     if (s.contact.sliding == Contact::Sliding::finite &&
-        (!(joint ? s.loading.journal != JournalLoading::rigid :
-                   s.verification.deformable_indenter) ||
+        ((!deformable_journal && !deformable_indenter) ||
          s.contact.pairing == Pairing::node_to_node || s.study == Study::impact))
       throw InputError(f, "contact.sliding", "finite",
                        "small unless two deformable bodies meet by mortar (quasi-static)",
@@ -568,7 +568,6 @@ namespace clearjoint::fe
                        "cannot follow sliding, and the impact study's time steps do not redo it");
     if (s.contact.mortar_slave != Contact::MortarSlave::automatic)
       {
-        const bool deformable_journal = joint && s.loading.journal != JournalLoading::rigid;
         if (!deformable_journal || s.contact.pairing == Pairing::node_to_node)
           throw InputError(f, "contact.mortar_slave", to_string(s.contact.mortar_slave),
                            "automatic unless a deformable journal meets the bore by mortar",

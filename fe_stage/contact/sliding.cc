@@ -84,12 +84,7 @@ namespace clearjoint::fe::detail
           old_state.emplace(cn.dofs[0], cn);
         // the DoF numbering stays (same mesh); the ghosts, the pattern and A_static change
         search_displacement_ = &u_ghosted;
-        amg_.reset();
-        setup_system();
-        find_contact_nodes();
-        make_matrices();
-        assemble_static();
-        compute_nodal_weights();
+        prepare_mesh();
         search_displacement_ = nullptr;
         solution_owned_ = u_owned;
         solution_ = solution_owned_;

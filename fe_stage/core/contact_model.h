@@ -120,6 +120,8 @@ namespace clearjoint::fe::detail
     /// Where the joint's mortar search looks (find_contact_nodes): the reference surfaces, or
     /// those displaced by this ghosted vector (follow_sliding's rebuild).
     const TrilinosWrappers::MPI::Vector *search_displacement_ = nullptr;
+    /// contact.sliding finite (scene.cc admits it only for two bodies paired by mortar)
+    bool finite_sliding() const { return scene_.contact.sliding == Contact::Sliding::finite; }
     unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
     unsigned int n_sliding_resolves_ = 0;  // settle_sliding: increments solved again
     IncrementRecord settle_sliding(double delta, const TrilinosWrappers::MPI::Vector &u_start,

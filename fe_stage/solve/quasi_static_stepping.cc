@@ -51,8 +51,7 @@ namespace clearjoint::fe::detail
                         cn.active = true;
                   }
                 rec = solve_increment(try_delta);
-                if (scene_.contact.sliding == Contact::Sliding::finite &&
-                    plan_.pairing == StudyPlan::Pairing::mortar)
+                if (finite_sliding())
                   rec = settle_sliding(try_delta, saved, rec);
                 for (auto &cn : nodes_)
                   cn.relative_converged = cn.relative;  // friction: slip counts from here
@@ -354,8 +353,7 @@ namespace clearjoint::fe::detail
       }
     result.sliding_rebuilds = n_sliding_rebuilds_;
     result.sliding_resolves = n_sliding_resolves_;
-    if (rank_ == 0 && scene_.contact.sliding == Contact::Sliding::finite &&
-        plan_.pairing == StudyPlan::Pairing::mortar)
+    if (rank_ == 0 && finite_sliding())
       log::info("fe_stage: finite sliding: the mortar search was redone after every converged "
                 "increment; " + std::to_string(n_sliding_rebuilds_) +
                 " times its partners needed a new sparsity pattern, " +
