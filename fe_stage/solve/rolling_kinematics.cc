@@ -95,7 +95,10 @@ namespace clearjoint::fe::rolling
     double gb = eval(b);
     if (std::abs(gb) <= g_tolerance)
       return r.converged = true, r;
-    // bracket: g increasing, so move the end on the wrong side outward
+    // bracket: g increasing, so move the end on the wrong side outward, by the secant's
+    // distance to the root times 1.2 (a near-linear g is bracketed in one evaluation; the
+    // rolling study's torque balance took 2–4 doublings a step before), at least half and
+    // at most 10 times the last width (g flat or curved: no jump far off, no crawling)
     double width = b - a;
     while (ga > 0.0 || gb < 0.0)
       {
@@ -105,7 +108,10 @@ namespace clearjoint::fe::rolling
                         std::to_string(r.evaluations) + " evaluations";
             return r;
           }
-        width *= 2.0;
+        const double slope = (gb - ga) / (b - a);
+        const double to_root = slope > 0.0 ? 1.2 * (ga > 0.0 ? ga : -gb) / slope
+                                           : 2.0 * width;
+        width = std::clamp(to_root, 0.5 * width, 10.0 * width);
         if (ga > 0.0)
           {
             b = a, gb = ga;

@@ -167,6 +167,10 @@ namespace clearjoint::fe::detail
                 // evaluation: the balance holds to 1e-6 of the largest friction torque
                 auto g = [&](const double rate) {
                   rolling_delta_psi_ = rate * dt - dphi;
+                  if (log::level() <= log::Level::debug && rank_ == 0)
+                    log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
+                               " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) +
+                               " s)");
                   rs = solve_rolling_state(delta1);
                   const double inertial = inertia * (rate - gamma_rate) / dt;
                   if (torque_scale == 0.0)
