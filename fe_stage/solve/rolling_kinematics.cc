@@ -74,88 +74,150 @@ namespace clearjoint::fe::rolling
     return s;
   }
 
+  namespace
+  {
+    // Counts every call of g in r, and keeps the secant slope of the last two calls (the
+    // local slope near the root once converged: the next step's first guess).
+    struct Evaluator
+    {
+      const std::function<double(double)> &g;
+      RootResult &r;
+      bool any = false;
+      double operator()(const double x)
+      {
+        const double x_prev = r.x, g_prev = r.g;
+        ++r.evaluations;
+        r.x = x;
+        r.g = g(x);
+        if (any && x != x_prev && std::isfinite(r.g) && std::isfinite(g_prev))
+          r.slope = (r.g - g_prev) / (x - x_prev);
+        any = true;
+        return r.g;
+      }
+    };
+
+    // From two evaluated points a < b: widen to a bracket, then Illinois.
+    void bracket_and_refine(Evaluator &eval, RootResult &r, double a, double ga, double b,
+                            double gb, const double g_tolerance, const double x_tolerance,
+                            const unsigned int max_evaluations)
+    {
+      // bracket: g increasing, so move the end on the wrong side outward, by the secant's
+      // distance to the root times 1.2 (a near-linear g is bracketed in one evaluation; the
+      // rolling study's torque balance took 2–4 doublings a step before), at least half and
+      // at most 10 times the last width (g flat or curved: no jump far off, no crawling)
+      double width = b - a;
+      while (ga > 0.0 || gb < 0.0)
+        {
+          if (r.evaluations >= max_evaluations || !std::isfinite(ga) || !std::isfinite(gb))
+            {
+              r.message = "no sign change of the torque balance found in " +
+                          std::to_string(r.evaluations) + " evaluations";
+              return;
+            }
+          const double slope = (gb - ga) / (b - a);
+          const double to_root = slope > 0.0 ? 1.2 * (ga > 0.0 ? ga : -gb) / slope
+                                             : 2.0 * width;
+          width = std::clamp(to_root, 0.5 * width, 10.0 * width);
+          if (ga > 0.0)
+            {
+              b = a, gb = ga;
+              a = b - width;
+              ga = eval(a);
+              if (std::abs(ga) <= g_tolerance)
+                {
+                  r.converged = true;
+                  return;
+                }
+            }
+          else
+            {
+              a = b, ga = gb;
+              b = a + width;
+              gb = eval(b);
+              if (std::abs(gb) <= g_tolerance)
+                {
+                  r.converged = true;
+                  return;
+                }
+            }
+        }
+      // Illinois: halve the kept end's value when the same end is kept twice
+      int side = 0;
+      while (r.evaluations < max_evaluations)
+        {
+          double x = (a * gb - b * ga) / (gb - ga);
+          if (!(x > a && x < b))
+            x = 0.5 * (a + b);
+          const double gx = eval(x);
+          if (std::abs(gx) <= g_tolerance || b - a <= x_tolerance)
+            {
+              r.converged = true;
+              return;
+            }
+          if (gx < 0.0)
+            {
+              a = x, ga = gx;
+              if (side == -1)
+                gb *= 0.5;
+              side = -1;
+            }
+          else
+            {
+              b = x, gb = gx;
+              if (side == +1)
+                ga *= 0.5;
+              side = +1;
+            }
+        }
+      r.message = "the torque balance did not converge in " + std::to_string(max_evaluations) +
+                  " evaluations (|residual| " + std::to_string(std::abs(r.g)) + ")";
+    }
+  } // namespace
+
   RootResult solve_increasing(const std::function<double(double)> &g, double a, double b,
                               const double g_tolerance, const double x_tolerance,
                               const unsigned int max_evaluations)
   {
     RootResult r;
-    auto eval = [&](const double x) {
-      ++r.evaluations;
-      r.x = x;
-      r.g = g(x);
-      return r.g;
-    };
+    Evaluator eval{g, r};
     if (a > b)
       std::swap(a, b);
     if (!(b > a))
       b = a + std::max(x_tolerance, 1e-12);
-    double ga = eval(a);
+    const double ga = eval(a);
     if (std::abs(ga) <= g_tolerance)
       return r.converged = true, r;
-    double gb = eval(b);
+    const double gb = eval(b);
     if (std::abs(gb) <= g_tolerance)
       return r.converged = true, r;
-    // bracket: g increasing, so move the end on the wrong side outward, by the secant's
-    // distance to the root times 1.2 (a near-linear g is bracketed in one evaluation; the
-    // rolling study's torque balance took 2–4 doublings a step before), at least half and
-    // at most 10 times the last width (g flat or curved: no jump far off, no crawling)
-    double width = b - a;
-    while (ga > 0.0 || gb < 0.0)
-      {
-        if (r.evaluations >= max_evaluations || !std::isfinite(ga) || !std::isfinite(gb))
-          {
-            r.message = "no sign change of the torque balance found in " +
-                        std::to_string(r.evaluations) + " evaluations";
-            return r;
-          }
-        const double slope = (gb - ga) / (b - a);
-        const double to_root = slope > 0.0 ? 1.2 * (ga > 0.0 ? ga : -gb) / slope
-                                           : 2.0 * width;
-        width = std::clamp(to_root, 0.5 * width, 10.0 * width);
-        if (ga > 0.0)
-          {
-            b = a, gb = ga;
-            a = b - width;
-            ga = eval(a);
-            if (std::abs(ga) <= g_tolerance)
-              return r.converged = true, r;
-          }
-        else
-          {
-            a = b, ga = gb;
-            b = a + width;
-            gb = eval(b);
-            if (std::abs(gb) <= g_tolerance)
-              return r.converged = true, r;
-          }
-      }
-    // Illinois: halve the kept end's value when the same end is kept twice
-    int side = 0;
-    while (r.evaluations < max_evaluations)
-      {
-        double x = (a * gb - b * ga) / (gb - ga);
-        if (!(x > a && x < b))
-          x = 0.5 * (a + b);
-        const double gx = eval(x);
-        if (std::abs(gx) <= g_tolerance || b - a <= x_tolerance)
-          return r.converged = true, r;
-        if (gx < 0.0)
-          {
-            a = x, ga = gx;
-            if (side == -1)
-              gb *= 0.5;
-            side = -1;
-          }
-        else
-          {
-            b = x, gb = gx;
-            if (side == +1)
-              ga *= 0.5;
-            side = +1;
-          }
-      }
-    r.message = "the torque balance did not converge in " + std::to_string(max_evaluations) +
-                " evaluations (|residual| " + std::to_string(std::abs(r.g)) + ")";
+    bracket_and_refine(eval, r, a, ga, b, gb, g_tolerance, x_tolerance, max_evaluations);
+    return r;
+  }
+
+  RootResult solve_increasing_from(const std::function<double(double)> &g, const double x0,
+                                   const double slope_guess, const double g_tolerance,
+                                   const double x_tolerance, const unsigned int max_evaluations)
+  {
+    RootResult r;
+    Evaluator eval{g, r};
+    const double g0 = eval(x0);
+    if (std::abs(g0) <= g_tolerance)
+      return r.converged = true, r;
+    // the second point: a Newton step with the guessed slope (at least x_tolerance long)
+    double step = -g0 / slope_guess;
+    const double least = std::max(x_tolerance, 1e-12);
+    if (!std::isfinite(step) || !(slope_guess > 0.0))
+      step = g0 > 0.0 ? -least : least;
+    else if (std::abs(step) < least)
+      step = std::copysign(least, step);
+    const double x1 = x0 + step;
+    const double g1 = eval(x1);
+    if (std::abs(g1) <= g_tolerance)
+      return r.converged = true, r;
+    if (x1 > x0)
+      bracket_and_refine(eval, r, x0, g0, x1, g1, g_tolerance, x_tolerance, max_evaluations);
+    else
+      bracket_and_refine(eval, r, x1, g1, x0, g0, g_tolerance, x_tolerance, max_evaluations);
     return r;
   }
 } // namespace clearjoint::fe::rolling

@@ -87,11 +87,18 @@ namespace clearjoint::fe::rolling
   struct RootResult
   {
     bool converged = false;
-    double x = 0.0, g = 0.0;
+    double x = 0.0, g = 0.0;    // the last evaluation
+    double slope = 0.0;         // the secant slope of the last two evaluations (0: one only)
     unsigned int evaluations = 0;
     std::string message;
   };
   RootResult solve_increasing(const std::function<double(double)> &g, double a, double b,
                               double g_tolerance, double x_tolerance,
                               unsigned int max_evaluations);
+  /// The same from one point x0 and a guess of g's slope there (> 0; the last solve's
+  /// `slope` when g changes little between calls): the second point is the Newton step
+  /// x0 − g(x0)/slope_guess, then as above.
+  RootResult solve_increasing_from(const std::function<double(double)> &g, double x0,
+                                   double slope_guess, double g_tolerance, double x_tolerance,
+                                   unsigned int max_evaluations);
 } // namespace clearjoint::fe::rolling

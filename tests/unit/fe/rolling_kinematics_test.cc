@@ -142,6 +142,22 @@ TEST(RollingKinematics, RootFinder)
   ASSERT_TRUE(near.converged) << near.message;
   EXPECT_NEAR(near.x, (-1.0 + std::sqrt(1.0 + 4e-2)) / 2e-3, 1e-9);
   EXPECT_LE(near.evaluations, 7u);
+  // from one point and the slope there: the Newton step lands next to the root of a
+  // near-linear g, the reported slope is g's near the root, and a wrong slope guess (ten
+  // times too steep or too flat) still ends at the root through the bracket
+  const auto gq = [](double x) { return x - 10.0 + 1e-3 * x * x; };
+  const double root = (-1.0 + std::sqrt(1.0 + 4e-2)) / 2e-3;
+  const RootResult from = solve_increasing_from(gq, 9.0, 1.018, 1e-10, 1e-14, 100);
+  ASSERT_TRUE(from.converged) << from.message;
+  EXPECT_NEAR(from.x, root, 1e-9);
+  EXPECT_LT(from.evaluations, near.evaluations);
+  EXPECT_NEAR(from.slope, 1.0 + 2e-3 * root, 1e-3);  // secant of the last two: g'(root)
+  for (const double guess : {10.18, 0.1018})
+    {
+      const RootResult off = solve_increasing_from(gq, 9.0, guess, 1e-10, 1e-14, 100);
+      ASSERT_TRUE(off.converged) << off.message;
+      EXPECT_NEAR(off.x, root, 1e-9);
+    }
 }
 
 TEST(RollingKinematics, RigidSpinGivesNoStrainInTheCoRotatingFrame)
