@@ -138,6 +138,10 @@ namespace clearjoint::fe::detail
     // the torque balance's scale and slope dM/dγ̇ from the last converged step (0: none yet;
     // M falls as γ̇ rises, so a known slope is negative)
     double last_force = 0.0, last_torque = 0.0, torque_rate_slope = 0.0;
+    // the state before the last converged step, for the predictor in time
+    TrilinosWrappers::MPI::Vector u_previous_step(owned_, comm_);
+    double dt_previous = 0.0;
+    bool have_previous = false;
     std::vector<double> times, slips;
     const double wall_steps_start = elapsed();
     unsigned int step = 0;
@@ -171,17 +175,50 @@ namespace clearjoint::fe::detail
                 ? std::max({scene_.contact.mu * last_force * G.R_J(), std::abs(last_torque),
                             inertia * motion.rolling_rate(t1) / dt, 1e-30})
                 : 0.0;
+            unsigned int n_evaluated = 0;
+            double rate_last = 0.0, rate_before = 0.0;
+            TrilinosWrappers::MPI::Vector u_last(owned_, comm_), u_before(owned_, comm_);
             try
               {
                 // g(γ̇) / scale, the scale μ F R_J (+ the inertia term): the balance holds
                 // to 1e-6 of the largest friction torque
                 auto g = [&](const double rate) {
                   rolling_delta_psi_ = rate * dt - dphi;
+                  // Where the material Newton iteration starts (only the start: the same
+                  // converged state, fewer iterations):
+                  // - the attempt's first evaluation: the state extrapolated linearly in time
+                  //   from the last two converged steps (the reduced pipeline scene: 12.3 →
+                  //   11.4 s at 16 steps, 20.3 → 17.2 s at 32);
+                  // - later ones: the state predicted linearly in γ̇ from the attempt's last
+                  //   two evaluations, within two of their spacings (the state moves nearly
+                  //   linearly with the spin near the root: 14.2 → 12.3 s and 24.2 → 20.3 s)
+                  if (n_evaluated == 0 && have_previous)
+                    {
+                      const double w = dt / dt_previous;
+                      solution_owned_ = saved;
+                      solution_owned_.add(w, saved);
+                      solution_owned_.add(-w, u_previous_step);
+                      solution_ = solution_owned_;
+                    }
+                  if (n_evaluated >= 2 && rate != rate_last && rate_last != rate_before &&
+                      std::abs(rate - rate_last) <= 2.0 * std::abs(rate_last - rate_before))
+                    {
+                      const double w = (rate - rate_last) / (rate_last - rate_before);
+                      solution_owned_ = u_last;
+                      solution_owned_.add(w, u_last);
+                      solution_owned_.add(-w, u_before);
+                      solution_ = solution_owned_;
+                    }
                   if (log::level() <= log::Level::debug && rank_ == 0)
                     log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
                                " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) +
                                " s)");
                   rs = solve_rolling_state(delta1);
+                  u_before.swap(u_last);
+                  u_last = solution_owned_;
+                  rate_before = rate_last;
+                  rate_last = rate;
+                  ++n_evaluated;
                   const double inertial = inertia * (rate - gamma_rate) / dt;
                   if (torque_scale == 0.0)
                     torque_scale = std::max(
@@ -352,6 +389,9 @@ namespace clearjoint::fe::detail
         gamma = rec.gamma;
         gamma_rate = rate_new;
         t = t1;
+        u_previous_step = saved;
+        dt_previous = dt;
+        have_previous = true;
         if (cuts > 0)
           dt_try = dt, easy_steps = 0;
         else if (++easy_steps >= 2 && dt_try < dt_nominal)
