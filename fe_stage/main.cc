@@ -444,8 +444,9 @@ int main(int argc, char **argv)
     log::set_level(log::Level::error);
 
   CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint): "
-               "force-penetration curves (study radial, misalignment, hertz, patch) and the "
-               "journal's impact (study impact, HHT-alpha dynamics).\n"
+               "force-penetration curves (study radial, misalignment, hertz, patch), the "
+               "journal's impact (study impact, HHT-alpha dynamics) and its rolling in the "
+               "turning elastoplastic bearing (study rolling).\n"
                "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted "
                "by SIGINT/SIGTERM."};
   std::string scene_path, output_dir, final_dir;
