@@ -102,9 +102,10 @@ namespace clearjoint::fe::rolling
                             const unsigned int max_evaluations)
     {
       // bracket: g increasing, so move the end on the wrong side outward, by the secant's
-      // distance to the root times 1.2 (a near-linear g is bracketed in one evaluation; the
-      // rolling study's torque balance took 2–4 doublings a step before), at least half and
-      // at most 10 times the last width (g flat or curved: no jump far off, no crawling)
+      // distance to the root times 1.2 (a near-linear g is bracketed in one step out, where
+      // doubling took up to three a step in the rolling study's torque balance), at least
+      // half and at most 10 times the last width (g flat or curved: no jump far off, no
+      // crawling)
       double width = b - a;
       while (ga > 0.0 || gb < 0.0)
         {

@@ -135,8 +135,8 @@ TEST(RollingKinematics, RootFinder)
   EXPECT_LE(none.evaluations, 20u);
   EXPECT_NE(none.message.find("no sign change"), std::string::npos);
   // a root a little outside a narrow bracket (the journal's spin from one step to the next):
-  // the secant's step (capped at 10 widths) brackets a near-linear g in two steps out, then
-  // regula falsi: 7 evaluations; doubling the width took 9 (four steps out)
+  // the secant's step (capped at 10 widths) brackets a near-linear g in one step out, then
+  // regula falsi: 7 evaluations; doubling the width took 9 (three steps out)
   const RootResult near = solve_increasing([](double x) { return x - 10.0 + 1e-3 * x * x; },
                                            9.0, 9.1, 1e-10, 1e-14, 100);
   ASSERT_TRUE(near.converged) << near.message;
