@@ -82,16 +82,14 @@ namespace clearjoint::fe::rolling
     {
       const std::function<double(double)> &g;
       RootResult &r;
-      bool any = false;
       double operator()(const double x)
       {
         const double x_prev = r.x, g_prev = r.g;
         ++r.evaluations;
         r.x = x;
         r.g = g(x);
-        if (any && x != x_prev && std::isfinite(r.g) && std::isfinite(g_prev))
+        if (r.evaluations > 1 && x != x_prev && std::isfinite(r.g) && std::isfinite(g_prev))
           r.slope = (r.g - g_prev) / (x - x_prev);
-        any = true;
         return r.g;
       }
     };

@@ -197,24 +197,22 @@ namespace clearjoint::fe::detail
                   // - later ones: the state predicted linearly in γ̇ from the attempt's last
                   //   two evaluations, within two of their spacings (the state moves nearly
                   //   linearly with the spin near the root: 14.2 → 12.3 s and 24.2 → 20.3 s)
+                  // start = last + w (last − before), as the quasi-static push's predictor
+                  const auto start_from = [&](const TrilinosWrappers::MPI::Vector &last,
+                                              const TrilinosWrappers::MPI::Vector &before,
+                                              const double w) {
+                    solution_owned_ = last;
+                    solution_owned_.sadd(1.0 + w, -w, before);
+                    solution_ = solution_owned_;
+                  };
                   if (n_evaluated == 0 && have_previous && predict_in_time)
                     {
                       predicted_in_time = true;
-                      const double w = dt / dt_previous;
-                      solution_owned_ = saved;
-                      solution_owned_.add(w, saved);
-                      solution_owned_.add(-w, u_previous_step);
-                      solution_ = solution_owned_;
+                      start_from(saved, u_previous_step, dt / dt_previous);
                     }
                   if (n_evaluated >= 2 && rate != rate_last && rate_last != rate_before &&
                       std::abs(rate - rate_last) <= 2.0 * std::abs(rate_last - rate_before))
-                    {
-                      const double w = (rate - rate_last) / (rate_last - rate_before);
-                      solution_owned_ = u_last;
-                      solution_owned_.add(w, u_last);
-                      solution_owned_.add(-w, u_before);
-                      solution_ = solution_owned_;
-                    }
+                    start_from(u_last, u_before, (rate - rate_last) / (rate_last - rate_before));
                   if (log::level() <= log::Level::debug && rank_ == 0)
                     log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
                                " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) +

@@ -20,6 +20,16 @@ namespace
            "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
            "material: {hardening: [[0, 1.0e12], [1, 1.0e12]]}\n" + extra;
   }
+
+  // the pipeline's reduced scene (fe_stage/scenes/rolling.yaml): 10 µm in 20 ms, held to 40 ms,
+  // μ = 0.3 and the SPEC hardening (the study's defaults), the coarse ring
+  std::string reduced_rolling(const unsigned int n_steps)
+  {
+    return "study: rolling\n"
+           "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
+           "loading: {delta_max: 1.0e-5}\n"
+           "rolling: {n_steps: " + std::to_string(n_steps) + ", ramp_time: 0.02, end_time: 0.04}\n";
+  }
 } // namespace
 
 TEST(FeRolling, FrictionlessJournalDoesNotSpinAndThePushWorkIsStored)
@@ -223,11 +233,7 @@ TEST(FeRolling, VeryLargeFrictionRollsWithoutSlip)
 // one gave. ~45 s.
 TEST(FeRolling, EnergyBalanceClosesUnderRotationWithFriction)
 {
-  const FeScene s = scene("study: rolling\n"
-                          "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, "
-                          "contact_refinements: 1}\n"
-                          "loading: {delta_max: 1.0e-5}\n"
-                          "rolling: {n_steps: 32, ramp_time: 0.02, end_time: 0.04}\n");
+  const FeScene s = scene(reduced_rolling(32));
   const RunResult r = run(s);
   ASSERT_TRUE(r.complete) << r.message;
   const auto &e = r.rolling_steps.back();
@@ -253,11 +259,7 @@ TEST(FeRolling, EnergyBalanceClosesUnderRotationWithFriction)
 // again from the last state before a cut: the 8 steps converge uncut, as without predictors.
 TEST(FeRolling, APredictedStartNeverCutsAStepThatConvergesWithoutIt)
 {
-  const FeScene s = scene("study: rolling\n"
-                          "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, "
-                          "contact_refinements: 1}\n"
-                          "loading: {delta_max: 1.0e-5}\n"
-                          "rolling: {n_steps: 8, ramp_time: 0.02, end_time: 0.04}\n");
+  const FeScene s = scene(reduced_rolling(8));
   const RunResult r = run(s);
   ASSERT_TRUE(r.complete) << r.message;
   unsigned int cuts = 0;
