@@ -179,10 +179,11 @@ namespace clearjoint::fe
   struct StrainProfilePoint
   {
     double angle = 0.0;        // [rad] from the contact point (fixed frame, + counter-clockwise)
-    double arc = 0.0;          // [m] R_B · angle
+    double arc = 0.0;          // [m] R · angle (R_B on the bore, R_J on the journal)
     double strain_radial = 0.0, strain_tangential = 0.0, strain_axial = 0.0;  // [1] total
     double plastic_strain = 0.0;  // [1] equivalent
     double von_mises = 0.0;       // [Pa]
+    unsigned int body = 0;        // 0: the bearing's bore, 1: the deformable journal's surface
   };
 
   struct RollingSummary

@@ -313,11 +313,13 @@ namespace
             const std::string profile_path = dir + "/rolling_strain_profile.csv";
             const auto table = fe::strain_profile_table();
             CsvWriter profile(profile_path, table.columns, table.units,
-                              {"clearjoint fe_stage: the bore's strains across the contact zone "
-                               "at the end of the rolling study (paper Fig. 12), axial "
-                               "mid-plane, angle from the contact point (counter-clockwise, "
-                               "fixed frame); strains are total, von_mises from the cell's "
-                               "mean plastic strain"});
+                              {"clearjoint fe_stage: the bore's (body 0) and a deformable "
+                               "journal's (body 1) strains across the contact zone at the end "
+                               "of the rolling study (paper Fig. 12), axial mid-plane, angle "
+                               "from the contact point about the body's own axis "
+                               "(counter-clockwise, fixed frame), arc = R_B or R_J times it; "
+                               "strains are total, von_mises from the cell's mean plastic "
+                               "strain"});
             for (const auto &p : result.strain_profile)
               profile.write_row(fe::strain_profile_row(p));
             if (result.complete)
@@ -425,7 +427,9 @@ namespace
                     "/fields/solution.pvd in ParaView (displacement, stress, von_mises_stress, " +
                     (scene.study == fe::Study::rolling ?
                        "principal strains, equivalent_plastic_strain, von_mises_stress_max, "
-                       "contact fields; the bearing's co-rotating frame, every " +
+                       "contact fields; each body in its own frame turning with it "
+                       "(the bearing's co-rotating frame; a deformable journal as meshed, its "
+                       "displacement in its frame), every " +
                          std::to_string(scene.rolling.field_stride) + " steps and at the end)" :
                        std::string("plastic_zone, contact_pressure, contact_status, "
                                    "contact_shear, contact_slip; one step per increment)")));

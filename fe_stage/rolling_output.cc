@@ -23,13 +23,18 @@ namespace clearjoint::fe
   std::vector<std::string> rolling_history_comments(const FeScene &scene)
   {
     const auto &R = scene.rolling;
+    const bool rigid = scene.loading.journal == JournalLoading::rigid;
     return {
       "clearjoint fe_stage: rolling study (paper 3.4): the bearing turns at omega_B = " +
-        format_value(R.omega_B) + " rad/s; the rigid journal's axis is pushed along -y to " +
-        format_value(scene.loading.delta_max) + " m at " + format_value(R.ramp_time) +
+        format_value(R.omega_B) + " rad/s; the " + (rigid ? "rigid" : "deformable") +
+        " journal's axis is pushed along -y to " + format_value(scene.loading.delta_max) +
+        " m at " + format_value(R.ramp_time) +
         " s and turns freely, driven by Coulomb friction mu = " + format_value(scene.contact.mu),
-      "elastoplastic bearing (von Mises, isotropic hardening table), computed in its "
-      "co-rotating frame; angles counter-clockwise about +z in the fixed frame",
+      rigid ? "elastoplastic bearing (von Mises, isotropic hardening table), computed in its "
+              "co-rotating frame; angles counter-clockwise about +z in the fixed frame" :
+              "elastoplastic bearing and journal (von Mises, isotropic hardening table), each "
+              "computed in its own frame turning with it (the journal's core clamped in its "
+              "frame); angles counter-clockwise about +z in the fixed frame",
       "force_normal = contact force on the journal along +y, force_tangential along +x (full "
       "body); slip_speed = omega_B R_B - gamma_rate R_J (0: rolling without slip)",
       "torque_drive = the supports' torque on the bearing; torque_journal = the contact's "
@@ -37,7 +42,7 @@ namespace clearjoint::fe
       "energy balance: work_drive + work_push = elastic_energy + plastic_dissipation + "
       "friction_dissipation + kinetic_energy + energy_balance_error; in the bearing's frame "
       "work_frame (the contact forces' work on it) = elastic_energy + plastic_dissipation + "
-      "frame_balance_error",
+      "frame_balance_error (the bearing's own elastic and plastic energy)",
       "phi_paper, gamma_paper = paper Eqs. 4-6 on the bore node and the journal point that "
       "touch at t = 0 (bottom of the mid-plane), from their displacement vectors; "
       "*_rate_paper = Eqs. 7-8 (angle / t); phi, gamma = the exact angles"};
@@ -64,14 +69,14 @@ namespace clearjoint::fe
   Table strain_profile_table()
   {
     return {{"angle", "arc", "strain_radial", "strain_tangential", "strain_axial",
-             "plastic_strain", "von_mises"},
-            {"rad", "m", "1", "1", "1", "1", "Pa"}};
+             "plastic_strain", "von_mises", "body"},
+            {"rad", "m", "1", "1", "1", "1", "Pa", "1"}};
   }
 
   std::vector<double> strain_profile_row(const StrainProfilePoint &p)
   {
     return {p.angle, p.arc, p.strain_radial, p.strain_tangential, p.strain_axial,
-            p.plastic_strain, p.von_mises};
+            p.plastic_strain, p.von_mises, double(p.body)};
   }
 
   nlohmann::json rolling_summary_json(const RollingSummary &s, const RollingStepRecord *last)

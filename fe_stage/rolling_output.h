@@ -21,7 +21,8 @@ namespace clearjoint::fe
   std::vector<double> rolling_history_row(const RollingStepRecord &r);
   std::vector<double> rolling_history_start();
 
-  /// rolling_strain_profile.csv: the bore's strains across the contact zone at the end.
+  /// rolling_strain_profile.csv: the bore's (body 0) and a deformable journal's (body 1) strains
+  /// across the contact zone at the end.
   Table strain_profile_table();
   std::vector<double> strain_profile_row(const StrainProfilePoint &p);
 

@@ -99,7 +99,8 @@ namespace clearjoint::fe
     if (s.study == Study::misalignment || s.study == Study::impact)
       s.loading.journal = JournalLoading::rigid;
     // The rolling study's defaults are the paper's §3.4 (SPEC §2): elastoplastic steel,
-    // μ = 0.3, a push of 1 mm; its journal is rigid (the deformable one is not built yet).
+    // μ = 0.3, a push of 1 mm; its journal is rigid unless the scene sets loading.journal
+    // core (deformable, in its own frame).
     // Its first contact needs 3–4 halvings of the time step (the elastic predictor is far
     // beyond yield; docs/fe.md), and the step size carries over, so it may cut 10 times.
     if (s.study == Study::rolling)
@@ -443,12 +444,23 @@ namespace clearjoint::fe
           throw InputError(f, "rolling.end_time", format_value(R.end_time),
                            "[ramp_time, inf) s = [" + format_value(R.ramp_time) + ", inf) s",
                            "the run holds delta_max after the ramp; it cannot stop inside it");
-        if (s.loading.journal != JournalLoading::rigid)
+        if (s.loading.journal != JournalLoading::rigid &&
+            s.loading.journal != JournalLoading::core)
           throw InputError(f, "loading.journal", to_string(s.loading.journal),
-                           "rigid for study rolling",
-                           "the deformable elastoplastic journal needs contact search over "
-                           "large sliding between two turning meshes, which is not built yet "
-                           "(docs/fe.md)");
+                           "rigid or core for study rolling",
+                           "the deformable journal is computed in its own frame, which carries "
+                           "the push and the spin; its core r <= R_J/2 is clamped there");
+        if (s.loading.journal == JournalLoading::core &&
+            s.contact.pairing == Contact::Pairing::node_to_node)
+          throw InputError(f, "contact.pairing", "node_to_node",
+                           "mortar or automatic for study rolling",
+                           "the turning journal's nodes leave the bore's rays");
+        if (s.loading.journal == JournalLoading::core &&
+            s.contact.mortar_slave == Contact::MortarSlave::journal)
+          throw InputError(f, "contact.mortar_slave", "journal",
+                           "bore or automatic for study rolling",
+                           "the rolling study's contact rows, outputs and strain profile are "
+                           "on the bore's nodes");
         if (s.material.model != Material::Model::elastoplastic)
           throw InputError(f, "material.model", "elastic", "elastoplastic for study rolling");
         if (s.mesh.adaptive_cycles > 0)
@@ -560,12 +572,14 @@ namespace clearjoint::fe
       }
     if (s.contact.sliding == Contact::Sliding::finite &&
         ((!deformable_journal && !deformable_indenter) ||
-         s.contact.pairing == Pairing::node_to_node || s.study == Study::impact))
+         s.contact.pairing == Pairing::node_to_node || s.study == Study::impact ||
+         s.study == Study::rolling))
       throw InputError(f, "contact.sliding", "finite",
                        "small unless two deformable bodies meet by mortar (quasi-static)",
                        "finite sliding redoes the mortar search at the deformed surfaces after "
                        "each increment; a rigid obstacle's gap is exact already, common rays "
-                       "cannot follow sliding, and the impact study's time steps do not redo it");
+                       "cannot follow sliding, the impact study's time steps do not redo it, "
+                       "and the rolling study redoes it at every time step anyway");
     if (s.contact.mortar_slave != Contact::MortarSlave::automatic)
       {
         if (!deformable_journal || s.contact.pairing == Pairing::node_to_node)

@@ -29,6 +29,10 @@ namespace clearjoint::fe::detail
       bool driven_y = false;  // the partner's y-DoF is driven by the journal load
     };
     std::vector<Partner> partners;
+    /// Σ weight·(partner's mesh position) and Σ weight: where the partner combination sits
+    /// in its own body's frame (the rolling study's turning journal is placed from them).
+    Point<dim> partner_X;
+    double partner_weight = 0.0;
     bool two_body = false;
     Point<dim> X;
     unsigned int constrained_component = 1;
@@ -53,7 +57,9 @@ namespace clearjoint::fe::detail
     Tensor<1, dim> relative_converged;  // [m] the same at the last converged increment
     /// [m] the rigid obstacle's surface point facing the node: its displacement since the
     /// start (radial: (0, −δ, 0); rolling: accumulated step by step), now and at the last
-    /// converged step. relative = u − obstacle_u.
+    /// converged step. relative = u − obstacle_u. Two deformable bodies: the rigid motion of
+    /// the partner combination's frame (the rolling study's turning journal; else 0), so that
+    /// relative = u − Σ w R u_p − obstacle_u (R: partner_rotation in contact_model.h).
     Tensor<1, dim> obstacle_u, obstacle_u_converged;
     /// [N] elastoplastic: the linearisation's load b at the node's DoFs (traction = K u − b)
     Tensor<1, dim> load_offset;

@@ -45,10 +45,30 @@ namespace clearjoint::fe::detail
   /// from X would no longer pass through the journal's axis — the frictionless contact would
   /// then exert a moment on the journal and do work, and the drive's torque came out 35 % low
   /// (measured; docs/fe.md "Rolling study").
+  ///
+  /// The rolling study's deformable journal: each bore node's partners are journal nodes, their
+  /// combination placed at c + Q(ψ)(P − a) + Q Σ w u_p (P = Σ w X_p as meshed); the partners'
+  /// frame moves it by obstacle_u = (Σ w) c + Q (P − (Σ w) a) − P, and the gap along the
+  /// journal's radius through the node's current position (as for the rigid journal: no
+  /// moment from the normal force) is ĝ = n·(X + u − P − obstacle_u − Σ w Q u_p).
   void ContactModel::set_obstacle_position(const double delta)
   {
     if (rolling_)
       obstacle_.frame_angle = rolling_phi_;
+    if (rolling_deformable_journal())
+      {
+        partner_rotation_ = rotation_z(rolling_psi());
+        for (auto &cn : nodes_)
+          {
+            cn.obstacle_u = partner_frame_motion(cn, rolling_centre_, rolling_psi());
+            Tensor<1, dim> r;  // from the journal's axis to the node, in the cross-section
+            for (unsigned int k = 0; k + 1 < dim; ++k)
+              r[k] = cn.X[k] + solution_[cn.dofs[k]] - rolling_centre_[k];
+            cn.n = r / r.norm();
+            cn.g0 = cn.n * (cn.X - cn.partner_X - cn.obstacle_u);
+          }
+        return;
+      }
     for (auto &cn : nodes_)
       if (!cn.two_body)
         {
@@ -201,6 +221,8 @@ namespace clearjoint::fe::detail
     auto local = [&](const types::global_dof_index d) {
       return std::find(ext.begin(), ext.end(), d) - ext.begin();
     };
+    // the reaction on the partners, turned into their frame: + w_p Qᵀ F(u)
+    const Tensor<2, dim> &Q = partner_rotation_;
     for (const auto &[cn, F] : rows_of)
       for (unsigned int a = 0; a < dim; ++a)
         {
@@ -208,11 +230,13 @@ namespace clearjoint::fe::detail
           for (unsigned int j = 0; j < n; ++j)
             M(ls, j) -= F(a, j);
           for (const auto &p : cn->partners)
-            {
-              const auto lp = local(p.dofs[a]);
-              for (unsigned int j = 0; j < n; ++j)
-                M(lp, j) += p.weight * F(a, j);
-            }
+            for (unsigned int b = 0; b < dim; ++b)
+              if (Q[a][b] != 0.0)
+                {
+                  const auto lp = local(p.dofs[b]);
+                  for (unsigned int j = 0; j < n; ++j)
+                    M(lp, j) += p.weight * Q[a][b] * F(a, j);
+                }
         }
     return true;
   }
@@ -227,45 +251,58 @@ namespace clearjoint::fe::detail
                                           Vector<double> &rhs,
                                           std::vector<types::global_dof_index> &ext) const
   {
-    // D as (DoF list, weight per body point): the node +1, each partner −w_p
-    std::vector<std::pair<const std::array<types::global_dof_index, dim> *, double>> points;
-    points.emplace_back(&cn.dofs, 1.0);
+    // D as (DoF list, 3 × 3 block per body point): the node +I, each partner −w_p Q (its
+    // displacement turned into the slave's frame)
+    const Tensor<2, dim> I(unit_symmetric_tensor<dim>());
+    std::vector<std::pair<const std::array<types::global_dof_index, dim> *, Tensor<2, dim>>>
+      points;
+    points.emplace_back(&cn.dofs, I);
     for (const auto &p : cn.partners)
-      points.emplace_back(&p.dofs, -p.weight);
+      points.emplace_back(&p.dofs, -p.weight * partner_rotation_);
     ext.clear();
-    for (const auto &[d, w] : points)
+    for (const auto &[d, B] : points)
       ext.insert(ext.end(), d->begin(), d->end());
     M.reinit(ext.size(), ext.size());
     rhs.reinit(ext.size());
     const Tensor<2, dim> Q =
       tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
-    Tensor<1, dim> b = -cn.relative_converged;
-    if (!cn.two_body)
-      b -= cn.obstacle_u;  // the rigid obstacle's surface point moved
-    const Tensor<1, dim> Qb = Q * held_components(cn, b);
-    const double kc = cn.kappa * c;
-    // row of body point r, component a: (its D weight) · κc Σ_b Q_ab (D u + b)_b; the node's
-    // row carries +, the partners' −w_p: both are its D weight.
+    // the obstacle's surface point (or the partners' frame) moved
+    const Tensor<1, dim> b = -cn.relative_converged - cn.obstacle_u;
+    // H = κc Q M: M keeps the components the contact holds
+    Tensor<2, dim> H;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int bb = 0; bb < dim; ++bb)
+        if (contact_holds(cn, bb))
+          H[a][bb] = cn.kappa * c * Q[a][bb];
+    const Tensor<1, dim> Hb = H * b;
+    // rows of body point r: B_rᵀ H (D u + b); the node's B is I, a partner's −w_p Q
     for (unsigned int r = 0; r < points.size(); ++r)
-      for (unsigned int a = 0; a < dim; ++a)
-        {
-          const double wr = points[r].second;
-          for (unsigned int q = 0; q < points.size(); ++q)
-            for (unsigned int bb = 0; bb < dim; ++bb)
-              if (contact_holds(cn, bb))
-                M(r * dim + a, q * dim + bb) += wr * kc * Q[a][bb] * points[q].second;
-          rhs(r * dim + a) = -wr * kc * Qb[a];
-        }
+      {
+        const Tensor<2, dim> BrH = transpose(points[r].second) * H;
+        for (unsigned int q = 0; q < points.size(); ++q)
+          {
+            const Tensor<2, dim> block = BrH * points[q].second;
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int bb = 0; bb < dim; ++bb)
+                M(r * dim + a, q * dim + bb) += block[a][bb];
+          }
+        const Tensor<1, dim> f = transpose(points[r].second) * Hb;
+        for (unsigned int a = 0; a < dim; ++a)
+          rhs(r * dim + a) = -f[a];
+      }
     // Dynamic and elastoplastic: the traction is K u − b, so F(u) has the constant part
     // F_b = −μŵ (n·b_s) − κ Q M b_s (b_s the load at the node), moved to the right-hand side
-    // of the node's rows (+) and its partners' (−w_p).
+    // of the node's rows (+) and its partners' (−w_p Qᵀ).
     if (plastic_ || dynamic_)
       {
         const Tensor<1, dim> Fb = -scene_.contact.mu * (cn.n * cn.load_offset) * cn.slip_direction -
                                   cn.kappa * (Q * held_components(cn, cn.load_offset));
         for (unsigned int r = 0; r < points.size(); ++r)
-          for (unsigned int a = 0; a < dim; ++a)
-            rhs(r * dim + a) += points[r].second * Fb[a];
+          {
+            const Tensor<1, dim> f = transpose(points[r].second) * Fb;
+            for (unsigned int a = 0; a < dim; ++a)
+              rhs(r * dim + a) += f[a];
+          }
       }
   }
 
@@ -282,16 +319,19 @@ namespace clearjoint::fe::detail
           // No new slip: u = Σ w·u_partner + P_t(r_conv + u_obstacle) − g0·n, with r_conv
           // the relative displacement of the last converged increment and P_t = I − n nᵀ
           // (the normal part is ĝ = 0). Components fixed by symmetry stay as they are.
-          Tensor<1, dim> target = cn.relative_converged;
-          if (!cn.two_body)
-            target += cn.obstacle_u;
-          target = tangential(target, cn.n) - cn.g0 * cn.n;  // (a rigid obstacle's g0 holds its motion already)
+          // (the obstacle's — or the partners' frame's — motion: obstacle_u, 0 for two bodies
+          // at rest; a rigid obstacle's g0 holds its motion already). The partners' turn Q.
+          const Tensor<2, dim> &Q = partner_rotation_;
+          const Tensor<1, dim> target =
+            tangential(cn.relative_converged + cn.obstacle_u, cn.n) - cn.g0 * cn.n;
           for (unsigned int k = 0; k < dim; ++k)
             if (!fixed_delta_.is_constrained(cn.dofs[k]))
               {
                 constraints_.add_line(cn.dofs[k]);
                 for (const auto &p : cn.partners)
-                  constraints_.add_entry(cn.dofs[k], p.dofs[k], p.weight);
+                  for (unsigned int m = 0; m < dim; ++m)
+                    if (Q[k][m] != 0.0)
+                      constraints_.add_entry(cn.dofs[k], p.dofs[m], p.weight * Q[k][m]);
                 constraints_.set_inhomogeneity(cn.dofs[k], target[k]);
               }
         }
@@ -299,13 +339,16 @@ namespace clearjoint::fe::detail
         {
           const unsigned int cc = cn.constrained_component;
           const auto d = cn.dofs[cc];
+          // n·(u − Σ w Q u_p) = −g0; on a partner's DoF m: w (Qᵀ n)_m
+          const Tensor<1, dim> n_partner = transpose(partner_rotation_) * cn.n;
           constraints_.add_line(d);
           for (unsigned int k = 0; k < dim; ++k)
             {
               if (k != cc)
                 constraints_.add_entry(d, cn.dofs[k], -cn.n[k] / cn.n[cc]);
               for (const auto &p : cn.partners)
-                constraints_.add_entry(d, p.dofs[k], p.weight * cn.n[k] / cn.n[cc]);
+                if (n_partner[k] != 0.0)
+                  constraints_.add_entry(d, p.dofs[k], p.weight * n_partner[k] / cn.n[cc]);
             }
           constraints_.set_inhomogeneity(d, -cn.g0 / cn.n[cc]);
         }

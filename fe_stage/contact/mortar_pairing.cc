@@ -26,13 +26,17 @@ namespace clearjoint::fe::detail
     std::map<types::global_dof_index, ContactNode> &by_x_dof,
     const TrilinosWrappers::MPI::Vector *u)
   {
-    // a node's position in the configuration searched: X, or X + u
-    auto position = [&](const std::array<types::global_dof_index, dim> &d) {
+    // a node's position in the configuration searched: X, or X + u; the rolling study's
+    // turning journal (the master) placed in the bearing's frame by its pose
+    const bool turning_journal = rolling_deformable_journal();
+    auto position = [&](const std::array<types::global_dof_index, dim> &d,
+                        const bool master_node = false) {
       Point<dim> x = support.at(d[0]);
+      Tensor<1, dim> ud;
       if (u)
         for (unsigned int c = 0; c < dim; ++c)
-          x[c] += (*u)[d[c]];
-      return x;
+          ud[c] = (*u)[d[c]];
+      return turning_journal && master_node ? place_journal_point(x, ud) : x + ud;
     };
     const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
     const bool journal_slave = joint && plan_.journal_is_slave;
@@ -50,6 +54,14 @@ namespace clearjoint::fe::detail
           const double r = std::hypot(l[0], y);
           const auto n = plan_.journal_pose.rotate({-l[0] / r, -y / r, 0.0});
           return Tensor<1, dim>({n[0], n[1], n[2]});
+        }
+      if (turning_journal)
+        {
+          // along the journal's radius through the bore node (X: where it is now), as
+          // set_obstacle_position keeps it
+          const double x = X[0] - rolling_centre_[0], y = X[1] - rolling_centre_[1];
+          const double r = std::hypot(x, y);
+          return Tensor<1, dim>({x / r, y / r, 0.0});
         }
       const double r = std::hypot(X[0], X[1]);
       return Tensor<1, dim>({X[0] / r, X[1] / r, 0.0});
@@ -78,25 +90,30 @@ namespace clearjoint::fe::detail
               mine.push_back(double(nodes.size()));
               for (const auto &d : nodes)
                 {
-                  const Point<dim> x = position(d);
+                  const Point<dim> x = position(d, true);
+                  const Point<dim> &X = support.at(d[0]);
                   const bool driven =
                     std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), d[1]);
                   mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0],
                                            x[1], x[2], driven ? 1.0 : 0.0});
                   for (unsigned int c = 0; c < dim; ++c)
                     mine.push_back(u ? (*u)[d[c]] : 0.0);
+                  mine.insert(mine.end(), {X[0], X[1], X[2]});
                 }
             }
     std::vector<mortar::Face> master;
     std::map<long, std::pair<NodeDofs, bool>> master_dofs;
     std::map<long, Tensor<1, dim>> master_u;
+    std::map<long, Point<dim>> master_X;  // as meshed
     for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
       for (std::size_t i = 0; i < part.size();)
         {
           const unsigned int nn = static_cast<unsigned int>(part[i++]);
           mortar::Face face;
-          for (unsigned int k = 0; k < nn; ++k, i += 10)
+          for (unsigned int k = 0; k < nn; ++k, i += 13)
             {
+              master_X[static_cast<long>(part[i])] = Point<dim>(part[i + 10], part[i + 11],
+                                                                part[i + 12]);
               NodeDofs d;
               for (unsigned int c = 0; c < dim; ++c)
                 d[c] = static_cast<types::global_dof_index>(part[i + c]);
@@ -135,7 +152,7 @@ namespace clearjoint::fe::detail
     std::vector<mortar::SlaveNode> slave_nodes;
     for (const auto &[id, d] : slave_dofs)
       {
-        const Tensor<1, dim> n = slave_normal(support.at(d[0]));
+        const Tensor<1, dim> n = slave_normal(turning_journal ? position(d) : support.at(d[0]));
         slave_nodes.push_back({id, {n[0], n[1], n[2]}});
       }
     mortar::Options options;
@@ -159,12 +176,21 @@ namespace clearjoint::fe::detail
         cn.dofs = dofs;
         cn.X = support.at(dofs[0]);
         cn.owned = owned_.is_element(dofs[0]);
-        cn.n = slave_normal(cn.X);
+        cn.n = slave_normal(turning_journal ? position(dofs) : cn.X);
         if (!choose_constrained_component(cn, cn.n))
           continue;  // hanging or supported: it follows its masters
         cn.g0 = cp.gap;
         cn.two_body = true;
         cn.candidate = cp.gap <= window_gap;
+        if (turning_journal)
+          {
+            // as with the rigid journal: every node the journal passes close to on its path
+            // (so that the candidates, and the pattern, do not change from step to step)
+            double g_path = 0.0;
+            Tensor<1, dim> n_path;
+            rolling_gap_on_path(cn.X, g_path, n_path);
+            cn.candidate = g_path <= window_gap;
+          }
         Tensor<1, dim> relative;  // u_s − Σ C_sm u_m (0 in the reference search)
         if (u)
           for (unsigned int c = 0; c < dim; ++c)
@@ -174,7 +200,10 @@ namespace clearjoint::fe::detail
             const auto &[mdofs, driven] = master_dofs.at(m);
             cn.partners.push_back({mdofs, w, driven});
             relative -= w * master_u.at(m);
+            cn.partner_X += w * master_X.at(m);
+            cn.partner_weight += w;
           }
+        // (the turning journal: g0 and n are set at each iterate by set_obstacle_position)
         cn.g0 -= cn.n * relative;
         cn.gap = cp.gap;  // the weighted gap where it was searched (follow_sliding compares)
         by_x_dof.emplace(dofs[0], cn);

@@ -6,6 +6,25 @@
 
 namespace clearjoint::fe::detail
 {
+  /// The rolling study: the journal passes under a bore point X when the frame angle −φ
+  /// reaches it; its gap then, at δ_max, decides whether X is a contact candidate (off the
+  /// arc the journal travels, at the arc's nearer end).
+  void ContactModel::rolling_gap_on_path(const Point<dim> &X, double &g0, Tensor<1, dim> &n) const
+  {
+    const double a = std::atan2(X[0], -X[1]);
+    const double sweep = scene_.rolling.omega_B * rolling_end_time(scene_);
+    RigidObstacle o = obstacle_;
+    o.frame_angle = rolling_path_distance(a) == 0.0 ?
+                      -a :
+                      (std::abs(std::remainder(a, 2.0 * units::pi)) <
+                           std::abs(std::remainder(a + sweep, 2.0 * units::pi)) ?
+                         0.0 :
+                         sweep);
+    Vec3 normal;
+    o.gap({X[0], X[1], X[2]}, scene_.loading.delta_max, g0, normal);
+    n = Tensor<1, dim>({normal[0], normal[1], normal[2]});
+  }
+
   void ContactModel::find_contact_nodes()
   {
     std::map<types::global_dof_index, Point<dim>> support;
@@ -89,22 +108,7 @@ namespace clearjoint::fe::detail
                   if (!obstacle_gap(cn.X, scene_.loading.delta_max, g0, n))
                     continue;
                   if (plan_.rolling)
-                    {
-                      // the journal passes under the node when the frame angle −φ reaches
-                      // it: its gap then, at δ_max, decides (the arc's ends elsewhere)
-                      const double a = std::atan2(cn.X[0], -cn.X[1]);
-                      const double sweep = scene_.rolling.omega_B * rolling_end_time(scene_);
-                      RigidObstacle o = obstacle_;
-                      o.frame_angle = rolling_path_distance(a) == 0.0 ?
-                                        -a :
-                                        (std::abs(std::remainder(a, 2.0 * units::pi)) <
-                                             std::abs(std::remainder(a + sweep, 2.0 * units::pi)) ?
-                                           0.0 :
-                                           sweep);
-                      Vec3 normal;
-                      o.gap({cn.X[0], cn.X[1], cn.X[2]}, scene_.loading.delta_max, g0, normal);
-                      n = Tensor<1, dim>({normal[0], normal[1], normal[2]});
-                    }
+                    rolling_gap_on_path(cn.X, g0, n);
                   cn.owned = owned_.is_element(dofs[0]);
                   if (g0 > window_gap)
                     {

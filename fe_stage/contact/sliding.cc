@@ -25,27 +25,30 @@ namespace clearjoint::fe::detail
     std::map<types::global_dof_index, ContactNode> fresh;
     find_mortar_contact_nodes(support, fresh, &solution_);
 
-    auto partner_set = [](const ContactNode &cn) {
-      std::set<types::global_dof_index> s;
-      for (const auto &p : cn.partners)
-        s.insert(p.dofs[0]);
-      return s;
-    };
+    // the new couplings fit the pattern when every new candidate was one in the pattern, with
+    // the same constrained component and its new partners among the pattern's
     bool fits = fresh.size() == nodes_.size();
     for (const auto &cn : nodes_)
       {
         if (!fits)
           break;
         const auto it = fresh.find(cn.dofs[0]);
-        if (it == fresh.end() || (it->second.candidate && !cn.candidate) ||
-            it->second.constrained_component != cn.constrained_component)
+        if (it == fresh.end())
           {
             fits = false;
             break;
           }
-        const auto old_partners = partner_set(cn);
+        if (!it->second.candidate)
+          continue;
+        const auto in_pattern = pattern_partners_.find(cn.dofs[0]);
+        if (in_pattern == pattern_partners_.end() ||
+            it->second.constrained_component != in_pattern->second.component)
+          {
+            fits = false;
+            break;
+          }
         for (const auto &p : it->second.partners)
-          fits = fits && old_partners.count(p.dofs[0]) > 0;
+          fits = fits && in_pattern->second.partners.count(p.dofs[0]) > 0;
       }
     double change = 0.0;
     for (const auto &cn : nodes_)
@@ -73,7 +76,13 @@ namespace clearjoint::fe::detail
         {
           const ContactNode &f = fresh.at(cn.dofs[0]);
           cn.partners = f.partners;
+          cn.candidate = f.candidate;
+          cn.active = cn.active && cn.candidate;
+          cn.constrained_component = f.constrained_component;
+          cn.partner_X = f.partner_X;
+          cn.partner_weight = f.partner_weight;
           cn.g0 = f.g0;
+          cn.n = f.n;
         }
     else
       {
@@ -96,20 +105,42 @@ namespace clearjoint::fe::detail
             cn.active = it->second.active && cn.candidate;
             cn.stick = it->second.stick;
           }
+        if (plastic_)
+          keep_elastic_operator();  // the new pattern's elastic matrices
         ++n_sliding_rebuilds_;
       }
     // Friction: the slip of the (re-solved or next) increment counts from its start, u_start,
     // measured with the new partners.
+    // The turning journal: the slip counts from the step's start, where the journal's frame
+    // had the last converged pose (rolling_centre_previous_, ψ of the last converged step):
+    // the new partners' frame motion and turn there. (The pose now: set_obstacle_position.)
+    const bool turning = rolling_deformable_journal();
+    const Tensor<2, dim> Q_start = turning ? rotation_z(rolling_psi_converged_) : partner_rotation_;
+    if (turning)
+      {
+        set_obstacle_position(0.0);
+        for (auto &cn : nodes_)
+          cn.obstacle_u_converged =
+            partner_frame_motion(cn, rolling_centre_previous_, rolling_psi_converged_);
+      }
     TrilinosWrappers::MPI::Vector start(owned_, relevant_, comm_);
     start = u_start;
     for (auto &cn : nodes_)
-      for (unsigned int c = 0; c < dim; ++c)
-        {
+      {
+        for (unsigned int c = 0; c < dim; ++c)
           cn.relative_converged[c] = start[cn.dofs[c]];
-          for (const auto &p : cn.partners)
-            cn.relative_converged[c] -= p.weight * start[p.dofs[c]];
-        }
+        cn.relative_converged -= partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
+      }
     evaluate_contact(0.0);  // relative displacements and gaps at u with the new couplings
     return change;
+  }
+
+  Point<dim> ContactModel::place_journal_point(const Point<dim> &X, const Tensor<1, dim> &u) const
+  {
+    const double psi = rolling_psi();
+    const double cs = std::cos(psi), sn = std::sin(psi);
+    const Tensor<1, dim> r = X - Point<dim>(journal_axis_mesh_) + u;
+    return Point<dim>(rolling_centre_[0] + cs * r[0] - sn * r[1],
+                      rolling_centre_[1] + sn * r[0] + cs * r[1], rolling_centre_[2] + r[2]);
   }
 } // namespace clearjoint::fe::detail

@@ -93,11 +93,16 @@ namespace clearjoint::fe::detail
                       if (!fixed_constraints_.is_constrained(dofs[i]))
                         {
                           fixed_constraints_.add_line(dofs[i]);
-                          // per unit δ: −1 along y; along z the axial slide's share
+                          // per unit δ: −1 along y; along z the axial slide's share.
+                          // The rolling study's journal is computed in its own frame, which
+                          // carries the push and the spin: its core is clamped there (u = 0).
                           const double slide =
                             scene_.loading.axial_slide / scene_.loading.delta_max;
                           fixed_constraints_.set_inhomogeneity(
-                            dofs[i], component == 1 ? -1.0 : component == 2 ? slide : 0.0);
+                            dofs[i], plan_.rolling    ? 0.0 :
+                                     component == 1   ? -1.0 :
+                                     component == 2   ? slide :
+                                                        0.0);
                         }
                     }
                 }

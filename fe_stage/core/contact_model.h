@@ -103,8 +103,12 @@ namespace clearjoint::fe::detail
     void make_gmsh_grid();
     void refine_joint_mesh();
     /// Study rolling: the angle [rad] from a bore point at frame angle `angle` to the arc of
-    /// frame angles the contact point passes over the run (0 on it).
-    double rolling_path_distance(double angle) const;
+    /// frame angles the contact point passes over the run (0 on it): [−sweep, 0], the sweep
+    /// the bearing's ω_B t_end unless given (a deformable journal's surface: its own turn).
+    double rolling_path_distance(double angle, double sweep = -1.0) const;
+    /// Study rolling: the journal's gap [m] and normal at the bore point X when the journal,
+    /// pushed to δ_max, is nearest to it on its path (contact/node_pairing.cc).
+    void rolling_gap_on_path(const Point<dim> &X, double &g0, Tensor<1, dim> &n) const;
     template <typename CellIterator>
     bool bore_gap_below(const CellIterator &cell, double limit) const;
     void make_block_grid();
@@ -158,11 +162,14 @@ namespace clearjoint::fe::detail
       double elastic_energy = 0.0;     // [J]
       double plastic_volume = 0.0;     // [m^3]
       double max_plastic_strain = 0.0, max_strain = 0.0;
+      // the bearing's own (material 0): its balance in its frame
+      double bearing_plastic_work_step = 0.0, bearing_elastic_energy = 0.0;  // [J]
     };
     PlasticEnergies commit_plasticity();
     void plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
                              Vector<float> &alpha_max, Vector<float> &vm_max) const;
-    std::vector<StrainProfilePoint> bore_strain_profile(double phi, double half_angle) const;
+    std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
+                                                   double half_angle) const;
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.
     struct RollingSolve
@@ -352,6 +359,60 @@ namespace clearjoint::fe::detail
     bool rolling_ = false;
     double rolling_phi_ = 0.0, rolling_delta_psi_ = 0.0;
     std::array<double, 3> rolling_centre_previous_{}, rolling_centre_{};
+    // The rolling study's deformable journal: computed in its own frame (turned by ψ = γ − φ
+    // relative to the bearing's frame about its axis, its core clamped there); a journal point
+    // X (as meshed, axis through journal_axis_mesh_) with displacement u is placed in the
+    // bearing's frame at c + Q(ψ)(X − a + u), c = rolling_centre_. ψ of the last converged
+    // step; ψ now = rolling_psi_converged_ + rolling_delta_psi_.
+    double rolling_psi_converged_ = 0.0;
+    Tensor<1, dim> journal_axis_mesh_;
+    /// Q: every partner's displacement as the slave node sees it is Q u_p (identity unless the
+    /// rolling study's journal turns; its partners are all journal nodes).
+    Tensor<2, dim> partner_rotation_ = Tensor<2, dim>(unit_symmetric_tensor<dim>());
+    bool rolling_deformable_journal() const { return rolling_ && two_body_; }
+    /// [rad] the deformable journal's turn relative to the bearing's frame now.
+    double rolling_psi() const { return rolling_psi_converged_ + rolling_delta_psi_; }
+    /// Where the deformable journal's point X (as meshed) with displacement u sits in the
+    /// bearing's frame (the pose rolling_centre_, rolling_psi()).
+    Point<dim> place_journal_point(const Point<dim> &X, const Tensor<1, dim> &u) const;
+    /// Σ_p w_p Q u_p: the partners' displacement as the slave node sees it (ghosted v; Q the
+    /// partners' turn now unless given).
+    Tensor<1, dim> partner_displacement(const ContactNode &cn,
+                                        const TrilinosWrappers::MPI::Vector &v,
+                                        const Tensor<2, dim> *Q = nullptr) const
+    {
+      Tensor<1, dim> s;
+      for (const auto &p : cn.partners)
+        for (unsigned int c = 0; c < dim; ++c)
+          s[c] += p.weight * v[p.dofs[c]];
+      return (Q ? *Q : partner_rotation_) * s;
+    }
+    /// The turning journal's frame at centre c and turn ψ moves the node's partner
+    /// combination by (Σ w) c + Q(ψ)(P − (Σ w) a) − P from where it was meshed.
+    Tensor<1, dim> partner_frame_motion(const ContactNode &cn, const std::array<double, 3> &c,
+                                        double psi) const
+    {
+      const Tensor<1, dim> P = cn.partner_X;
+      return cn.partner_weight * Tensor<1, dim>({c[0], c[1], c[2]}) +
+             rotation_z(psi) * (P - cn.partner_weight * journal_axis_mesh_) - P;
+    }
+    static Tensor<2, dim> rotation_z(const double angle)
+    {
+      const double cs = std::cos(angle), sn = std::sin(angle);
+      return Tensor<2, dim>({{cs, -sn, 0.0}, {sn, cs, 0.0}, {0.0, 0.0, 1.0}});
+    }
+    /// The partner combinations' sparsity: per candidate node (by its x-DoF) the component of
+    /// its normal line and its partners' x-DoFs, as make_matrices built the pattern for them
+    /// (follow_sliding: whether new couplings fit it).
+    struct PatternEntry
+    {
+      unsigned int component = 0;
+      std::set<types::global_dof_index> partners;
+    };
+    std::map<types::global_dof_index, PatternEntry> pattern_partners_;
+    /// After a new sparsity pattern (follow_sliding's rebuild) the elastic operator that every
+    /// elastoplastic assembly starts from is copied again.
+    void keep_elastic_operator();
     MatrixCoefficients operator_coefficients_;      // {mass 0, stiffness 1}: quasi-static
     TrilinosWrappers::SparseMatrix M_, K_elastic_;  // mass, stiffness (unconstrained; dynamic)
     TrilinosWrappers::MPI::Vector dynamic_load_;    // owned: the known part of the step's rhs

@@ -32,9 +32,14 @@ namespace clearjoint::fe::detail
   void ContactModel::make_matrices()
   {
     AffineConstraints<double> worst(relevant_);
+    pattern_partners_.clear();
     for (const auto &cn : nodes_)
       if (cn.candidate)
         {
+          auto &entry = pattern_partners_[cn.dofs[0]];
+          entry.component = cn.constrained_component;
+          for (const auto &p : cn.partners)
+            entry.partners.insert(p.dofs[0]);
           const auto d = cn.dofs[cn.constrained_component];
           worst.add_line(d);
           for (unsigned int k = 0; k < dim; ++k)
@@ -51,8 +56,11 @@ namespace clearjoint::fe::detail
                   !fixed_constraints_.is_constrained(cn.dofs[k]))
                 {
                   worst.add_line(cn.dofs[k]);
+                  // (the rolling study's turning journal: its partners' x and y mix)
                   for (const auto &p : cn.partners)
-                    worst.add_entry(cn.dofs[k], p.dofs[k], 1.0);
+                    for (unsigned int m = 0; m < dim; ++m)
+                      if (m == k || rolling_deformable_journal())
+                        worst.add_entry(cn.dofs[k], p.dofs[m], 1.0);
                 }
         }
     worst.merge(fixed_constraints_, AffineConstraints<double>::left_object_wins, true);

@@ -52,18 +52,23 @@ namespace clearjoint::fe::detail
     const QGauss<dim> quadrature(fe_->degree + 1);
     n_q_ = quadrature.size();
     qp_history_.assign(std::size_t(tria_.n_active_cells()) * n_q_, J2History());
-    // the elastic operator, kept: every assembly starts from it
+    keep_elastic_operator();
+    dynamic_load_.reinit(owned_, comm_);
+    for (const auto &line : fixed_constraints_.get_lines())
+      if (line.inhomogeneity != 0.0)
+        throw NumericalError("fe_stage: the elastoplastic assembly needs homogeneous supports "
+                             "(a rigid journal, or a deformable one clamped in its own frame); "
+                             "DoF " + std::to_string(line.index) + " is prescribed");
+  }
+
+  /// The elastic operator, kept: every assembly starts from it.
+  void ContactModel::keep_elastic_operator()
+  {
     K_el_.reinit(K_);
     K_el_.copy_from(K_);
     A_static_el_.reinit(A_static_);
     A_static_el_.copy_from(A_static_);
     contact_cell_elastic_ = contact_cell_matrices_;
-    dynamic_load_.reinit(owned_, comm_);
-    for (const auto &line : fixed_constraints_.get_lines())
-      if (line.inhomogeneity != 0.0)
-        throw NumericalError("fe_stage: the elastoplastic assembly needs homogeneous supports "
-                             "(a rigid journal); DoF " + std::to_string(line.index) +
-                             " is prescribed");
   }
 
   /// K_ = K_t(u), the condensed static part and the contact cells' matrices the same, and the
@@ -165,12 +170,20 @@ namespace clearjoint::fe::detail
           fv[u].get_function_symmetric_gradients(solution_, eps);
           J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
           double cell_plastic_volume = 0.0;
+          const bool bearing = cell->material_id() == 0;
           for (unsigned int q = 0; q < n_q_; ++q)
             {
               const J2Response r = j2_->evaluate(to_eigen(eps[q]), h[q]);
               e.plastic_work_step += r.plastic_work * fv.JxW(q);
               h[q].commit();
-              e.elastic_energy += j2_->elastic_energy(to_eigen(eps[q]), h[q].committed) * fv.JxW(q);
+              const double elastic =
+                j2_->elastic_energy(to_eigen(eps[q]), h[q].committed) * fv.JxW(q);
+              e.elastic_energy += elastic;
+              if (bearing)
+                {
+                  e.bearing_plastic_work_step += r.plastic_work * fv.JxW(q);
+                  e.bearing_elastic_energy += elastic;
+                }
               e.max_plastic_strain = std::max(e.max_plastic_strain, h[q].committed.alpha);
               if (h[q].committed.alpha > 0.0)
                 cell_plastic_volume += fv.JxW(q);
@@ -181,6 +194,10 @@ namespace clearjoint::fe::detail
         }
     e.plastic_work_step = symmetry_factor_ * Utilities::MPI::sum(e.plastic_work_step, comm_);
     e.elastic_energy = symmetry_factor_ * Utilities::MPI::sum(e.elastic_energy, comm_);
+    e.bearing_plastic_work_step =
+      symmetry_factor_ * Utilities::MPI::sum(e.bearing_plastic_work_step, comm_);
+    e.bearing_elastic_energy =
+      symmetry_factor_ * Utilities::MPI::sum(e.bearing_elastic_energy, comm_);
     e.plastic_volume = symmetry_factor_ * Utilities::MPI::sum(e.plastic_volume, comm_);
     e.max_plastic_strain = Utilities::MPI::max(e.max_plastic_strain, comm_);
     e.max_strain = Utilities::MPI::max(e.max_strain, comm_);
@@ -218,22 +235,27 @@ namespace clearjoint::fe::detail
         }
   }
 
-  /// The bore's strains at the axial mid-plane within ±half_angle of the contact point at frame
-  /// angle −phi (fixed-frame bottom): the face quadrature points of the bore faces that touch
-  /// z = 0, nearest row to the plane. Collective; every rank gets the sorted profile.
-  std::vector<StrainProfilePoint> ContactModel::bore_strain_profile(const double phi,
-                                                                     const double half_angle) const
+  /// A body's strains at the axial mid-plane within ±half_angle of the contact point, which
+  /// sits at the body's frame angle −turn (the fixed-frame bottom; turn = φ for the bearing,
+  /// γ for the deformable journal, angles about the body's own axis): the face quadrature
+  /// points of the contact-surface faces that touch z = 0, nearest row to the plane.
+  /// Collective; every rank gets the sorted profile.
+  std::vector<StrainProfilePoint> ContactModel::strain_profile(const unsigned int body,
+                                                               const double turn,
+                                                               const double half_angle) const
   {
     const QGauss<dim - 1> fq(fe_->degree + 2);
     FEFaceValues<dim> fv(*mapping_, *fe_, fq, update_gradients | update_quadrature_points);
     const FEValuesExtractors::Vector u(0);
     std::vector<SymmetricTensor<2, dim>> eps(fq.size());
     std::vector<double> mine;
-    const double R = scene_.geometry.R_B;
+    const double R = body == 0 ? scene_.geometry.R_B : scene_.geometry.R_J();
+    const double axis_y = body == 0 ? 0.0 : -scene_.geometry.c_r;  // the body's axis (x = 0)
+    const types::boundary_id surface = body == 0 ? bid_contact : bid_journal_surface;
     for (const auto &cell : dof_handler_.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->material_id() == 0)
+      if (cell->is_locally_owned() && cell->material_id() == body)
         for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == surface)
             {
               double z_min = std::numeric_limits<double>::max();
               for (const auto v : cell->face(f)->vertex_indices())
@@ -255,10 +277,11 @@ namespace clearjoint::fe::detail
                 }
               for (const unsigned int q : fv.quadrature_point_indices())
                 {
-                  const Point<dim> &p = fv.quadrature_point(q);
+                  Point<dim> p = fv.quadrature_point(q);
                   if (std::abs(p[2]) > z_row + 1e-12 * R)
                     continue;
-                  double a = std::atan2(p[0], -p[1]) + phi;  // from the contact point
+                  p[1] -= axis_y;
+                  double a = std::atan2(p[0], -p[1]) + turn;  // from the contact point
                   a = std::remainder(a, 2.0 * units::pi);
                   if (std::abs(a) > half_angle)
                     continue;
@@ -282,6 +305,7 @@ namespace clearjoint::fe::detail
           s.strain_axial = part[i + 3];
           s.plastic_strain = part[i + 4];
           s.von_mises = part[i + 5];
+          s.body = body;
           profile.push_back(s);
         }
     std::sort(profile.begin(), profile.end(),

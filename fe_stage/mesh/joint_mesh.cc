@@ -324,9 +324,10 @@ namespace clearjoint::fe::detail
     return false;
   }
 
-  double ContactModel::rolling_path_distance(const double angle) const
+  double ContactModel::rolling_path_distance(const double angle, const double body_sweep) const
   {
-    const double sweep = scene_.rolling.omega_B * rolling_end_time(scene_);
+    const double sweep =
+      body_sweep >= 0.0 ? body_sweep : scene_.rolling.omega_B * rolling_end_time(scene_);
     if (sweep >= 2.0 * units::pi)
       return 0.0;
     // the frame angles the contact point passes: [−sweep, 0] (mod 2π)
@@ -374,9 +375,23 @@ namespace clearjoint::fe::detail
                 }
               if (plan_.rolling)
                 {
-                  // the contact point travels from frame angle 0 to −ω_B t_end
+                  // the contact point travels from frame angle 0 to −ω_B t_end over the bore;
+                  // over a deformable journal's surface (its frame) from 0 to −γ_end, γ_end at
+                  // most the rolling rate at δ_max times the run's time
                   const Point<dim> c = cell->center();
-                  if (rolling_path_distance(std::atan2(c[0], -c[1])) < window)
+                  if (cell->material_id() == 0)
+                    {
+                      if (rolling_path_distance(std::atan2(c[0], -c[1])) < window)
+                        cell->set_refine_flag();
+                      continue;
+                    }
+                  const double y = c[1] + scene_.geometry.c_r;  // from the journal's axis
+                  const bool at_surface =
+                    std::hypot(c[0], y) > scene_.geometry.R_J() - cell->diameter();
+                  const double gamma_end = scene_.rolling.omega_B *
+                                           (scene_.geometry.R_B + scene_.loading.delta_max) /
+                                           scene_.geometry.R_J() * rolling_end_time(scene_);
+                  if (at_surface && rolling_path_distance(std::atan2(c[0], -y), gamma_end) < window)
                     cell->set_refine_flag();
                   continue;
                 }

@@ -20,14 +20,14 @@ namespace clearjoint::fe::detail
           {
             cn.traction[c] = residual_[cn.dofs[c]];
             cn.relative[c] = solution_[cn.dofs[c]];
-            for (const auto &p : cn.partners)
-              cn.relative[c] -= p.weight * solution_[p.dofs[c]];
           }
-        if (!cn.two_body)
-          cn.relative -= cn.obstacle_u;  // the rigid obstacle's surface point moved
+        // the partners (turned into the slave's frame), and the rigid motion of the obstacle's
+        // surface point or of the partners' frame (0 for two bodies at rest)
+        cn.relative -= partner_displacement(cn, solution_) + cn.obstacle_u;
         cn.lambda = cn.traction * cn.n;
-        // ĝ = g0 + n·(u − u_partner); the rigid obstacle's motion is already in g0
-        cn.gap = cn.g0 + cn.n * cn.relative + (cn.two_body ? 0.0 : cn.n * cn.obstacle_u);
+        // ĝ = g0 + n·(u − Σ w Q u_p); the obstacle's (or the partners' frame's) motion is
+        // already in g0
+        cn.gap = cn.g0 + cn.n * (cn.relative + cn.obstacle_u);
       }
   }
 

@@ -249,27 +249,43 @@ def _energy_figure(run, extra_columns):
                             "error as a % of the work in")
 
 
+def _split_by_body(p):
+    """The profile's rows per body: {0: bore, 1: journal} (older runs: all rows the bore's)."""
+    bodies = _column(p, "body")
+    if not bodies:
+        return {0: p}
+    split = {}
+    for b in sorted(set(int(x) for x in bodies)):
+        split[b] = {k: [v for v, x in zip(vals, bodies) if int(x) == b]
+                    for k, vals in p.items()}
+    return split
+
+
 def _profile_figure(run):
-    p = run.profile
-    arc = [x * 1e3 for x in p["arc"]] if _column(p, "arc") else \
-        [math.degrees(a) for a in p.get("angle", [])]
-    xlabel = "arc along the bore from the contact point [mm]" if _column(p, "arc") else \
-        "angle from the contact point [°]"
-    fig, ax = plt.subplots(figsize=(7.5, 4.2))
-    _plot_columns(ax, arc, p, [("strain_radial", "C0-", "radial"),
-                               ("strain_tangential", "C1-", "tangential"),
-                               ("strain_axial", "C2-", "axial"),
-                               ("plastic_strain", "k--", "equivalent plastic")])
-    ax.axhline(0.0, color="k", lw=0.5)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel("strain at the bore [1]")
-    ax.set_title("bore strains across the contact at the end (the paper's Fig. 12)")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    parts = _split_by_body(run.profile)
+    fig, axes = plt.subplots(1, len(parts), figsize=(7.5 * len(parts), 4.2), squeeze=False)
+    names = {0: "bore", 1: "journal's surface"}
+    for ax, (body, p) in zip(axes[0], parts.items()):
+        arc = [x * 1e3 for x in p["arc"]] if _column(p, "arc") else \
+            [math.degrees(a) for a in p.get("angle", [])]
+        where = names.get(body, f"body {body}")
+        ax.set_xlabel(f"arc along the {where} from the contact point [mm]" if _column(p, "arc")
+                      else "angle from the contact point [°]")
+        _plot_columns(ax, arc, p, [("strain_radial", "C0-", "radial"),
+                                   ("strain_tangential", "C1-", "tangential"),
+                                   ("strain_axial", "C2-", "axial"),
+                                   ("plastic_strain", "k--", "equivalent plastic")])
+        ax.axhline(0.0, color="k", lw=0.5)
+        ax.set_ylabel(f"strain at the {where} [1]")
+        ax.set_title(f"{where} strains across the contact at the end (the paper's Fig. 12)",
+                     fontsize=10)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
     fig.tight_layout()
-    return figure_html(fig, "Rolling: the bore's radial, tangential and axial strain and the "
+    return figure_html(fig, "Rolling: the radial, tangential and axial strain and the "
                             "equivalent plastic strain across the contact zone at the end of the "
-                            "run (axial mid-plane) — the counterpart of the paper's Fig. 12")
+                            "run (axial mid-plane), on the bore and, with a deformable journal, "
+                            "on the journal's surface — the counterpart of the paper's Fig. 12")
 
 
 def _final_table(run):

@@ -132,14 +132,23 @@ def main(argv):
 
     ax = axes[1][2]
     if p:
-        arc_mm = [x * 1e3 for x in p["arc"]]
-        ax.plot(arc_mm, p["strain_radial"], label="radial")
-        ax.plot(arc_mm, p["strain_tangential"], label="tangential")
-        ax.plot(arc_mm, p["plastic_strain"], "k--", label="equivalent plastic")
+        # body 0 the bore (solid), body 1 a deformable journal's surface (dashed); older runs
+        # have no body column: all the bore's
+        bodies = p.get("body") or [0.0] * len(p["arc"])
+        for body, style, where in [(0, "-", "bore"), (1, "--", "journal")]:
+            rows = [i for i, b in enumerate(bodies) if int(b) == body]
+            if not rows:
+                continue
+            arc_mm = [p["arc"][i] * 1e3 for i in rows]
+            for col, colour, lab in [("strain_radial", "C0", "radial"),
+                                     ("strain_tangential", "C1", "tangential"),
+                                     ("plastic_strain", "k", "equivalent plastic")]:
+                ax.plot(arc_mm, [p[col][i] for i in rows], colour + style,
+                        label=f"{where}: {lab}")
         ax.legend(fontsize=7)
-    ax.set_xlabel("arc along the bore from the contact point [mm]")
-    ax.set_ylabel("strain at the bore [1]")
-    ax.set_title("bore strains across the contact, at the end (Fig. 12)")
+    ax.set_xlabel("arc along the surface from the contact point [mm]")
+    ax.set_ylabel("strain at the contact surface [1]")
+    ax.set_title("strains across the contact, at the end (Fig. 12)")
     for a in axes.flat:
         a.grid(True, alpha=0.3)
     fig.tight_layout()

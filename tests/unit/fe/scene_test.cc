@@ -396,7 +396,16 @@ TEST(FeScene, RollingStudy)
   expect_error(head + "rolling: {journal_inertia: 0}\n", {"rolling.journal_inertia", "kg m^2"});
   expect_error(head + "rolling: {support: glued}\n", {"rolling.support", "outer_surface"});
   expect_error(head + "material: {model: elastic}\n", {"material.model", "elastoplastic"});
-  expect_error(head + "loading: {journal: end_faces}\n", {"loading.journal", "rigid"});
+  expect_error(head + "loading: {journal: end_faces}\n", {"loading.journal", "rigid or core"});
+  // the deformable journal (core clamped in its own frame): paired by mortar, the bore the
+  // slave; the search is redone at every time step anyway
+  EXPECT_EQ(parse(head + "loading: {journal: core}\n").loading.journal, JournalLoading::core);
+  expect_error(head + "loading: {journal: core}\ncontact: {pairing: node_to_node}\n",
+               {"contact.pairing", "mortar"});
+  expect_error(head + "loading: {journal: core}\ncontact: {mortar_slave: journal}\n",
+               {"contact.mortar_slave", "bore"});
+  expect_error(head + "loading: {journal: core}\ncontact: {sliding: finite}\n",
+               {"contact.sliding", "small"});
   expect_error(head + "mesh: {adaptive_cycles: 1}\n", {"mesh.adaptive_cycles"});
   expect_error(head + "full_model: true\n", {"full_model"});
   // the hardening table: strains strictly increasing from 0, stresses non-decreasing
