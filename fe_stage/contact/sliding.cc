@@ -76,7 +76,8 @@ namespace clearjoint::fe::detail
         {
           const ContactNode &f = fresh.at(cn.dofs[0]);
           cn.partners = f.partners;
-          cn.candidate = f.candidate;
+          // the pattern's candidates stay candidates (their lines are in it)
+          cn.candidate = pattern_partners_.count(cn.dofs[0]) > 0;
           cn.active = cn.active && cn.candidate;
           cn.constrained_component = f.constrained_component;
           cn.partner_X = f.partner_X;

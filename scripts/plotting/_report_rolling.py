@@ -1,5 +1,6 @@
 """The report's rolling section (issue 13, paper §3.4): the FE rolling study — the bearing turning
-at ω_B, the rigid journal pushed radially and spun by friction alone, an elastoplastic bearing.
+at ω_B, the journal (rigid, or deformable with loading.journal core) pushed radially and spun by
+friction alone, an elastoplastic bearing (and journal).
 The spin rates exact and by the paper's Eqs. 7–8 (the paper's Fig. 10), the energy split (work
 in against stored, dissipated and kinetic energy, and the balance error as a % of the work in),
 the bore's strains across the contact at the end (Fig. 12), the slip stages of the manifest and
@@ -392,11 +393,17 @@ def _what_was_modelled(run):
         parts.append(f"Coulomb friction μ = {mu:g}")
     if r.get("n_steps") is not None:
         parts.append(f"{r['n_steps']} nominal time steps")
-    return ("<p>The bearing turns at ω_B; the rigid journal's axis is pushed radially into it "
-            "and the journal turns freely, driven by friction alone; the bearing is "
-            "elastoplastic (von Mises, isotropic hardening) and computed in the frame that turns "
-            "with it (docs/fe.md, “Rolling study”). The study is a first step: coarse mesh, "
-            "small strain." + (f" This run: {esc(', '.join(parts))}." if parts else "") + "</p>")
+    deformable = get(sc, "loading", "journal") == "core"
+    bodies = ("the journal is deformable too, its core clamped in its own frame, which carries "
+              "the push and the spin; both bodies are elastoplastic (von Mises, isotropic "
+              "hardening), each computed in the frame that turns with it, and meet by dual "
+              "mortar searched again at every time step" if deformable else
+              "the bearing is elastoplastic (von Mises, isotropic hardening) and computed in the "
+              "frame that turns with it")
+    return ("<p>The bearing turns at ω_B; the " + ("deformable" if deformable else "rigid") +
+            " journal's axis is pushed radially into it and the journal turns freely, driven by "
+            "friction alone; " + bodies + " (docs/fe.md, “Rolling study”). Coarse mesh, small "
+            "strain." + (f" This run: {esc(', '.join(parts))}." if parts else "") + "</p>")
 
 
 def _frame_note(h):
