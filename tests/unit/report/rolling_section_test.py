@@ -62,7 +62,7 @@ def step(k, n=4, error=0.05, strain=0.02, force=12345.6):
 
 
 def write_run(folder, rows=4, complete=True, message="", shuffle=False, extra_column=False,
-              **kw):
+              journal=None, **kw):
     os.makedirs(folder, exist_ok=True)
     cols = list(COLUMNS) + ([("work_drive_torque", "J")] if extra_column else [])
     if shuffle:
@@ -76,18 +76,25 @@ def write_run(folder, rows=4, complete=True, message="", shuffle=False, extra_co
             r = step(k, 4, **kw)
             f.write(",".join(repr(r[c]) for c, _ in cols) + "\n")
         f.write(marker)
+    # a deformable journal (journal "core"): fe_stage adds the body column, 0 the bore's rows
+    # and 1 the journal's
+    profile = PROFILE + ([("body", "1")] if journal == "core" else [])
     with open(os.path.join(folder, "rolling_strain_profile.csv"), "w") as f:
-        f.write("# units: " + ",".join(u for _, u in PROFILE) + "\n" + ",".join(c for c, _ in PROFILE) + "\n")
-        for i in range(-3, 4):
-            f.write(f"{0.1 * i},{0.001 * i},{-0.004 / (1 + i * i)},{0.002 / (1 + i * i)},"
-                    f"{0.0005 / (1 + i * i)},{0.0123 / (1 + i * i)},{3e8 / (1 + i * i)}\n")
+        f.write("# units: " + ",".join(u for _, u in profile) + "\n" + ",".join(c for c, _ in profile) + "\n")
+        for body in ((0, 1) if journal == "core" else (None,)):
+            for i in range(-3, 4):
+                f.write(f"{0.1 * i},{0.001 * i},{-0.004 / (1 + i * i)},{0.002 / (1 + i * i)},"
+                        f"{0.0005 / (1 + i * i)},{0.0123 / (1 + i * i)},{3e8 / (1 + i * i)}" +
+                        (f",{body}" if body is not None else "") + "\n")
         f.write(marker)
     last = step(rows, 4, **kw)
     manifest = {
         "schema": "clearjoint.manifest/1", "stage": "fe_stage",
         "status": "complete" if complete else "incomplete", "message": message,
         "extra": {
-            "scene": {"study": "rolling", "loading": {"delta_max": 5e-5}, "contact": {"mu": 0.3},
+            "scene": {"study": "rolling",
+                      "loading": dict({"delta_max": 5e-5}, **({"journal": journal} if journal else {})),
+                      "contact": {"mu": 0.3},
                       "rolling": {"omega_B": 12.56, "ramp_time": 0.25, "end_time": 0.25, "n_steps": 4}},
             "rolling": {
                 "journal_inertia": {"value": 1.8e-6, "unit": "kg m^2"},
@@ -223,6 +230,17 @@ def main():
         html, w = section({"fe_dir": os.path.join(d, "missing"), "status": "complete"}, d)
         expect(len(w.items) == 1 and "no output folder" in w.items[0][1],
                f"a missing folder is a warning: {warning_texts(w)}")
+
+        # The deformable journal: the text names it, the strain profile figure has both bodies
+        # (one figure, its two panels), and the rest is as for the rigid one.
+        core = write_run(os.path.join(d, "core", "fe", "rolling"), journal="core")
+        html, w = section({"fe_dir": core, "status": "complete"}, d)
+        expect("the deformable journal" in html and "both bodies are elastoplastic" in html,
+               "the deformable journal is named")
+        expect(html.count("<img") == 3, f"three figures with the deformable journal: {html.count('<img')}")
+        expect("on the journal's surface" in html, "the profile's caption names the journal's surface")
+        html, w = section({"fe_dir": clean, "status": "complete"}, d)
+        expect("the rigid journal" in html, "the rigid journal is named")
 
         # The whole report with a rolling study and nothing else.
         summary = {"schema": "clearjoint.pipeline_summary/1", "run": "r", "preset": "fast",
