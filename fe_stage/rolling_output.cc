@@ -36,7 +36,9 @@ namespace clearjoint::fe
               "computed in its own frame turning with it (the journal's core clamped in its "
               "frame); angles counter-clockwise about +z in the fixed frame",
       "force_normal = contact force on the journal along +y, force_tangential along +x (full "
-      "body); slip_speed = omega_B R_B - gamma_rate R_J (0: rolling without slip)",
+      "body); slip_speed = omega_B (R_B + delta) - gamma_rate R_J (0: rolling without slip; a "
+      "deformable journal: omega_B r_B - gamma_rate r_J with the radii from each axis to the "
+      "contact node carrying the largest normal force)",
       "torque_drive = the supports' torque on the bearing; torque_journal = the contact's "
       "torque on the journal; work_drive = int torque_drive dphi, work_push = int force dδ",
       "energy balance: work_drive + work_push = elastic_energy + plastic_dissipation + "

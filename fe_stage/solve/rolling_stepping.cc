@@ -415,6 +415,28 @@ namespace clearjoint::fe::detail
         rec.gamma_rate = rate_new;
         rec.gamma = gamma + rate_new * dt;
         rec.slip_speed = motion.slip_speed(t1, rate_new);
+        if (rolling_deformable_journal())
+          {
+            // Both surfaces give way, so the contact is not at R_B + δ from the bearing's axis
+            // and R_J from the journal's: the radii at the active node carrying the largest
+            // normal force, from each axis to where the node is now (the contact closed:
+            // the journal's surface is there too), ω_B r_B − γ̇ r_J
+            std::vector<double> mine{-1.0, 0.0, 0.0};
+            for (const auto &cn : nodes_)
+              if (cn.owned && cn.active && cn.lambda > mine[0])
+                {
+                  const double x = cn.X[0] + solution_[cn.dofs[0]];
+                  const double y = cn.X[1] + solution_[cn.dofs[1]];
+                  mine = {cn.lambda, std::hypot(x, y),
+                          std::hypot(x - rolling_centre_[0], y - rolling_centre_[1])};
+                }
+            std::array<double, 3> best{-1.0, 0.0, 0.0};
+            for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
+              if (part[0] > best[0])
+                best = {part[0], part[1], part[2]};
+            if (best[0] > 0.0)
+              rec.slip_speed = R.omega_B * best[1] - rate_new * best[2];
+          }
         rec.torque_journal = rs.torque_journal;
         rec.torque_drive = -torque_bearing;
         work_drive += 0.5 * (torque_drive_prev + rec.torque_drive) * (rec.phi - motion.phi(t));

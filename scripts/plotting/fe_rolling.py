@@ -94,7 +94,7 @@ def main(argv):
                 transform=ax.get_xaxis_transform(),
                 bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=1))
     ax.set_xlabel("t [ms]")
-    ax.set_ylabel("slip speed ω_B (R_B + δ) − γ̇ R_J [m/s]")
+    ax.set_ylabel("slip speed ω_B r_B − γ̇ r_J [m/s]")
     ax.set_title("relative speed at the contact (slip stages)")
 
     ax = axes[0][2]
