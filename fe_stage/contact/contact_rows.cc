@@ -244,8 +244,9 @@ namespace clearjoint::fe::detail
   /// The slip term of a slipping node's linearised friction force, −κ c Q s_T(u) with
   /// s_T = P_T M (D u + b) (M: the components the contact holds, as in
   /// contact_slip_increment): rows of the node +κ c Q M (D u + b) = 0 part, rows of its partners
-  /// −w_p κ c Q (D u + b); the constant part goes to the right-hand side. Added once per node
-  /// (by the rank that owns it).
+  /// −w_p R_pᵀ κ c Q M (D u + b), with D u = u − Σ w_p R_p u_p (R_p = partner_rotation_, the
+  /// identity unless the rolling study's journal turns); the constant part goes to the
+  /// right-hand side. Added once per node (by the rank that owns it).
   void ContactModel::friction_node_matrix(const ContactNode &cn, const double c,
                                           const double /*delta*/, FullMatrix<double> &M,
                                           Vector<double> &rhs,
