@@ -138,10 +138,7 @@ namespace clearjoint::fe::detail
 
   Point<dim> ContactModel::place_journal_point(const Point<dim> &X, const Tensor<1, dim> &u) const
   {
-    const double psi = rolling_psi();
-    const double cs = std::cos(psi), sn = std::sin(psi);
-    const Tensor<1, dim> r = X - Point<dim>(journal_axis_mesh_) + u;
-    return Point<dim>(rolling_centre_[0] + cs * r[0] - sn * r[1],
-                      rolling_centre_[1] + sn * r[0] + cs * r[1], rolling_centre_[2] + r[2]);
+    const Point<dim> c(rolling_centre_[0], rolling_centre_[1], rolling_centre_[2]);
+    return c + rotation_z(rolling_psi()) * (X - Point<dim>(journal_axis_mesh_) + u);
   }
 } // namespace clearjoint::fe::detail

@@ -219,6 +219,8 @@ namespace
   {
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (size < 2)
+      GTEST_SKIP() << "needs mpirun -np 2";
     FeScene s = scene("study: rolling\n"
                       "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, "
                       "contact_refinements: 1}\n"
@@ -261,10 +263,6 @@ namespace
 
 TEST(FeMpi, RollingTwoRanksMatchOneRank)
 {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (size < 2)
-    GTEST_SKIP() << "needs mpirun -np 2";
   expect_rolling_ranks_agree("rigid");
 }
 
@@ -273,10 +271,6 @@ TEST(FeMpi, RollingTwoRanksMatchOneRank)
 // journal node tracked for Eqs. 6–8 lives on one rank. 1e-6 of F as above.
 TEST(FeMpi, RollingDeformableJournalTwoRanksMatchOneRank)
 {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (size < 2)
-    GTEST_SKIP() << "needs mpirun -np 2";
   expect_rolling_ranks_agree("core");
 }
 
