@@ -507,7 +507,9 @@ int main(int argc, char **argv)
         {
           if (preset.file.empty())
             preset.file = fe::default_presets_file();
-          preset.overrides = fe::read_fe_preset(preset.file, preset.name);
+          const std::string study =
+            scene_doc.contains("study") && scene_doc["study"].is_string() ? scene_doc["study"].get<std::string>() : "";
+          preset.overrides = fe::read_fe_preset(preset.file, preset.name, study);
           fe::apply_preset(scene_doc, preset.overrides, preset.file);
           std::string keys;
           for (const auto &[k, v] : preset.overrides)

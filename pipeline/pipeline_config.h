@@ -69,7 +69,7 @@ namespace clearjoint::pipeline
   };
 
   /// The FE rolling study (issue 13, paper §3.4): one fe_stage run of a scene with
-  /// study: rolling (the bearing turning, the rigid journal pushed and spun by friction). Nothing
+  /// study: rolling (the bearing turning, the journal pushed and spun by friction). Nothing
   /// downstream uses its results; the report has its own section.
   struct RollingStudy
   {

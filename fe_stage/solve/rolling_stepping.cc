@@ -8,6 +8,8 @@
 // (loading.max_cuts times); what converged is kept.
 #include "fe_stage/core/contact_model.h"
 
+#include <cmath>
+
 namespace clearjoint::fe::detail
 {
   ContactModel::RollingSolve ContactModel::solve_rolling_state(const double delta)
@@ -183,6 +185,7 @@ namespace clearjoint::fe::detail
     // the step size carries over: a step that needed cuts starts the next one at its own size,
     // which doubles (up to the nominal) after two steps without a cut (as the impact study)
     double dt_try = dt_nominal;
+    const double dt_floor = std::ldexp(dt_nominal, -static_cast<int>(L.max_cuts));
     unsigned int easy_steps = 0;
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
     for (; t < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
@@ -323,11 +326,20 @@ namespace clearjoint::fe::detail
                                  "); again from the last state");
                     continue;
                   }
-                if (cuts >= L.max_cuts)
+                // The step size carries over from step to step, so the cuts of one step alone
+                // do not bound it: the nominal step halved max_cuts times is the floor too (a
+                // step that keeps failing would otherwise shrink without end, t + Δt → t)
+                const bool at_floor = 0.5 * dt < dt_floor;
+                if (cuts >= L.max_cuts || at_floor)
                   {
                     result.message = "time step to t = " + format_value(t + dt) +
-                                     " s failed after " + std::to_string(cuts) + " cuts: " +
-                                     f.reason;
+                                     " s failed after " + std::to_string(cuts) + " cuts" +
+                                     (at_floor ? " (a shorter step than the nominal " +
+                                                   format_value(dt_nominal) + " s halved " +
+                                                   std::to_string(L.max_cuts) +
+                                                   " times, loading.max_cuts, is not tried)" :
+                                                 std::string()) +
+                                     ": " + f.reason;
                     if (rank_ == 0)
                       log::error("fe_stage: " + result.message);
                     break;
@@ -408,8 +420,9 @@ namespace clearjoint::fe::detail
         rec.step = step + 1;
         rec.time = t1;
         rec.delta = motion.delta(t1);
-        rec.force_normal = symmetry_factor_ * on_journal[1];
-        rec.force_tangential = symmetry_factor_ * on_journal[0];
+        // (+ 0.0: a step without contact sums no force, and −0 would be written "-0")
+        rec.force_normal = symmetry_factor_ * on_journal[1] + 0.0;
+        rec.force_tangential = symmetry_factor_ * on_journal[0] + 0.0;
         rec.phi = motion.phi(t1);
         rec.phi_rate = R.omega_B;
         rec.gamma_rate = rate_new;

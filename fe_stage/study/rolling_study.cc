@@ -12,6 +12,12 @@ namespace clearjoint::fe
     p.obstacle.kind = RigidObstacle::Kind::cylinder;
     p.obstacle.offset = scene.geometry.c_r;  // first touch at the bore's bottom
     p.rolling = true;
+    // The push starts from first touch while the bearing turns its nodes past the journal: in
+    // the first nanometres the journal can sit between two bore nodes (measured: δ = 42 nm at
+    // 1.06 ms, coarse ring, 50 steps to 0.25 s), so a step with no node in contact is the
+    // mesh's answer there (no force, no torque: the journal's spin carries on), not a failure.
+    // As a failure it cut the step without end, each cut making δ smaller still.
+    p.must_touch = false;
     return p;
   }
 } // namespace clearjoint::fe

@@ -307,6 +307,32 @@ TEST(FePreset, ThePipelinePresetsSetTheSceneMesh)
     }
 }
 
+// The rolling study's scene with --preset gets what run_pipeline's rolling task runs: the
+// preset's keys, then pipeline.yaml's rolling.overrides (the mesh kept coarse whatever the
+// preset); other studies do not get the rolling overrides.
+TEST(FePreset, TheRollingSceneGetsThePipelinesRollingOverrides)
+{
+  const std::string file = std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml";
+  const nlohmann::json pipeline = read_structured_file(file);
+  const nlohmann::json &rolling = pipeline["rolling"]["overrides"];
+  ASSERT_TRUE(rolling.is_object() && !rolling.empty());
+  for (const std::string preset : {"fast", "standard", "accurate"})
+    {
+      const FeScene s = [&] {
+        nlohmann::json d = parse_yaml_string("schema: clearjoint.fe/1\nstudy: rolling\n", "test.yaml");
+        apply_preset(d, read_fe_preset(file, preset, "rolling"), file);
+        return scene_from_json(d, "test.yaml");
+      }();
+      EXPECT_EQ(s.mesh.global_refinements, rolling["mesh.global_refinements"].get<unsigned int>())
+        << preset;
+      EXPECT_EQ(s.rolling.n_steps,
+                pipeline["presets"][preset]["fe"]["rolling.n_steps"].get<unsigned int>())
+        << preset;
+    }
+  EXPECT_EQ(read_fe_preset(file, "standard", "radial").size(),
+            pipeline["presets"]["standard"]["fe"].size());
+}
+
 TEST(FeScene, YieldStressDefaultsToTheHardeningTablesFirstPoint)
 {
   EXPECT_DOUBLE_EQ(parse("schema: clearjoint.fe/1\n").material.yield_stress, 168.2e6);
