@@ -507,16 +507,26 @@ int main(int argc, char **argv)
         {
           if (preset.file.empty())
             preset.file = fe::default_presets_file();
-          const std::string study =
-            scene_doc.contains("study") && scene_doc["study"].is_string() ? scene_doc["study"].get<std::string>() : "";
-          preset.overrides = fe::read_fe_preset(preset.file, preset.name, study);
+          preset.overrides = fe::read_fe_preset(preset.file, preset.name);
+          const auto list = [](const fe::PresetOverrides &overrides) {
+            std::string keys;
+            for (const auto &[k, v] : overrides)
+              keys += (keys.empty() ? "" : ", ") + k + " = " + v.dump();
+            return keys.empty() ? std::string("no FE keys") : keys;
+          };
+          std::string keys = list(preset.overrides);
+          // a rolling scene also gets the file's rolling.overrides, as run_pipeline sets them
+          const auto study = scene_doc.find("study");
+          if (study != scene_doc.end() && *study == "rolling")
+            {
+              const fe::PresetOverrides rolling = fe::read_rolling_overrides(preset.file);
+              if (!rolling.empty())
+                keys += "; then rolling.overrides: " + list(rolling);
+              preset.overrides.insert(preset.overrides.end(), rolling.begin(), rolling.end());
+            }
           fe::apply_preset(scene_doc, preset.overrides, preset.file);
-          std::string keys;
-          for (const auto &[k, v] : preset.overrides)
-            keys += (keys.empty() ? "" : ", ") + k + " = " + v.dump();
           if (root)
-            log::info("fe_stage: preset " + preset.name + " (" + preset.file + "): " +
-                      (keys.empty() ? "no FE keys" : keys));
+            log::info("fe_stage: preset " + preset.name + " (" + preset.file + "): " + keys);
         }
       else if (!preset.file.empty())
         throw InputError("", "--presets-file", preset.file, "only together with --preset");

@@ -8,8 +8,7 @@ namespace clearjoint::fe
 {
   std::string default_presets_file() { return std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml"; }
 
-  PresetOverrides read_fe_preset(const std::string &pipeline_file, const std::string &name,
-                                 const std::string &study)
+  PresetOverrides read_fe_preset(const std::string &pipeline_file, const std::string &name)
   {
     const nlohmann::json doc = read_structured_file(pipeline_file);
     const nlohmann::json *presets = find_key_path(doc, "presets");
@@ -25,23 +24,28 @@ namespace clearjoint::fe
       }
     const nlohmann::json fe = presets->at(name).value("fe", nlohmann::json());
     PresetOverrides out;
-    if (!fe.is_null())  // null: the preset leaves the FE scene as it is
+    if (fe.is_null())
+      return out;  // the preset leaves the FE scene as it is
+    if (!fe.is_object())
+      throw InputError(pipeline_file, "presets." + name + ".fe", fe.dump(),
+                       "a mapping of scene key paths to values, or null");
+    for (const auto &[k, v] : fe.items())
+      out.emplace_back(k, v);
+    return out;
+  }
+
+  PresetOverrides read_rolling_overrides(const std::string &pipeline_file)
+  {
+    const nlohmann::json doc = read_structured_file(pipeline_file);
+    PresetOverrides out;
+    if (const nlohmann::json *rolling = find_key_path(doc, "rolling.overrides"))
       {
-        if (!fe.is_object())
-          throw InputError(pipeline_file, "presets." + name + ".fe", fe.dump(),
-                           "a mapping of scene key paths to values, or null");
-        for (const auto &[k, v] : fe.items())
+        if (!rolling->is_object())
+          throw InputError(pipeline_file, "rolling.overrides", rolling->dump(),
+                           "a mapping of scene key paths to values");
+        for (const auto &[k, v] : rolling->items())
           out.emplace_back(k, v);
       }
-    if (study == "rolling")
-      if (const nlohmann::json *rolling = find_key_path(doc, "rolling.overrides"))
-        {
-          if (!rolling->is_object())
-            throw InputError(pipeline_file, "rolling.overrides", rolling->dump(),
-                             "a mapping of scene key paths to values");
-          for (const auto &[k, v] : rolling->items())
-            out.emplace_back(k, v);
-        }
     return out;
   }
 

@@ -18,11 +18,12 @@ namespace clearjoint::fe
 
   /// presets.<name>.fe of `pipeline_file` as (scene key path, value) pairs, in file order.
   /// InputError naming --preset and the presets the file has if `name` is not one of them.
-  /// For a scene of `study` rolling, the file's rolling.overrides follow (run_pipeline sets them
-  /// after the preset's keys: they keep the rolling mesh coarse whatever the preset), so
-  /// `fe_stage rolling.yaml --preset P` runs what the pipeline's rolling task runs.
-  PresetOverrides read_fe_preset(const std::string &pipeline_file, const std::string &name,
-                                 const std::string &study = "");
+  PresetOverrides read_fe_preset(const std::string &pipeline_file, const std::string &name);
+
+  /// The file's rolling.overrides (empty if none), which run_pipeline sets on its rolling
+  /// study's scene after the preset's keys (they keep that mesh coarse whatever the preset):
+  /// `fe_stage rolling.yaml --preset P` sets them too, so it runs what the pipeline's task runs.
+  PresetOverrides read_rolling_overrides(const std::string &pipeline_file);
 
   /// Applies the overrides to a scene document (before it is read and validated).
   void apply_preset(nlohmann::json &scene, const PresetOverrides &overrides,
