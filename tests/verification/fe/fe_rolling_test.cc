@@ -70,7 +70,7 @@ TEST(FeRolling, FrictionlessJournalDoesNotSpinAndThePushWorkIsStored)
 
 // The push starts from first touch while the bearing turns its nodes past the journal: at a
 // push of 0.2 µm the journal sits between two bore nodes of the coarse ring at some steps (the
-// nodes penetrate within ±sqrt(2δ/c_r) ≈ ±2.6° of the bottom, 5.6° apart). Such a step has no
+// nodes penetrate within ±sqrt(2δ/c_r) ≈ ±1.6° of the bottom, 5.6° apart). Such a step has no
 // contact, no force and no torque — the mesh's answer there, so the journal's spin carries on
 // unchanged — and is not a failure: as one, it cut the step without end (each cut making δ
 // smaller still; measured at δ = 42 nm, 50 steps to 0.25 s). ~3 s.
