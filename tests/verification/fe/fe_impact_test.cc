@@ -220,21 +220,19 @@ TEST(FeImpact, ExtremeAlphaStepAndEndTime)
 // deformable journal.
 TEST(FeMpi, ImpactTwoRanksMatchOneRank)
 {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const int size = world_size();
   if (size < 2)
     GTEST_SKIP() << "needs mpirun -np 2";
   for (const std::string journal : {"rigid", "end_faces"})
   {
   FeScene s = scene(coarse_impact("velocity: 0.1, steps_per_period: 20", journal));
   s.solver.linear = LinearSolver::cg_amg;
-  const RunResult parallel = run(s, MPI_COMM_WORLD);
+  const AllRanksAndRankZero runs = run_on_all_ranks_and_on_rank_zero(s);
+  const RunResult &parallel = runs.all;
   ASSERT_TRUE(parallel.complete) << parallel.message;
-  MPI_Comm self;
-  MPI_Comm_split(MPI_COMM_WORLD, rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
-  if (rank() == 0)
+  if (runs.rank_zero)
     {
-      const RunResult serial = run(s, self);
+      const RunResult &serial = *runs.rank_zero;
       ASSERT_TRUE(serial.complete);
       ASSERT_EQ(serial.dynamic_steps.size(), parallel.dynamic_steps.size());
       for (std::size_t i = 0; i < serial.dynamic_steps.size(); ++i)
@@ -249,7 +247,6 @@ TEST(FeMpi, ImpactTwoRanksMatchOneRank)
       EXPECT_NEAR(parallel.impact.restitution, serial.impact.restitution, 1e-6);
       std::printf("impact (%s journal): np=1 peak %.12g N, np=%d peak %.12g N\n",
                   journal.c_str(), serial.impact.peak_force, size, parallel.impact.peak_force);
-      MPI_Comm_free(&self);
     }
   }
 }

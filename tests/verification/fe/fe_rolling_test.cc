@@ -254,8 +254,7 @@ namespace
   // rank 0 alone: the same steps, forces, spin and plastic work
   void expect_rolling_ranks_agree(const std::string &journal)
   {
-    int size = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int size = world_size();
     if (size < 2)
       GTEST_SKIP() << "needs mpirun -np 2";
     FeScene s = scene("study: rolling\n"
@@ -264,13 +263,12 @@ namespace
                       "loading: {delta_max: 5.0e-6, journal: " + journal + "}\n"
                       "rolling: {n_steps: 4, ramp_time: 0.01}\n");
     s.solver.linear = LinearSolver::cg_amg;
-    const RunResult parallel = run(s, MPI_COMM_WORLD);
+    const AllRanksAndRankZero runs = run_on_all_ranks_and_on_rank_zero(s);
+    const RunResult &parallel = runs.all;
     ASSERT_TRUE(parallel.complete) << parallel.message;
-    MPI_Comm self;
-    MPI_Comm_split(MPI_COMM_WORLD, rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
-    if (rank() == 0)
+    if (runs.rank_zero)
       {
-        const RunResult serial = run(s, self);
+        const RunResult &serial = *runs.rank_zero;
         ASSERT_TRUE(serial.complete) << serial.message;
         ASSERT_EQ(serial.rolling_steps.size(), parallel.rolling_steps.size());
         const double F = serial.rolling_steps.back().force_normal;
@@ -293,7 +291,6 @@ namespace
                     last.force_normal, last.gamma_rate, size,
                     parallel.rolling_steps.back().force_normal,
                     parallel.rolling_steps.back().gamma_rate);
-        MPI_Comm_free(&self);
       }
   }
 } // namespace

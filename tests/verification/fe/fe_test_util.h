@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,38 @@ namespace clearjoint::fe::test
   {
     int r;
     MPI_Comm_rank(comm, &r);
+    return r;
+  }
+
+  inline int world_size()
+  {
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    return size;
+  }
+
+  /// The np = 2 tests' two runs of one scene: on all ranks, and on rank 0 alone (the reference;
+  /// filled on rank 0 only, and only if the run on all ranks completed — its status is the same
+  /// on every rank, so every rank takes the same branch).
+  struct AllRanksAndRankZero
+  {
+    RunResult all;
+    std::optional<RunResult> rank_zero;
+  };
+
+  inline AllRanksAndRankZero run_on_all_ranks_and_on_rank_zero(const FeScene &s)
+  {
+    AllRanksAndRankZero r;
+    r.all = run(s, MPI_COMM_WORLD);
+    if (!r.all.complete)
+      return r;
+    MPI_Comm self;
+    MPI_Comm_split(MPI_COMM_WORLD, rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
+    if (rank() == 0)
+      {
+        r.rank_zero = run(s, self);
+        MPI_Comm_free(&self);
+      }
     return r;
   }
 } // namespace clearjoint::fe::test

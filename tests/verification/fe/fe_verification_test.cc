@@ -596,17 +596,15 @@ namespace
   /// active sets exactly.
   void expect_ranks_agree(FeScene s)
   {
-    int size = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int size = world_size();
     s.solver.linear = LinearSolver::cg_amg;
-    const RunResult parallel = run(s, MPI_COMM_WORLD);
+    const AllRanksAndRankZero runs = run_on_all_ranks_and_on_rank_zero(s);
+    const RunResult &parallel = runs.all;
     ASSERT_TRUE(parallel.complete) << parallel.message;
     EXPECT_EQ(parallel.n_ranks, static_cast<unsigned int>(size));
-    MPI_Comm self;
-    MPI_Comm_split(MPI_COMM_WORLD, rank() == 0 ? 0 : MPI_UNDEFINED, 0, &self);
-    if (rank() == 0)
+    if (runs.rank_zero)
       {
-        const RunResult serial = run(s, self);
+        const RunResult &serial = *runs.rank_zero;
         ASSERT_TRUE(serial.complete);
         EXPECT_EQ(serial.n_ranks, 1u);
         ASSERT_EQ(serial.increments.size(), parallel.increments.size());
@@ -625,7 +623,6 @@ namespace
                       .c_str(),
                     serial.increments.back().force, size,
                     parallel.increments.back().force);
-        MPI_Comm_free(&self);
       }
   }
 } // namespace
@@ -634,9 +631,7 @@ namespace
 // whose contact partners (journal nodes facing each bearing node) may live on another rank.
 TEST(FeMpi, TwoRanksMatchOneRank)
 {
-  int size = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (size < 2)
+  if (world_size() < 2)
     GTEST_SKIP() << "needs mpirun -np 2";
   expect_ranks_agree(scene(coarse_radial));
   expect_ranks_agree(scene(coarse_two_body("end_faces")));
