@@ -2,6 +2,7 @@
 // slip (Coulomb), and the linearisation of each slipping node's friction force for the next
 // solve — one step of a semi-smooth Newton method on the complementarity functions of
 // Hüeber–Stadler–Wohlmuth (2008), in the projection form of contact/coulomb_ssn.h.
+#include "fe_stage/contact/coulomb_ssn.h"
 #include "fe_stage/core/contact_model.h"
 
 #include <cstdio>
@@ -25,15 +26,17 @@ namespace clearjoint::fe::detail
       {
         if (!cn.candidate)
           continue;
+        // the node's class by contact/coulomb_ssn.h's law, within the round-off band c·ε_g
         const double xi = cn.lambda - c * cn.gap;
-        const bool now = xi > c * eps_g;
+        const double band = c * eps_g;
+        const bool now = coulomb_state(xi, 0.0, 0.0, band) != FrictionState::inactive;
         bool stick = cn.stick;
         if (friction_ && now)
           {
             const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
             const Tensor<1, dim> w =
               t - tangential_scale_ * c * contact_slip_increment(cn);
-            stick = w.norm() <= mu * xi + c * eps_g;
+            stick = coulomb_state(xi, w.norm(), mu, band) == FrictionState::stick;
             if (!stick)
               {
                 if (cn.owned && cn.active && !cn.stick)

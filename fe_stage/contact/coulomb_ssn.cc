@@ -19,6 +19,16 @@ namespace clearjoint::fe
       throw InputError(file, key_path + ".c_t", format_value(p.c_t), "> 0 (finite)");
   }
 
+  FrictionState coulomb_state(const double xi, const double w_norm, const double mu,
+                              const double band)
+  {
+    if (!(xi > band))  // (a NaN ξ is no contact: the caller's checks name it)
+      return FrictionState::inactive;
+    // Stick needs a disc of positive radius: at μ = 0 every active node slides freely.
+    const double r = mu * xi;
+    return r > 0.0 && w_norm <= r + band ? FrictionState::stick : FrictionState::slip;
+  }
+
   NodeNcp evaluate_coulomb_ncp(const double lambda_n, const Eigen::Vector2d &lambda_t,
                                const double gap, const Eigen::Vector2d &slip_t,
                                const CoulombParameters &p)
@@ -35,9 +45,9 @@ namespace clearjoint::fe
     const double          wn = w.norm();
     const double          r  = p.mu * xi; // disc radius when active
 
-    if (xi <= 0.0)
+    out.state = coulomb_state(xi, wn, p.mu);
+    if (out.state == FrictionState::inactive)
       {
-        out.state                                     = FrictionState::inactive;
         out.r_n                                       = lambda_n;
         out.r_t                                       = lambda_t;
         out.jacobian(0, col_lambda_n)                 = 1.0;
@@ -47,16 +57,13 @@ namespace clearjoint::fe
 
     out.r_n                       = p.c_n * gap;
     out.jacobian(0, col_gap)      = p.c_n;
-    // Stick needs a disc of positive radius: at μ = 0 every active node slides freely.
-    if (r > 0.0 && wn <= r)
+    if (out.state == FrictionState::stick)
       {
-        out.state                                  = FrictionState::stick;
         out.r_t                                    = p.c_t * slip_t;
         out.jacobian.block<2, 2>(1, col_slip_t1)   = p.c_t * I;
       }
     else
       {
-        out.state = FrictionState::slip;
         // wn > r ≥ 0 here, except μ = 0 with w = 0, where the direction is multiplied by 0.
         const Eigen::Vector2d w_hat = wn > 0.0 ? Eigen::Vector2d(w / wn) : Eigen::Vector2d::Zero();
         const Eigen::Matrix2d D     = wn > 0.0 ? Eigen::Matrix2d((r / wn) * (I - w_hat * w_hat.transpose()))

@@ -88,6 +88,13 @@ namespace clearjoint::fe
     Eigen::Matrix<double, 3, 6> jacobian;
   };
 
+  /// The class of a node from ξ = λ_n − c_n g and |w| = |λ_T − c_t s_T| — the decision of
+  /// evaluate_coulomb_ncp, and of the FE model's active set (contact/active_set.cc): inactive
+  /// where ξ ≤ band, stick where μξ > 0 and |w| ≤ μξ + band, slip otherwise. `band` ≥ 0 [λ
+  /// unit] is a round-off margin: the FE model makes its decisions deterministic across rank
+  /// counts with it (a penetration below 1e-9 of the push is not contact); 0 is the exact law.
+  FrictionState coulomb_state(double xi, double w_norm, double mu, double band = 0.0);
+
   /// Classifies the node and evaluates its residuals and generalised derivative. All inputs
   /// must be finite (std::invalid_argument otherwise: the caller's Newton has diverged).
   NodeNcp evaluate_coulomb_ncp(double lambda_n, const Eigen::Vector2d &lambda_t, double gap,

@@ -475,3 +475,26 @@ TEST(CoulombSsn, HswFormConvergesForModerateConstants)
           expect_coulomb(b, r.shear, r.press.u, mu, 1e-10, counts);
         }
 }
+
+// The class decision shared by evaluate_coulomb_ncp and the FE model's active set: the exact law
+// at band 0, and a round-off band that keeps a node at ξ or |w| − μξ within it on the
+// contact-free / sticking side.
+TEST(CoulombSsn, StateDecisionWithARoundOffBand)
+{
+  using clearjoint::fe::coulomb_state;
+  using clearjoint::fe::FrictionState;
+  EXPECT_EQ(coulomb_state(0.0, 0.0, 0.1), FrictionState::inactive);
+  EXPECT_EQ(coulomb_state(-1.0, 0.0, 0.1), FrictionState::inactive);
+  EXPECT_EQ(coulomb_state(10.0, 0.99, 0.1), FrictionState::stick);
+  EXPECT_EQ(coulomb_state(10.0, 1.01, 0.1), FrictionState::slip);
+  EXPECT_EQ(coulomb_state(10.0, 0.0, 0.0), FrictionState::slip);  // μ = 0: no disc to stick in
+  EXPECT_EQ(coulomb_state(1e-3, 0.0, 0.1, 2e-3), FrictionState::inactive);  // within the band
+  EXPECT_EQ(coulomb_state(10.0, 1.0015, 0.1, 2e-3), FrictionState::stick);
+  EXPECT_EQ(coulomb_state(std::nan(""), 0.0, 0.1), FrictionState::inactive);
+  // the same decision as evaluate_coulomb_ncp's at band 0
+  for (const double wt : {0.5, 0.999, 1.001, 2.0})
+    EXPECT_EQ(clearjoint::fe::evaluate_coulomb_ncp(10.0, Eigen::Vector2d(wt, 0.0), 0.0,
+                                                   Eigen::Vector2d::Zero(), {0.1, 1.0, 1.0})
+                .state,
+              coulomb_state(10.0, wt, 0.1));
+}
