@@ -202,7 +202,7 @@ namespace clearjoint::fe::detail
     K_elastic_ = 0.0;
     rhs_static_unit_ = 0.0;
     assemble_static();
-    amg_.reset();  // built for the previous operator
+    solver_.invalidate();  // its AMG was built for the previous operator
   }
 
   /// The condensed system's right-hand side gets C^T b: a constrained DoF's entry of b moves to

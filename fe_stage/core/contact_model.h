@@ -28,6 +28,7 @@
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/solve/adaptive_estimate.h"
 #include "fe_stage/solve/hht.h"
+#include "fe_stage/solve/linear_solver.h"
 #include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/study/study.h"
 
@@ -281,11 +282,6 @@ namespace clearjoint::fe::detail
       n = Tensor<1, dim>({normal[0], normal[1], normal[2]});
       return true;
     }
-    /// Solves A_ x = b to `relative_tolerance` × |b| (CG or GMRES with the AMG, or KLU);
-    /// returns the iterations. Throws StepFailure.
-    unsigned int solve_linear(TrilinosWrappers::MPI::Vector &x,
-                              const TrilinosWrappers::MPI::Vector &b, double relative_tolerance);
-    void build_amg();
     void evaluate_contact(double delta);
     bool friction_cell_matrix(unsigned int k, FullMatrix<double> &M,
                               std::vector<types::global_dof_index> &ext) const;
@@ -295,6 +291,18 @@ namespace clearjoint::fe::detail
     /// Every study's start: zero displacement, no contact, every node sticking with no slip
     /// history and the obstacle's surface points unmoved.
     void start_from_rest();
+    /// What a failed attempt of a step goes back to: the displacement and the contact nodes
+    /// (active and stick sets, slip history, partners), and the count of finite sliding's
+    /// pattern rebuilds (a rebuild since then: the restored state is paired again so that the
+    /// pattern holds its partners). The one rollback of every stepper.
+    struct Snapshot
+    {
+      TrilinosWrappers::MPI::Vector u;  // owned
+      std::vector<ContactNode> nodes;
+      unsigned int sliding_rebuilds = 0;
+    };
+    Snapshot save_state() const { return {solution_owned_, nodes_, n_sliding_rebuilds_}; }
+    void restore_state(const Snapshot &s);
     /// [s] since the model was made (the runs' setup and wall times).
     double elapsed() const
     {
@@ -427,15 +435,12 @@ namespace clearjoint::fe::detail
     std::vector<FullMatrix<double>> contact_cell_matrices_;
     std::vector<std::vector<types::global_dof_index>> contact_cell_dofs_;
 
-    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
-    std::unique_ptr<Epetra_MultiVector> null_space_;
-    unsigned int amg_reference_iterations_ = 0;
-    bool use_direct_ = false;
+    SystemSolver solver_;  // KLU or CG/GMRES with the AMG it owns
 
     std::vector<std::pair<double, std::string>> pvd_records_;
     std::vector<std::string> field_files_;
     std::chrono::steady_clock::time_point start_;
-    double t_assemble_ = 0, t_solve_ = 0, t_amg_ = 0, t_evaluate_ = 0;
+    double t_assemble_ = 0, t_solve_ = 0, t_evaluate_ = 0;
   };
 
 

@@ -143,13 +143,13 @@ namespace clearjoint::fe::detail
     residual_.reinit(owned_, relevant_, comm_);
 
     const auto n_dofs = dof_handler_.n_dofs();
+    bool direct = false;
     switch (scene_.solver.linear)
       {
-        case LinearSolver::direct: use_direct_ = true; break;
-        case LinearSolver::cg_amg: use_direct_ = false; break;
-        case LinearSolver::automatic:
-          use_direct_ = n_dofs < scene_.solver.direct_below_dofs;
-          break;
+        case LinearSolver::direct: direct = true; break;
+        case LinearSolver::cg_amg: direct = false; break;
+        case LinearSolver::automatic: direct = n_dofs < scene_.solver.direct_below_dofs; break;
       }
+    solver_.configure(direct, scene_.solver.tolerance, scene_.solver.max_linear_iterations);
   }
 } // namespace clearjoint::fe::detail

@@ -34,7 +34,7 @@ namespace clearjoint::fe::detail
     // solution, so cheaply), and so is every Newton step on the slip law once the sets have
     // settled. The converged state is therefore the one of exact solves (docs/fe.md).
     const double loose_tolerance = std::max(scene_.solver.tolerance, 1e-6);
-    bool loose = !use_direct_ && scene_.contact.max_iterations > 1;  // (KLU: exact anyway)
+    bool loose = !solver_.direct() && scene_.contact.max_iterations > 1;  // (KLU: exact anyway)
 
     unsigned int it = 0;
     for (; it < scene_.contact.max_iterations; ++it)
@@ -54,8 +54,9 @@ namespace clearjoint::fe::detail
         constraints_.set_zero(solution_owned_);  // start from the previous solution
         {
           ScopedTimer timer(t_solve_);
-          rec.linear_iterations += solve_linear(
-            solution_owned_, rhs_, loose ? loose_tolerance : scene_.solver.tolerance);
+          rec.linear_iterations +=
+            solver_.solve(A_, nonsymmetric_, dof_handler_, *mapping_, solution_owned_, rhs_,
+                          loose ? loose_tolerance : scene_.solver.tolerance);
         }
         ScopedTimer eval_timer(t_evaluate_);
         constraints_.distribute(solution_owned_);
@@ -97,7 +98,7 @@ namespace clearjoint::fe::detail
           }
         // the next solve may be loose only while the sets are still changing, and never the
         // last one allowed (a state that settles there must be one of exact solves)
-        loose = !use_direct_ && change.n_changed > 0 && it + 2 < scene_.contact.max_iterations;
+        loose = !solver_.direct() && change.n_changed > 0 && it + 2 < scene_.contact.max_iterations;
         if (it + 1 == scene_.contact.max_iterations)
           throw StepFailure{"active set did not settle in " + std::to_string(it + 1) +
                             " iterations (" + std::to_string(change.n_changed) +

@@ -86,6 +86,10 @@ namespace clearjoint::fe
     {
       same_displacement, ///< u_{n+1} = u_n
       same_acceleration, ///< a_{n+1} = a_n: u_{n+1} = u_n + Δt v_n + Δt²/2 a_n
+      /// Newmark's ũ = u_n + Δt v_n + Δt²(½ − β) a_n: the part of u_{n+1} known before
+      /// a_{n+1} (u_{n+1} = ũ + βΔt² a_{n+1}); the impact study's step starts there and builds
+      /// its known load c_m M ũ from it.
+      newmark,
     };
 
     /// α ∈ [−1/3, 0], else an InputError naming `key_path` (e.g. "time.alpha") and the range.
@@ -117,6 +121,11 @@ namespace clearjoint::fe
         {
           hht_detail::axpy(u_new, dt, v_n);
           hht_detail::axpy(u_new, 0.5 * dt * dt, a_n);
+        }
+      else if (p == Predictor::newmark)
+        {
+          hht_detail::axpy(u_new, dt, v_n);
+          hht_detail::axpy(u_new, dt * dt * (0.5 - beta_), a_n);
         }
     }
 

@@ -16,13 +16,15 @@
 //      mass m_J, one unknown δ): m_J δ̈_{n+1} + (1+α)F_{n+1} − αF_n = 0, F the contact force.
 //      For a given journal position δ the bearing's step is a contact solve (solve_increment);
 //      g(δ) = m_J c_m (δ − δ̂) + (1+α)F_{n+1}(δ) − αF_n increases with δ, so the position is
-//      found by regula falsi (Illinois) on a bracket that always exists: [δ̂ − g(δ̂)/(m_J c_m),
-//      δ̂] (F ≥ 0 and grows with δ). A step that fails is halved (at most loading.max_cuts
-//      times), state restored, as the quasi-static increments are; Δt grows back after four
-//      easy steps.
+//      found by regula falsi (Illinois, solve/root_finder.h) on a bracket that always exists:
+//      [δ̂ − g(δ̂)/(m_J c_m), δ̂] (F ≥ 0 and grows with δ). A step that fails is halved, state
+//      restored (solve/step_controller.h: at most loading.max_cuts times a step, never below
+//      the nominal Δt halved as often); Δt grows back after four easy steps.
 //   3. the run stops when the journal has left the bearing (out of contact for T_c/10 after
 //      contact, moving away) or at the end time.
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/solve/root_finder.h"
+#include "fe_stage/solve/step_controller.h"
 
 namespace clearjoint::fe::detail
 {
@@ -61,7 +63,9 @@ namespace clearjoint::fe::detail
     result.setup_time = elapsed();
     S.velocity_in = I.velocity;
     S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, below
-    S.alpha = I.alpha;
+    // HHT-α's α, β, γ (α checked against its range here, before the static curve's cost)
+    const HhtAlpha hht(I.alpha, "impact.alpha", scene_.source_file);
+    S.alpha = hht.alpha();
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
     const double m_J = S.journal_mass;
     if (rank_ == 0)
@@ -117,8 +121,10 @@ namespace clearjoint::fe::detail
     S.contact_period = 2.0 * numbers::PI * std::sqrt(m_J / S.contact_stiffness);
     const double dt_nominal =
       I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
+    // Δt: halved on failure, carried over after cuts, doubled back after four easy steps (as
+    // Abaqus/Standard's automatic incrementation)
+    StepController control(dt_nominal, L.max_cuts, 4);
     double dt = dt_nominal;
-    unsigned int easy_steps = 0;  // converged without a cut since the last change of Δt
     S.time_step = dt;
     const double t_end = I.end_time > 0.0 ? I.end_time : 4.0 * S.contact_period;
     if (rank_ == 0)
@@ -136,8 +142,16 @@ namespace clearjoint::fe::detail
         journal_driven_ = false;
         prepare_mesh();
       }
-    const HhtAlpha hht(I.alpha, "impact.alpha", scene_.source_file);
+    // the operator c_m M + (1+α)K is assembled for one Δt: again whenever Δt changes
+    double dt_operator = dt;
     set_dynamic_operator(hht.coefficients(dt));
+    const auto operator_for = [&](const double dt_new) {
+      if (dt_new != dt_operator)
+        {
+          set_dynamic_operator(hht.coefficients(dt_new));
+          dt_operator = dt_new;
+        }
+    };
     start_from_rest();
     TrilinosWrappers::MPI::Vector u(owned_, comm_), v(owned_, comm_), a(owned_, comm_),
       lambda(owned_, comm_), u_new(owned_, comm_), v_new(owned_, comm_), a_new(owned_, comm_),
@@ -214,13 +228,11 @@ namespace clearjoint::fe::detail
         DynamicStepRecord rec;
         rec.step = step + 1;
         // a given end time is reached exactly: the last step is shortened to it
+        dt = control.begin_step();
         if (I.end_time > 0.0 && t + dt > t_end * (1.0 + 1e-12))
-          {
-            dt = t_end - t;
-            set_dynamic_operator(hht.coefficients(dt));
-          }
-        const TrilinosWrappers::MPI::Vector saved = u;
-        const std::vector<ContactNode> saved_nodes = nodes_;
+          dt = control.begin_step(t_end - t);
+        operator_for(dt);
+        const Snapshot saved{u, nodes_, n_sliding_rebuilds_};  // the converged state
         IncrementRecord inc;
         double d_new = 0.0;
         for (;;)
@@ -229,16 +241,16 @@ namespace clearjoint::fe::detail
               {
                 const double c_m = hht.coefficients(dt).mass;
                 // the predictor û and the known part b = c_m M û + α(K u_n − λ_n)
-                TrilinosWrappers::MPI::Vector u_hat = u;
-                u_hat.add(dt, v);
-                u_hat.add(dt * dt * (0.5 - hht.beta()), a);
+                TrilinosWrappers::MPI::Vector u_hat(owned_, comm_);
+                hht.predict(u, v, a, dt, u_hat, HhtAlpha::Predictor::newmark);
                 M_.vmult(dynamic_load_, u_hat);
                 dynamic_load_ *= c_m;
                 K_elastic_.vmult(tmp, u);
                 tmp -= lambda;
-                dynamic_load_.add(I.alpha, tmp);
+                dynamic_load_.add(hht.alpha(), tmp);
                 set_contact_load_offsets();  // the friction rows read the traction K u − b
-                const double d_hat = d + dt * d_rate + dt * dt * (0.5 - hht.beta()) * d_acc;
+                double d_hat = 0.0;
+                hht.predict(d, d_rate, d_acc, dt, d_hat, HhtAlpha::Predictor::newmark);
                 solution_owned_ = u_hat;
                 solution_ = solution_owned_;
                 if (deformable)
@@ -250,77 +262,44 @@ namespace clearjoint::fe::detail
                     rec.journal_iterations = 1;
                     break;
                   }
-                // g(δ) = m_J c_m (δ − δ̂) + (1+α)F(δ) − αF_n, F from the contact solve
-                unsigned int evaluations = 0;
-                auto g_of = [&](const double delta) {
+                // g(δ) = m_J c_m (δ − δ̂) + (1+α)F(δ) − αF_n, F from the contact solve; to
+                // 1e-9 of this step's force scale max(g(δ̂), m_J c_m 10⁻³ δ_max) (the linear
+                // solves hold the contact force to ~1e-10). From δ̂ (g ≥ 0 there), the second
+                // point the step with g's known slope part m_J c_m ≤ g's slope: a bracket.
+                auto g = [&](const double delta) {
                   inc = solve_increment(delta);
-                  ++evaluations;
                   rec.contact_iterations += inc.contact_iterations;
                   rec.linear_iterations += inc.linear_iterations;
-                  return m_J * c_m * (delta - d_hat) + inc.force - I.alpha * F;
+                  return m_J * c_m * (delta - d_hat) + inc.force - hht.alpha() * F;
                 };
-                double hi = d_hat, g_hi = g_of(hi);
-                d_new = hi;
-                // the force scale of this step: tolerance 1e-9 of it (the linear solves hold
-                // the contact force to ~1e-10)
-                const double tol = 1e-9 * std::max(g_hi, m_J * c_m * 1e-3 * L.delta_max);
-                if (g_hi > tol)
-                  {
-                    double lo = d_hat - g_hi / (m_J * c_m), g_lo = g_of(lo);
-                    d_new = lo;
-                    // Illinois: the end that stays twice in a row has its value halved
-                    int side = 0;
-                    bool converged = std::abs(g_lo) <= tol;
-                    while (!converged)
-                      {
-                        if (evaluations >= 60)
-                          throw StepFailure{"the journal's position did not converge in 60 "
-                                            "contact solves (bracket " + format_value(lo) +
-                                            " .. " + format_value(hi) + " m)"};
-                        const double x = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-                        const double gx = g_of(x);
-                        d_new = x;
-                        converged = std::abs(gx) <= tol;
-                        if (gx > 0.0)
-                          {
-                            hi = x, g_hi = gx;
-                            if (side == 1)
-                              g_lo *= 0.5;
-                            side = 1;
-                          }
-                        else
-                          {
-                            lo = x, g_lo = gx;
-                            if (side == -1)
-                              g_hi *= 0.5;
-                            side = -1;
-                          }
-                      }
-                    // the last evaluation (d_new) is the converged state
-                  }
-                rec.journal_iterations = evaluations;
+                IncreasingRoot position{g, 1e-9, 0.0, 60, "the journal's position"};
+                position.g_scale_from_first = true;
+                position.g_scale_floor = m_J * c_m * 1e-3 * L.delta_max;
+                const RootResult root = solve_increasing_from(position, d_hat, m_J * c_m);
+                if (!root.converged)
+                  throw StepFailure{root.message};
+                d_new = root.x;  // the last evaluation: the model's state is this one
+                rec.journal_iterations = root.evaluations;
                 break;
               }
             catch (const StepFailure &f)
               {
-                u = saved;
-                solution_owned_ = u;
-                solution_ = solution_owned_;
-                nodes_ = saved_nodes;
-                if (rec.cuts >= L.max_cuts)
+                restore_state(saved);
+                if (!control.cut())
                   {
                     result.message = "time step " + std::to_string(step + 1) + " at t = " +
                                      format_value(t) + " s failed after " +
-                                     std::to_string(rec.cuts) + " cuts: " + f.reason;
+                                     std::to_string(control.cuts()) + " cuts" +
+                                     control.floor_note("s") + ": " + f.reason;
                     if (rank_ == 0)
                       log::error("fe_stage: " + result.message);
                     result.wall_time = elapsed();
                     result.field_files = field_files_;
                     return result;
                   }
-                ++rec.cuts;
-                dt *= 0.5;
-                set_dynamic_operator(hht.coefficients(dt));
+                rec.cuts = control.cuts();
+                dt = control.size();
+                operator_for(dt);
                 if (rank_ == 0)
                   log::warning("fe_stage: time step " + std::to_string(step + 1) +
                                " failed (" + f.reason + "); retrying with dt " +
@@ -331,8 +310,8 @@ namespace clearjoint::fe::detail
         u_new = solution_owned_;
         hht.update_rates(u_new, u, v, a, dt, v_new, a_new);
         lambda_new = residual_owned_;  // (1+α)λ_{n+1} at the constrained DoFs
-        lambda_new *= 1.0 / (1.0 + I.alpha);
-        const double F_new = inc.force / (1.0 + I.alpha);
+        lambda_new *= 1.0 / hht.weight_new();
+        const double F_new = inc.force / hht.weight_new();
         double d_rate_new = 0.0, d_acc_new = 0.0;
         if (deformable)
           {
@@ -370,23 +349,18 @@ namespace clearjoint::fe::detail
         for (auto &cn : nodes_)
           cn.relative_converged = cn.relative;
         // after a cut, Δt grows back (doubling, up to its nominal value) once four steps in a
-        // row have converged without one, as Abaqus/Standard's automatic incrementation does
+        // row have converged without one
         const double dt_step = dt;
-        if (rec.cuts > 0)
-          easy_steps = 0;
-        else if (dt < dt_nominal && ++easy_steps >= 4)
-          {
-            dt = std::min(2.0 * dt, dt_nominal);
-            set_dynamic_operator(hht.coefficients(dt));
-            easy_steps = 0;
-          }
+        control.accept();
+        dt = control.next_size();
+        operator_for(dt);
 
         rec.time = t;
         rec.time_step = dt_step;
         rec.delta = d;
         rec.delta_rate = d_rate;
         rec.force = F;
-        rec.force_support = inc.force_support / (1.0 + I.alpha);
+        rec.force_support = inc.force_support / hht.weight_new();
         rec.kinetic_journal = kinetic_j;
         rec.kinetic_bearing = kinetic_b;
         rec.strain_bearing = strain;

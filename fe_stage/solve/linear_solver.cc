@@ -1,41 +1,70 @@
 // Linear solves: KLU below a size, else CG (GMRES when friction makes A non-symmetric) with ML AMG
 // on the six rigid-body modes, reused while it stays effective.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/solve/linear_solver.h"
+
+#include "fe_stage/core/scoped_timer.h"
+#include "fe_stage/core/step_failure.h"
+
+#include "common/error.h"
+
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <Epetra_Map.h>
+#include <Teuchos_ParameterList.hpp>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
-  void ContactModel::build_amg()
+  void SystemSolver::configure(const bool direct, const double tolerance,
+                               const unsigned int max_iterations)
+  {
+    direct_ = direct;
+    tolerance_ = tolerance;
+    max_iterations_ = max_iterations;
+  }
+
+  void SystemSolver::build_amg(const TrilinosWrappers::SparseMatrix &A,
+                               const DoFHandler<dim> &dofs, const Mapping<dim> &mapping)
   {
     ScopedTimer timer(t_amg_);
+    const auto &fe = dofs.get_fe();
+    const IndexSet &owned = dofs.locally_owned_dofs();
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic = true;
-    data.higher_order_elements = fe_->degree > 1;
+    data.higher_order_elements = fe.degree > 1;
     data.smoother_sweeps = 2;
     data.aggregation_threshold = 0.02;
     data.n_cycles = 1;
     data.w_cycle = false;
     Teuchos::ParameterList list;
     std::unique_ptr<Epetra_MultiVector> translation_modes;
-    data.set_parameters(list, translation_modes, A_);
+    data.set_parameters(list, translation_modes, A);
 
     // All six rigid-body modes (SPEC §5: with only the translations ML needs ~3x the
     // iterations). deal.II 9.4 passes only translations, so they go in through ML's list.
     std::map<types::global_dof_index, Point<dim>> support;
-    DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
-    const Epetra_Map &map = A_.trilinos_matrix().DomainMap();
+    DoFTools::map_dofs_to_support_points(mapping, dofs, support);
+    const Epetra_Map &map = A.trilinos_matrix().DomainMap();
     null_space_ = std::make_unique<Epetra_MultiVector>(map, 6);
-    std::vector<std::pair<types::global_dof_index, unsigned int>> comp(owned_.n_elements());
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            if (owned_.is_element(dofs[i]))
+          std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+          cell->get_dof_indices(cell_dofs);
+          for (unsigned int i = 0; i < cell_dofs.size(); ++i)
+            if (owned.is_element(cell_dofs[i]))
               {
-                const unsigned int local = owned_.index_within_set(dofs[i]);
-                const unsigned int c = fe_->system_to_component_index(i).first;
-                const Point<dim> &x = support.at(dofs[i]);
+                const unsigned int local = owned.index_within_set(cell_dofs[i]);
+                const unsigned int c = fe.system_to_component_index(i).first;
+                const Point<dim> &x = support.at(cell_dofs[i]);
                 for (unsigned int m = 0; m < 6; ++m)
                   (*null_space_)[m][local] = 0.0;
                 (*null_space_)[c][local] = 1.0;
@@ -61,25 +90,27 @@ namespace clearjoint::fe::detail
     list.set("null space: dimension", 6);
     list.set("null space: vectors", null_space_->Values());
     amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-    amg_->initialize(A_, list);
+    amg_->initialize(A, list);
     amg_reference_iterations_ = 0;
   }
 
-  unsigned int ContactModel::solve_linear(TrilinosWrappers::MPI::Vector &x,
-                                          const TrilinosWrappers::MPI::Vector &b,
-                                          const double relative_tolerance)
+  unsigned int SystemSolver::solve(const TrilinosWrappers::SparseMatrix &A,
+                                   const bool nonsymmetric, const DoFHandler<dim> &dofs,
+                                   const Mapping<dim> &mapping, TrilinosWrappers::MPI::Vector &x,
+                                   const TrilinosWrappers::MPI::Vector &b,
+                                   const double relative_tolerance)
   {
     const double b_norm = b.l2_norm();
     if (!std::isfinite(b_norm))
       throw StepFailure{"non-finite right-hand side"};
-    if (use_direct_)
+    if (direct_)
       {
         SolverControl control(1, 0);
         TrilinosWrappers::SolverDirect::AdditionalData ad(false, "Amesos_Klu");
         TrilinosWrappers::SolverDirect direct(control, ad);
         try
           {
-            direct.solve(A_, x, b);
+            direct.solve(A, x, b);
           }
         catch (const std::exception &e)
           {
@@ -95,18 +126,18 @@ namespace clearjoint::fe::detail
     for (unsigned int attempt = 0; attempt < 2; ++attempt)
       {
         if (!amg_)
-          build_amg();
-        SolverControl control(scene_.solver.max_linear_iterations, relative_tolerance * b_norm);
+          build_amg(A, dofs, mapping);
+        SolverControl control(max_iterations_, relative_tolerance * b_norm);
         SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
         SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
           control,  // right preconditioning: the tolerance applies to the true residual
           SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100, true));
         try
           {
-            if (nonsymmetric_)
-              gmres.solve(A_, x, b, *amg_);
+            if (nonsymmetric)
+              gmres.solve(A, x, b, *amg_);
             else
-              cg.solve(A_, x, b, *amg_);
+              cg.solve(A, x, b, *amg_);
           }
         catch (const SolverControl::NoConvergence &e)
           {
@@ -115,14 +146,14 @@ namespace clearjoint::fe::detail
                 amg_.reset();  // the reused preconditioner may be stale: rebuild once
                 continue;
               }
-            throw StepFailure{std::string(nonsymmetric_ ? "GMRES" : "CG") +
+            throw StepFailure{std::string(nonsymmetric ? "GMRES" : "CG") +
                               " did not converge in " + std::to_string(e.last_step) +
                               " iterations (residual " + format_value(e.last_residual) + ")"};
           }
         const unsigned int its = control.last_step();
         // the AMG's effectiveness is judged on the solves to the scene's tolerance only (a
         // looser solve takes fewer iterations and would set too low a reference)
-        if (relative_tolerance <= scene_.solver.tolerance)
+        if (relative_tolerance <= tolerance_)
           {
             if (amg_reference_iterations_ == 0)
               amg_reference_iterations_ = std::max(1u, its);

@@ -3,12 +3,14 @@
 // yield check of the last converged state; before it, the adaptive cycles (mesh.adaptive_cycles:
 // curve, Kelly indicator, refinement) and the error estimate from their sequence.
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/solve/step_controller.h"
 
 namespace clearjoint::fe::detail
 {
   /// Pushes from δ = 0 through `targets` (increasing, the last δ_max): each target reached
   /// from the last converged state, with a linear predictor, and halved on failure up to
-  /// loading.max_cuts times (state restored). `on_converged(k, record)` is called for target
+  /// loading.max_cuts times (state restored; solve/step_controller.h, one controller per
+  /// target: the increments to a target never grow back). `on_converged(k, record)` is called for target
   /// k = 1, 2, … Returns false with `message` set when an increment fails for good.
   bool ContactModel::push_through(
     const std::vector<double> &targets, std::string &message,
@@ -22,17 +24,14 @@ namespace clearjoint::fe::detail
     for (unsigned int inc = 1; inc <= targets.size(); ++inc)
       {
         const double target = targets[inc - 1];
-        double step = target - delta_done;
-        unsigned int cuts = 0;
+        StepController control(target - delta_done, L.max_cuts, 1);
         IncrementRecord rec;
         unsigned int total_contact_its = 0, total_linear_its = 0;
         while (delta_done < target)
           {
-            const double try_delta = std::min(target, delta_done + step);
+            const double try_delta = std::min(target, delta_done + control.size());
             // keep what converged so far, to restore after a failed attempt
-            const TrilinosWrappers::MPI::Vector saved = solution_owned_;
-            const std::vector<ContactNode> saved_nodes = nodes_;  // active set, friction
-            const unsigned int rebuilds_before = n_sliding_rebuilds_;
+            const Snapshot saved = save_state();
             try
               {
                 // Predictor: extrapolate the displacement linearly in δ from the last two
@@ -52,10 +51,10 @@ namespace clearjoint::fe::detail
                   }
                 rec = solve_increment(try_delta);
                 if (finite_sliding())
-                  rec = settle_sliding(try_delta, saved, rec);
+                  rec = settle_sliding(try_delta, saved.u, rec);
                 for (auto &cn : nodes_)
                   cn.relative_converged = cn.relative;  // friction: slip counts from here
-                solution_previous = saved;
+                solution_previous = saved.u;
                 delta_previous = delta_done;
                 have_previous = true;
                 total_contact_its += rec.contact_iterations;
@@ -64,28 +63,20 @@ namespace clearjoint::fe::detail
               }
             catch (const StepFailure &f)
               {
-                solution_owned_ = saved;
-                solution_ = solution_owned_;
-                nodes_ = saved_nodes;
-                // finite sliding rebuilt the pattern for couplings of this attempt: pair the
-                // restored state again so that the pattern holds its partners
-                if (n_sliding_rebuilds_ != rebuilds_before)
-                  follow_sliding(saved, true);
-                if (cuts >= L.max_cuts)
+                restore_state(saved);
+                if (!control.cut())
                   {
                     message = "increment " + std::to_string(inc) + " to delta = " +
                               format_value(try_delta) + " m failed after " +
-                              std::to_string(cuts) + " cuts: " + f.reason;
+                              std::to_string(control.cuts()) + " cuts: " + f.reason;
                     if (rank_ == 0)
                       log::error("fe_stage: " + message);
                     return false;
                   }
-                ++cuts;
-                step *= 0.5;
                 if (rank_ == 0)
                   log::warning("fe_stage: increment " + std::to_string(inc) + " to delta = " +
                                format_value(try_delta) + " m failed (" + f.reason +
-                               "); retrying with step " + format_value(step) + " m");
+                               "); retrying with step " + format_value(control.size()) + " m");
               }
           }
         rec.contact_iterations = total_contact_its;
@@ -93,6 +84,18 @@ namespace clearjoint::fe::detail
         on_converged(inc, rec);
       }
     return true;
+  }
+
+  void ContactModel::restore_state(const Snapshot &s)
+  {
+    solution_owned_ = s.u;
+    solution_ = solution_owned_;
+    nodes_ = s.nodes;
+    // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
+    // restored state again so that the pattern holds its partners (the rolling study's turning
+    // journal, not finite sliding, searches again at its next evaluation anyway)
+    if (finite_sliding() && n_sliding_rebuilds_ != s.sliding_rebuilds)
+      follow_sliding(s.u, true);
   }
 
   /// Finite sliding: the mortar search again at the converged surfaces, and the increment
@@ -141,7 +144,7 @@ namespace clearjoint::fe::detail
         return h;
       }(),
       comm_);
-    amg_.reset();  // built for the previous mesh's matrix
+    solver_.invalidate();  // its AMG was built for the previous mesh's matrix
     setup_system();
     find_contact_nodes();
     make_matrices();
@@ -256,7 +259,7 @@ namespace clearjoint::fe::detail
       log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
                 " contact candidate nodes, " + std::to_string(contact_cell_matrices_.size()) +
-                " contact cells (rank 0), " + (use_direct_ ? "direct" : "CG+AMG") +
+                " contact cells (rank 0), " + (solver_.direct() ? "direct" : "CG+AMG") +
                 " solver, setup " + log::format_duration(result.setup_time));
 
     if (fields)
@@ -365,7 +368,7 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log::info("fe_stage: time in contact assembly " + log::format_duration(t_assemble_) +
                 ", linear solves " + log::format_duration(t_solve_) + " (of which AMG setup " +
-                log::format_duration(t_amg_) + "), contact evaluation " +
+                log::format_duration(solver_.amg_setup_time()) + "), contact evaluation " +
                 log::format_duration(t_evaluate_));
     result.field_files = field_files_;
     if (rank_ == 0 && fields)

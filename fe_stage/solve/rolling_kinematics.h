@@ -1,7 +1,7 @@
 // The rolling study's kinematics (paper §3.4), no deal.II: the prescribed motion (the bearing's
 // spin φ = ω_B t, the journal's push δ(t)), the co-rotating frame in which the bearing is
-// computed, the rigid journal's surface motion seen from that frame, the paper's Eqs. 4–8, the
-// slip stages, and the bracketed root finder of the journal's torque balance. Unit-tested in
+// computed, the rigid journal's surface motion seen from that frame, the paper's Eqs. 4–8 and the
+// slip stages (the torque balance's root finder is solve/root_finder.h). Unit-tested in
 // tests/unit/fe/rolling_kinematics_test.cc.
 //
 // Frame: the fixed frame has the axes of SPEC §2 (bearing axis z, push along −y). The bearing
@@ -11,7 +11,6 @@
 #pragma once
 
 #include <array>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -79,26 +78,4 @@ namespace clearjoint::fe::rolling
   SlipStages slip_stages(const std::vector<double> &t, const std::vector<double> &v,
                          double fall_fraction = 0.5, double settle_band = 0.05);
 
-  /// The root of an increasing function g on the real line, bracketed first (from a and b,
-  /// widening geometrically, at most `max_evaluations` calls in all) then found by the Illinois
-  /// variant of regula falsi, until |g| ≤ g_tolerance or the bracket is narrower than
-  /// x_tolerance. Every g call is counted; a failure (no bracket, no convergence within the
-  /// budget) gives converged = false with the reason.
-  struct RootResult
-  {
-    bool converged = false;
-    double x = 0.0, g = 0.0;    // the last evaluation
-    double slope = 0.0;         // the secant slope of the last two evaluations (0: one only)
-    unsigned int evaluations = 0;
-    std::string message;
-  };
-  RootResult solve_increasing(const std::function<double(double)> &g, double a, double b,
-                              double g_tolerance, double x_tolerance,
-                              unsigned int max_evaluations);
-  /// The same from one point x0 and a guess of g's slope there (> 0; the last solve's
-  /// `slope` when g changes little between calls): the second point is the Newton step
-  /// x0 − g(x0)/slope_guess, then as above.
-  RootResult solve_increasing_from(const std::function<double(double)> &g, double x0,
-                                   double slope_guess, double g_tolerance, double x_tolerance,
-                                   unsigned int max_evaluations);
 } // namespace clearjoint::fe::rolling

@@ -7,6 +7,8 @@
 // each an active-set contact solve with Coulomb friction. A step that fails is halved
 // (loading.max_cuts times); what converged is kept.
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/solve/root_finder.h"
+#include "fe_stage/solve/step_controller.h"
 
 #include <cmath>
 
@@ -183,20 +185,16 @@ namespace clearjoint::fe::detail
     const double wall_steps_start = elapsed();
     unsigned int step = 0;
     // the step size carries over: a step that needed cuts starts the next one at its own size,
-    // which doubles (up to the nominal) after two steps without a cut (as the impact study)
-    double dt_try = dt_nominal;
-    const double dt_floor = std::ldexp(dt_nominal, -static_cast<int>(L.max_cuts));
-    unsigned int easy_steps = 0;
+    // which doubles (up to the nominal) after two steps without a cut
+    StepController control(dt_nominal, L.max_cuts, 2);
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
     for (; t < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
       {
-        double dt = std::min(dt_try, t_end - t);
-        unsigned int cuts = 0;
+        double dt = control.begin_step(t_end - t);
         RollingSolve rs;
         unsigned int spin_evaluations = 0;
         double rate_new = gamma_rate;
-        const TrilinosWrappers::MPI::Vector saved = solution_owned_;
-        const std::vector<ContactNode> saved_nodes = nodes_;
+        const Snapshot saved = save_state();
         bool predict_in_time = true;
         for (;;)
           {
@@ -246,7 +244,7 @@ namespace clearjoint::fe::detail
                   if (n_evaluated == 0 && have_previous && predict_in_time)
                     {
                       predicted_in_time = true;
-                      start_from(saved, u_previous_step, dt / dt_previous);
+                      start_from(saved.u, u_previous_step, dt / dt_previous);
                     }
                   if (n_evaluated >= 2 && rate != rate_last && rate_last != rate_before &&
                       std::abs(rate - rate_last) <= 2.0 * std::abs(rate_last - rate_before))
@@ -260,7 +258,7 @@ namespace clearjoint::fe::detail
                   if (rolling_deformable_journal())
                     {
                       ScopedTimer timer(t_journal_search);
-                      follow_sliding(saved);
+                      follow_sliding(saved.u);
                       ++n_journal_searches;
                     }
                   if (log::level() <= log::Level::debug && rank_ == 0)
@@ -295,12 +293,12 @@ namespace clearjoint::fe::detail
                 const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
                 const double slope_guess =
                   torque_scale > 0.0 ? (inertia / dt - torque_rate_slope) / torque_scale : 0.0;
+                const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, R.max_spin_iterations,
+                                             "the journal's torque balance"};
                 const auto root =
                   rolling_already && torque_rate_slope < 0.0 && std::isfinite(slope_guess)
-                    ? rolling::solve_increasing_from(g, a, slope_guess, 1e-6, 1e-10 * roll,
-                                                     R.max_spin_iterations)
-                    : rolling::solve_increasing(g, a, rolling_already ? a + 2e-4 * roll : roll,
-                                                1e-6, 1e-10 * roll, R.max_spin_iterations);
+                    ? solve_increasing_from(balance, a, slope_guess)
+                    : solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
                 spin_evaluations = root.evaluations;
                 if (!root.converged)
                   throw StepFailure{root.message};
@@ -314,9 +312,7 @@ namespace clearjoint::fe::detail
               }
             catch (const StepFailure &f)
               {
-                solution_owned_ = saved;
-                solution_ = solution_owned_;
-                nodes_ = saved_nodes;
+                restore_state(saved);
                 if (predicted_in_time)
                   {
                     predict_in_time = false;
@@ -326,26 +322,18 @@ namespace clearjoint::fe::detail
                                  "); again from the last state");
                     continue;
                   }
-                // The step size carries over from step to step, so the cuts of one step alone
-                // do not bound it: the nominal step halved max_cuts times is the floor too (a
-                // step that keeps failing would otherwise shrink without end, t + Δt → t)
-                const bool at_floor = 0.5 * dt < dt_floor;
-                if (cuts >= L.max_cuts || at_floor)
+                // (the step controller's floor: a step that keeps failing would otherwise
+                // shrink without end, t + Δt → t)
+                if (!control.cut())
                   {
                     result.message = "time step to t = " + format_value(t + dt) +
-                                     " s failed after " + std::to_string(cuts) + " cuts" +
-                                     (at_floor ? " (a shorter step than the nominal " +
-                                                   format_value(dt_nominal) + " s halved " +
-                                                   std::to_string(L.max_cuts) +
-                                                   " times, loading.max_cuts, is not tried)" :
-                                                 std::string()) +
-                                     ": " + f.reason;
+                                     " s failed after " + std::to_string(control.cuts()) +
+                                     " cuts" + control.floor_note("s") + ": " + f.reason;
                     if (rank_ == 0)
                       log::error("fe_stage: " + result.message);
                     break;
                   }
-                ++cuts;
-                dt *= 0.5;
+                dt = control.size();
                 if (rank_ == 0)
                   log::warning("fe_stage: time step to t = " + format_value(t + 2 * dt) +
                                " s failed (" + f.reason + "); retrying with dt " +
@@ -476,7 +464,7 @@ namespace clearjoint::fe::detail
         rec.newton_iterations = rs.newton_iterations;
         rec.contact_iterations = rs.contact_iterations;
         rec.linear_iterations = rs.linear_iterations;
-        rec.cuts = cuts;
+        rec.cuts = control.cuts();
         // paper Eqs. 4–8: N_B at X0 = (0, −R_B, 0), N_J the journal point under it at t = 0
         const Vec3 X0{0.0, -G.R_B, 0.0};
         const Vec3 xB = rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0},
@@ -494,13 +482,10 @@ namespace clearjoint::fe::detail
         gamma = rec.gamma;
         gamma_rate = rate_new;
         t = t1;
-        u_previous_step = saved;
+        u_previous_step = saved.u;
         dt_previous = dt;
         have_previous = true;
-        if (cuts > 0)
-          dt_try = dt, easy_steps = 0;
-        else if (++easy_steps >= 2 && dt_try < dt_nominal)
-          dt_try = std::min(dt_nominal, 2.0 * dt_try), easy_steps = 0;
+        control.accept();
         times.push_back(t);
         slips.push_back(rec.slip_speed);
         result.rolling_steps.push_back(rec);
@@ -525,7 +510,7 @@ namespace clearjoint::fe::detail
                       format_value(rec.max_plastic_strain) + ", " +
                       std::to_string(rec.spin_iterations) + " spin / " +
                       std::to_string(rec.contact_iterations) + " contact iterations" +
-                      (cuts ? ", " + std::to_string(cuts) + " cuts" : "") + ", ETA " +
+                      (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") + ", ETA " +
                       log::format_duration(per_second * (t_end - t)));
           }
         if (options_.on_increment)

@@ -434,3 +434,24 @@ TEST(Hht, DealIiStyleVectorGivesTheSameUpdate)
   EXPECT_LE((a1 - a1_ref).norm(), 1e-9 * a1_ref.norm());
   EXPECT_LE((v1 - (v0 + dt * ((1 - h.gamma()) * a0 + h.gamma() * a1_ref))).norm(), 1e-12 * v1.norm());
 }
+
+// Newmark's predictor ũ (the impact study's start and known load): u_{n+1} = ũ + βΔt² a_{n+1},
+// so the rates computed from ũ + βΔt² a give back that acceleration, for a vector and for the
+// rigid journal's scalar δ.
+TEST(Hht, NewmarkPredictorIsThePartOfTheNewDisplacementKnownBeforeItsAcceleration)
+{
+  const HhtAlpha h(-0.05);
+  const double   dt = 2e-6, b = h.beta();
+  VectorXd       u0(2), v0(2), a0(2), a_new(2), ut, v1, a1;
+  u0 << 1e-6, -2e-6;
+  v0 << 0.1, -0.05;
+  a0 << 3e3, 1e2;
+  a_new << -4e3, 7e2;
+  h.predict(u0, v0, a0, dt, ut, HhtAlpha::Predictor::newmark);
+  EXPECT_LE((ut - (u0 + dt * v0 + dt * dt * (0.5 - b) * a0)).norm(), 1e-15 * u0.norm());
+  h.update_rates(VectorXd(ut + b * dt * dt * a_new), u0, v0, a0, dt, v1, a1);
+  EXPECT_LE((a1 - a_new).norm(), 1e-6 * a_new.norm());  // round-off of 1/(βΔt²) ≈ 1e12
+  double d_tilde = 0.0;
+  h.predict(1e-6, 0.1, 3e3, dt, d_tilde, HhtAlpha::Predictor::newmark);
+  EXPECT_DOUBLE_EQ(d_tilde, 1e-6 + dt * 0.1 + dt * dt * (0.5 - b) * 3e3);
+}

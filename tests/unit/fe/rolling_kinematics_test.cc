@@ -1,7 +1,7 @@
 // The rolling study's kinematics (fe_stage/solve/rolling_kinematics.h) against closed forms:
 // the co-rotating frame, the rigid journal's surface motion (zero for rolling without slip at
 // the contact point), the paper's Eqs. 4–6 against the exact angle, the slip stages on a
-// synthetic speed history, and the bracketed root finder's convergence and failure messages.
+// synthetic speed history.
 #include "fe_stage/solve/rolling_kinematics.h"
 
 #include <gtest/gtest.h>
@@ -112,52 +112,6 @@ TEST(RollingKinematics, SlipStagesOnASyntheticHistory)
   // (before, both stages were reported at the last sample)
   EXPECT_FALSE(slip_stages({0.0, 1.0, 2.0, 3.0}, {0.0, 0.2, 0.25, 0.3}).found);
   EXPECT_FALSE(slip_stages({0.0, 1.0, 2.0, 3.0}, {0.0, 0.3, 0.2, 0.25}).found);  // wanders
-}
-
-TEST(RollingKinematics, RootFinder)
-{
-  // an increasing cubic with its root outside the first bracket
-  const auto g = [](double x) { return x * x * x + x - 30.0; };  // root 3
-  const RootResult r = solve_increasing(g, 0.0, 1.0, 1e-12, 1e-14, 100);
-  ASSERT_TRUE(r.converged) << r.message;
-  EXPECT_NEAR(r.x, 3.0, 1e-12);
-  EXPECT_LE(std::abs(r.g), 1e-12);
-  EXPECT_LT(r.evaluations, 40u);  // bracket in ~3 doublings, Illinois superlinear after
-  // the root below the bracket
-  const RootResult lo = solve_increasing([](double x) { return x + 5.0; }, 0.0, 1.0, 1e-12,
-                                         1e-14, 100);
-  ASSERT_TRUE(lo.converged);
-  EXPECT_NEAR(lo.x, -5.0, 1e-12);
-  // no root: a failure that says so, within the budget
-  const RootResult none = solve_increasing([](double) { return 1.0; }, 0.0, 1.0, 1e-12,
-                                           1e-14, 20);
-  EXPECT_FALSE(none.converged);
-  EXPECT_LE(none.evaluations, 20u);
-  EXPECT_NE(none.message.find("no sign change"), std::string::npos);
-  // a root a little outside a narrow bracket (the journal's spin from one step to the next):
-  // the secant's step (capped at 10 widths) brackets a near-linear g in one step out, then
-  // regula falsi: 7 evaluations; doubling the width took 9 (three steps out)
-  const RootResult near = solve_increasing([](double x) { return x - 10.0 + 1e-3 * x * x; },
-                                           9.0, 9.1, 1e-10, 1e-14, 100);
-  ASSERT_TRUE(near.converged) << near.message;
-  EXPECT_NEAR(near.x, (-1.0 + std::sqrt(1.0 + 4e-2)) / 2e-3, 1e-9);
-  EXPECT_LE(near.evaluations, 7u);
-  // from one point and the slope there: the Newton step lands next to the root of a
-  // near-linear g, the reported slope is g's near the root, and a wrong slope guess (ten
-  // times too steep or too flat) still ends at the root through the bracket
-  const auto gq = [](double x) { return x - 10.0 + 1e-3 * x * x; };
-  const double root = (-1.0 + std::sqrt(1.0 + 4e-2)) / 2e-3;
-  const RootResult from = solve_increasing_from(gq, 9.0, 1.018, 1e-10, 1e-14, 100);
-  ASSERT_TRUE(from.converged) << from.message;
-  EXPECT_NEAR(from.x, root, 1e-9);
-  EXPECT_LT(from.evaluations, near.evaluations);
-  EXPECT_NEAR(from.slope, 1.0 + 2e-3 * root, 1e-3);  // secant of the last two: g'(root)
-  for (const double guess : {10.18, 0.1018})
-    {
-      const RootResult off = solve_increasing_from(gq, 9.0, guess, 1e-10, 1e-14, 100);
-      ASSERT_TRUE(off.converged) << off.message;
-      EXPECT_NEAR(off.x, root, 1e-9);
-    }
 }
 
 TEST(RollingKinematics, RigidSpinGivesNoStrainInTheCoRotatingFrame)

@@ -1,0 +1,61 @@
+// The linear solver (SystemSolver) of the contact model's systems: KLU below a size, else CG (GMRES where
+// friction makes the operator non-symmetric) preconditioned by ML's AMG on the six rigid-body
+// modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
+// (invalidate()), again when a solve fails with the reused one, and when a solve to the full
+// tolerance takes more than twice the first one's iterations (+10) — reuse only while it stays
+// effective.
+#pragma once
+
+#include "fe_stage/core/dim.h"
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <Epetra_MultiVector.h>
+
+#include <memory>
+
+namespace clearjoint::fe::detail
+{
+  using namespace dealii;
+
+  class SystemSolver
+  {
+  public:
+    /// What it solves with: KLU (`direct`), else the Krylov method to `tolerance` × |b| at
+    /// most (the scene's solver.tolerance: the AMG's effectiveness is judged on such solves)
+    /// within `max_iterations`.
+    void configure(bool direct, double tolerance, unsigned int max_iterations);
+    bool direct() const { return direct_; }
+
+    /// The operator changed its pattern or the mesh changed: the AMG is built again at the
+    /// next solve.
+    void invalidate() { amg_.reset(); }
+
+    /// Solves A x = b to `relative_tolerance` × |b| (x: the start, then the solution); returns
+    /// the Krylov iterations (1 for KLU). `dofs` and `mapping` give the rigid-body modes when
+    /// the AMG is (re)built. Throws StepFailure with the reason.
+    unsigned int solve(const TrilinosWrappers::SparseMatrix &A, bool nonsymmetric,
+                       const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
+                       TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b,
+                       double relative_tolerance);
+
+    /// [s] spent building the AMG so far.
+    double amg_setup_time() const { return t_amg_; }
+
+  private:
+    void build_amg(const TrilinosWrappers::SparseMatrix &A, const DoFHandler<dim> &dofs,
+                   const Mapping<dim> &mapping);
+
+    bool direct_ = false;
+    double tolerance_ = 1e-10;
+    unsigned int max_iterations_ = 1000;
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
+    std::unique_ptr<Epetra_MultiVector> null_space_;  // the AMG reads it: kept alive with it
+    unsigned int amg_reference_iterations_ = 0;
+    double t_amg_ = 0.0;
+  };
+} // namespace clearjoint::fe::detail
