@@ -45,9 +45,11 @@ SCENES = {
         "study: misalignment\ncontact: {mu: 0.1}\n" + COARSE +
         "loading: {journal: rigid, n_increments: 3}\nmisalignment: {theta_deg: 1.0}\n",
     "hertz":
-        "study: hertz\ncontact: {mu: 0}\nloading: {n_increments: 3}\n",
+        "study: hertz\ncontact: {mu: 0}\nloading: {n_increments: 3}\n"
+        "verification: {contact_refinements: 2}\n",
     "patch_friction":
-        "study: patch\ncontact: {mu: 0.1}\nloading: {n_increments: 2}\n",
+        "study: patch\ncontact: {mu: 0.1}\nloading: {n_increments: 2}\n"
+        "verification: {n_cells: 2, contact_refinements: 1, indenter: deformable}\n",
     "impact_rigid":
         "study: impact\ncontact: {mu: 0.1}\n" + COARSE +
         "loading: {journal: rigid}\nimpact: {velocity: 0.1, steps_per_period: 20}\n",
@@ -165,9 +167,9 @@ def main():
     if unknown:
         ap.error(f"unknown scene(s) {unknown}; valid: {list(SCENES)}")
     if a.mode == "record":
-        if os.path.exists(a.reference):
-            shutil.rmtree(a.reference)
-        for n in names:
+        for n in names:  # (only the named scenes' folders are replaced)
+            if os.path.exists(os.path.join(a.reference, n)):
+                shutil.rmtree(os.path.join(a.reference, n))
             run_scene(a.fe_stage, n, SCENES[n], os.path.join(a.reference, n), a.np)
         print(f"fe_unchanged: recorded {len(names)} scenes in {a.reference}")
         return 0

@@ -21,8 +21,7 @@ namespace clearjoint::fe
       , dof_handler_(tria_)
       , start_(std::chrono::steady_clock::now())
     {
-      const double E = scene.material.E, nu = scene.material.nu;
-      material_ = LinearElastic::from_young_poisson(E, nu);
+      material_ = make_material(scene, plan_.rolling);
       friction_ = scene.contact.mu > 0.0;
       obstacle_ = plan_.obstacle;
     }

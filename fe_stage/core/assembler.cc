@@ -26,6 +26,7 @@ namespace clearjoint::fe::detail
     if (dynamic_ && scene_.impact.mass == Impact::Mass::redistributed)
       for (const auto &cn : nodes_)
         surface_dofs.insert(cn.dofs.begin(), cn.dofs.end());
+    const LinearElastic &C = material_->elastic();
     Vector<double> cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
     const FEValuesExtractors::Vector u(0);
@@ -48,7 +49,7 @@ namespace clearjoint::fe::detail
               for (unsigned int i = 0; i < n_dofs; ++i)
                 for (unsigned int j = i; j < n_dofs; ++j)
                   cell_matrix(i, j) +=
-                    (material_.lambda * div[i] * div[j] + 2.0 * material_.mu * (eps[i] * eps[j])) * JxW;
+                    (C.lambda * div[i] * div[j] + 2.0 * C.mu * (eps[i] * eps[j])) * JxW;
             }
           for (unsigned int i = 0; i < n_dofs; ++i)
             for (unsigned int j = 0; j < i; ++j)
@@ -69,7 +70,7 @@ namespace clearjoint::fe::detail
                   }
               if (scene_.impact.mass != Impact::Mass::consistent)
                 lump_and_redistribute(cell_mass, dofs, surface_dofs);
-              K_elastic_.add(dofs, cell_matrix);
+              elastic_.K.add(dofs, cell_matrix);
               M_.add(dofs, cell_mass);
               cell_matrix *= c_k;
               cell_matrix.add(c_m, cell_mass);
@@ -91,7 +92,7 @@ namespace clearjoint::fe::detail
     K_.compress(VectorOperation::add);
     if (dynamic_)
       {
-        K_elastic_.compress(VectorOperation::add);
+        elastic_.K.compress(VectorOperation::add);
         M_.compress(VectorOperation::add);
       }
     A_static_.compress(VectorOperation::add);
@@ -196,10 +197,10 @@ namespace clearjoint::fe::detail
     for (auto *m : {&K_, &A_static_})
       *m = 0.0;
     M_.reinit(K_);  // K_'s pattern (a new setup may have changed it)
-    K_elastic_.reinit(K_);
+    elastic_.K.reinit(K_);
     dynamic_load_.reinit(owned_, comm_);
     M_ = 0.0;
-    K_elastic_ = 0.0;
+    elastic_.K = 0.0;
     rhs_static_unit_ = 0.0;
     assemble_static();
     solver_.invalidate();  // its AMG was built for the previous operator

@@ -1,21 +1,29 @@
-// The FE contact model's state and steps, shared by the files of fe_stage (deal.II, dim = 3).
-// One class, its member functions defined by concept across fe_stage/{mesh,core,contact,solve,
-// results}/ — fe_stage/README.md maps each to its file. Internal: only fe_stage's own .cc files
-// include this; everything else sees the deal.II-free façade fe_model.h.
+// The FE contact model's remaining shared state and steps (deal.II, dim = 3). Internal: only
+// fe_stage's own .cc files include this; everything else sees the deal.II-free façade
+// fe_model.h. Its member functions are defined by concept across fe_stage/{mesh,core,contact,
+// solve,results}/ (fe_stage/README.md maps each to its file).
+//
+// The class is being dissolved into objects that own their state (issue 29, FE_DESIGN §4.1).
+// Owners so far, each in its own header: the linear solver and its AMG (SystemSolver,
+// solve/linear_solver.h), the material law with its quadrature-point history (MaterialLaw,
+// material/material_law.h), the steppers' step-size policy (StepController,
+// solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's coefficients and
+// predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law (contact/coulomb_ssn.h).
 //
 // Method (docs/fe.md has the equations):
-//   - small-strain linear elasticity, FE_Q(p)^3 on hexahedra with a curved mapping MappingQ(max(2,p))
-//     and cylindrical manifolds, parallel::distributed::Triangulation, Trilinos matrices;
-//   - contact against a rigid obstacle (cylinder = the journal, sphere, plane) enforced EXACTLY
-//     at the contact nodes by a primal–dual active set (as deal.II's step-41/42): an active node
-//     gets the linearised non-penetration constraint n·u = −g0 as an AffineConstraints line on its
-//     dominant displacement component; the contact force at a node is λ = (K u)·n from the
-//     unconstrained stiffness K; a node is active next iteration iff λ − c·ĝ > c·ε. The converged
-//     solution does not depend on c;
-//   - the stiffness is constant (linear elasticity), so K and the part of the condensed matrix
-//     from cells without contact nodes are assembled once; only the cells that hold contact nodes
-//     are re-added when the active set changes; the AMG (ML, with the six rigid-body modes) is
-//     built once and reused while it stays effective.
+//   - small strain, FE_Q(p)^3 on hexahedra with a curved mapping MappingQ(max(2,p)) and
+//     cylindrical manifolds, parallel::distributed::Triangulation, Trilinos matrices; linear
+//     elastic, or J2 elastoplastic with history (the rolling study: K_ then holds the tangent,
+//     dynamic_load_ the linearisation's load);
+//   - contact enforced EXACTLY at the contact nodes by a primal–dual active set (as deal.II's
+//     step-41/42): an active node gets the linearised non-penetration constraint as an
+//     AffineConstraints line on its dominant displacement component; the contact force at a
+//     node is λ = (K u − b)·n; Coulomb friction by the semi-smooth Newton rows of
+//     contact/contact_rows.cc. Partners: a rigid obstacle, node-to-node on common rays, or dual
+//     mortar (and finite sliding). The converged solution does not depend on the
+//     complementarity constants;
+//   - quasi-static increments of δ, HHT-α time steps (impact), or the turning bearing's time
+//     steps with the journal's spin from its torque balance (rolling).
 #pragma once
 
 #include "fe_stage/contact/contact_node.h"
@@ -23,8 +31,7 @@
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
-#include "fe_stage/material/j2_plasticity.h"
-#include "fe_stage/material/linear_elastic.h"
+#include "fe_stage/material/material_law.h"
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/solve/adaptive_estimate.h"
 #include "fe_stage/solve/hht.h"
@@ -332,7 +339,9 @@ namespace clearjoint::fe::detail
     RigidObstacle obstacle_;
     double symmetry_factor_ = 1.0;
     double h_min_ = 0.0;
-    LinearElastic material_;
+    /// The bodies' law (make_material: J2 with its history for the rolling study, else
+    /// linear elastic); material_->elastic() is the law of the static operator.
+    std::unique_ptr<MaterialLaw> material_;
 
     AffineConstraints<double> hanging_constraints_; // hanging nodes only (residual condensing)
     AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports,
@@ -356,11 +365,7 @@ namespace clearjoint::fe::detail
     // Elastoplastic (study rolling): K_ holds the tangent, dynamic_load_ the linearisation's
     // load, so that K_ u − dynamic_load_ is again the constraint forces.
     bool plastic_ = false;
-    std::unique_ptr<J2Plasticity> j2_;
-    std::vector<J2History> qp_history_;  // [active_cell_index · n_q_ + q]
-    unsigned int n_q_ = 0;
-    TrilinosWrappers::SparseMatrix K_el_, A_static_el_;  // the elastic operator, kept
-    std::vector<FullMatrix<double>> contact_cell_elastic_;
+    unsigned int n_q_ = 0;  // quadrature points per cell: material_'s point = cell · n_q_ + q
     // The rolling study's pose of the rigid journal for set_obstacle_position: the frame angle
     // φ of the bearing, the journal's axis in the frame at the last converged step and now,
     // and its turn relative to the frame since then.
@@ -422,7 +427,17 @@ namespace clearjoint::fe::detail
     /// elastoplastic assembly starts from is copied again.
     void keep_elastic_operator();
     MatrixCoefficients operator_coefficients_;      // {mass 0, stiffness 1}: quasi-static
-    TrilinosWrappers::SparseMatrix M_, K_elastic_;  // mass, stiffness (unconstrained; dynamic)
+    /// The elastic operator, kept apart from K_ where K_ means something else: the dynamic
+    /// study's K (K_ holds c_m M + c_k K; assembled with it), the elastoplastic study's elastic
+    /// K, condensed static part and contact cells (every tangent assembly starts from them;
+    /// keep_elastic_operator). One cache for both.
+    struct ElasticOperator
+    {
+      TrilinosWrappers::SparseMatrix K;         // unconstrained
+      TrilinosWrappers::SparseMatrix A_static;  // condensed, cells without contact nodes
+      std::vector<FullMatrix<double>> contact_cells;
+    } elastic_;
+    TrilinosWrappers::SparseMatrix M_;  // mass (unconstrained; dynamic)
     TrilinosWrappers::MPI::Vector dynamic_load_;    // owned: the known part of the step's rhs
     TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
     TrilinosWrappers::SparseMatrix A_;              // condensed system of this iteration

@@ -1,5 +1,6 @@
-// Elastoplastic bearing (study rolling): the von Mises material of material/j2_plasticity.h at
-// every quadrature point, with its history, inside the contact model's linear machinery. Each
+// Elastoplastic bodies (study rolling): the material law with history (material/material_law.h;
+// J2 with its hardening table) at every quadrature point, inside the contact model's linear
+// machinery. Each
 // material Newton iteration linearises the internal force about the current displacement u_k,
 //     f_int(u) ≈ f_int(u_k) + K_t (u − u_k) = K_t u − b_k,   b_k = K_t u_k − f_int(u_k),
 // so the operator K_ becomes the consistent tangent K_t and b_k the known load (the slot the
@@ -11,47 +12,15 @@
 
 namespace clearjoint::fe::detail
 {
-  namespace
-  {
-    Eigen::Matrix3d to_eigen(const SymmetricTensor<2, dim> &e)
-    {
-      Eigen::Matrix3d m;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          m(i, j) = e[i][j];
-      return m;
-    }
-
-    SymmetricTensor<2, dim> to_deal(const Eigen::Matrix3d &m)
-    {
-      SymmetricTensor<2, dim> e;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = i; j < dim; ++j)
-          e[i][j] = 0.5 * (m(i, j) + m(j, i));
-      return e;
-    }
-
-    SymmetricTensor<4, dim> to_deal(const Matrix6 &C)
-    {
-      SymmetricTensor<4, dim> t;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = i; j < dim; ++j)
-          for (unsigned int k = 0; k < dim; ++k)
-            for (unsigned int l = k; l < dim; ++l)
-              t[i][j][k][l] = C(voigt_of(i, j), voigt_of(k, l));
-      return t;
-    }
-  } // namespace
-
   void ContactModel::init_plasticity()
   {
+    if (!material_->has_history())
+      throw NumericalError("fe_stage: the elastoplastic assembly needs a material law with "
+                           "history (make_material)");
     plastic_ = true;
-    j2_ = std::make_unique<J2Plasticity>(
-      scene_.material.E, scene_.material.nu,
-      hardening_table(scene_.material, scene_.source_file), "material", scene_.source_file);
     const QGauss<dim> quadrature(fe_->degree + 1);
     n_q_ = quadrature.size();
-    qp_history_.assign(std::size_t(tria_.n_active_cells()) * n_q_, J2History());
+    material_->resize(std::size_t(tria_.n_active_cells()) * n_q_);
     keep_elastic_operator();
     dynamic_load_.reinit(owned_, comm_);
     for (const auto &line : fixed_constraints_.get_lines())
@@ -64,11 +33,11 @@ namespace clearjoint::fe::detail
   /// The elastic operator, kept: every assembly starts from it.
   void ContactModel::keep_elastic_operator()
   {
-    K_el_.reinit(K_);
-    K_el_.copy_from(K_);
-    A_static_el_.reinit(A_static_);
-    A_static_el_.copy_from(A_static_);
-    contact_cell_elastic_ = contact_cell_matrices_;
+    elastic_.K.reinit(K_);
+    elastic_.K.copy_from(K_);
+    elastic_.A_static.reinit(A_static_);
+    elastic_.A_static.copy_from(A_static_);
+    elastic_.contact_cells = contact_cell_matrices_;
   }
 
   /// K_ = K_t(u), the condensed static part and the contact cells' matrices the same, and the
@@ -86,28 +55,29 @@ namespace clearjoint::fe::detail
     Vector<double> u_cell(n), b_cell(n);
     FullMatrix<double> D(n, n);
     std::vector<SymmetricTensor<2, dim>> eps(n_q_), B(n);
-    const SymmetricTensor<4, dim> C_el = to_deal(j2_->elastic_tangent());
+    const SymmetricTensor<4, dim> C_el = material_->elastic_tangent();
 
-    K_.copy_from(K_el_);
-    A_static_.copy_from(A_static_el_);
-    contact_cell_matrices_ = contact_cell_elastic_;
+    K_.copy_from(elastic_.K);
+    A_static_.copy_from(elastic_.A_static);
+    contact_cell_matrices_ = elastic_.contact_cells;
     dynamic_load_ = 0.0;
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
           fv[u].get_function_symmetric_gradients(solution_, eps);
-          J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+          const std::size_t first = std::size_t(cell->active_cell_index()) * n_q_;
           bool yields = false, has_plastic_strain = false;
-          std::vector<J2Response> resp(n_q_);
+          std::vector<MaterialResponse> resp(n_q_);
           for (unsigned int q = 0; q < n_q_; ++q)
             {
-              resp[q] = j2_->evaluate(to_eigen(eps[q]), h[q]);
-              if (!resp[q].status.converged)
+              resp[q] = material_->evaluate(first + q, eps[q]);
+              if (!resp[q].converged)
                 throw StepFailure{"the return mapping did not converge at a quadrature point"};
-              yields = yields || resp[q].plastic;
-              has_plastic_strain = has_plastic_strain || h[q].trial.alpha > 0.0;
-              info.n_plastic_points += resp[q].plastic ? 1 : 0;
+              yields = yields || resp[q].yielding;
+              has_plastic_strain =
+                has_plastic_strain || material_->equivalent_plastic_strain(first + q, true) > 0.0;
+              info.n_plastic_points += resp[q].yielding ? 1 : 0;
             }
           if (!yields && !has_plastic_strain)
             continue;  // elastic: its share of K_el and of b (zero) is already there
@@ -121,12 +91,12 @@ namespace clearjoint::fe::detail
                 B[i] = fv[u].symmetric_gradient(i, q);
               const double JxW = fv.JxW(q);
               // Σ Bᵀ C_el ε_p: the plastic strain's share of K_el u − f_int
-              const SymmetricTensor<2, dim> s_p = C_el * to_deal(h[q].trial.eps_p);
+              const SymmetricTensor<2, dim> s_p = C_el * material_->plastic_strain(first + q, true);
               for (unsigned int i = 0; i < n; ++i)
                 b_cell(i) += (B[i] * s_p) * JxW;
-              if (!resp[q].plastic)
+              if (!resp[q].yielding)
                 continue;
-              const SymmetricTensor<4, dim> dC = to_deal(resp[q].tangent) - C_el;
+              const SymmetricTensor<4, dim> dC = resp[q].tangent - C_el;
               for (unsigned int j = 0; j < n; ++j)
                 {
                   const SymmetricTensor<2, dim> dCB = dC * B[j];
@@ -168,24 +138,25 @@ namespace clearjoint::fe::detail
         {
           fv.reinit(cell);
           fv[u].get_function_symmetric_gradients(solution_, eps);
-          J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+          const std::size_t first = std::size_t(cell->active_cell_index()) * n_q_;
           double cell_plastic_volume = 0.0;
           const bool bearing = cell->material_id() == 0;
           for (unsigned int q = 0; q < n_q_; ++q)
             {
-              const J2Response r = j2_->evaluate(to_eigen(eps[q]), h[q]);
+              const std::size_t point = first + q;
+              const MaterialResponse r = material_->evaluate(point, eps[q]);
               e.plastic_work_step += r.plastic_work * fv.JxW(q);
-              h[q].commit();
-              const double elastic =
-                j2_->elastic_energy(to_eigen(eps[q]), h[q].committed) * fv.JxW(q);
+              material_->commit(point);
+              const double elastic = material_->elastic_energy(point, eps[q]) * fv.JxW(q);
               e.elastic_energy += elastic;
               if (bearing)
                 {
                   e.bearing_plastic_work_step += r.plastic_work * fv.JxW(q);
                   e.bearing_elastic_energy += elastic;
                 }
-              e.max_plastic_strain = std::max(e.max_plastic_strain, h[q].committed.alpha);
-              if (h[q].committed.alpha > 0.0)
+              const double alpha = material_->equivalent_plastic_strain(point);
+              e.max_plastic_strain = std::max(e.max_plastic_strain, alpha);
+              if (alpha > 0.0)
                 cell_plastic_volume += fv.JxW(q);
               const auto ev = eigenvalues(eps[q]);
               e.max_strain = std::max({e.max_strain, std::abs(ev[0]), std::abs(ev[2])});
@@ -217,19 +188,20 @@ namespace clearjoint::fe::detail
     mean_eps_p.assign(tria_.n_active_cells(), SymmetricTensor<2, dim>());
     alpha_max.reinit(tria_.n_active_cells());
     vm_max.reinit(tria_.n_active_cells());
-    const auto &C = material_;
+    const LinearElastic &C = material_->elastic();
     for (const auto &cell : dof_handler_.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
           fv[u].get_function_symmetric_gradients(solution_, eps);
-          const J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
           const unsigned int c = cell->active_cell_index();
+          const std::size_t first = std::size_t(c) * n_q_;
           for (unsigned int q = 0; q < n_q_; ++q)
             {
-              const SymmetricTensor<2, dim> ep = to_deal(h[q].committed.eps_p);
+              const SymmetricTensor<2, dim> ep = material_->plastic_strain(first + q);
               mean_eps_p[c] += ep / double(n_q_);
-              alpha_max[c] = std::max(alpha_max[c], float(h[q].committed.alpha));
+              alpha_max[c] =
+                std::max(alpha_max[c], float(material_->equivalent_plastic_strain(first + q)));
               vm_max[c] = std::max(vm_max[c], float(von_mises(C.stress(eps[q] - ep))));
             }
         }
@@ -267,13 +239,13 @@ namespace clearjoint::fe::detail
               double z_row = std::numeric_limits<double>::max();
               for (const unsigned int q : fv.quadrature_point_indices())
                 z_row = std::min(z_row, std::abs(fv.quadrature_point(q)[2]));
-              const J2History *h = &qp_history_[std::size_t(cell->active_cell_index()) * n_q_];
+              const std::size_t first = std::size_t(cell->active_cell_index()) * n_q_;
               double alpha = 0.0;
               SymmetricTensor<2, dim> mean_eps_p;
               for (unsigned int q = 0; q < n_q_; ++q)
                 {
-                  alpha = std::max(alpha, h[q].committed.alpha);
-                  mean_eps_p += to_deal(h[q].committed.eps_p) / double(n_q_);
+                  alpha = std::max(alpha, material_->equivalent_plastic_strain(first + q));
+                  mean_eps_p += material_->plastic_strain(first + q) / double(n_q_);
                 }
               for (const unsigned int q : fv.quadrature_point_indices())
                 {
@@ -290,7 +262,7 @@ namespace clearjoint::fe::detail
                   const Tensor<1, dim> et({-p[1] / r, p[0] / r, 0.0});
                   mine.insert(mine.end(), {a, er * (eps[q] * er), et * (eps[q] * et),
                                            eps[q][2][2], alpha,
-                                           von_mises(material_.stress(eps[q] - mean_eps_p))});
+                                           von_mises(material_->elastic().stress(eps[q] - mean_eps_p))});
                 }
             }
     std::vector<StrainProfilePoint> profile;

@@ -1,6 +1,7 @@
-// The material law of the FE model today: isotropic linear elasticity (small strain), and the
-// von Mises equivalent stress the yield check and the fields use. An elastoplastic law with
-// quadrature-point history comes beside it (the rolling study).
+// Isotropic linear elasticity (small strain) by Lamé's constants, and the von Mises equivalent
+// stress the yield check and the fields use. The static operator is assembled from it; the
+// model's material law (material/material_law.h: ElasticLaw, or J2Law with history) names it
+// as its elastic part.
 #pragma once
 
 #include <deal.II/base/symmetric_tensor.h>

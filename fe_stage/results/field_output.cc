@@ -105,7 +105,7 @@ namespace clearjoint::fe::detail
     Vector<float> alpha_max, vm_max;
     if (plastic_)
       plastic_cell_fields(mean_eps_p, alpha_max, vm_max);
-    StressPostprocessor post(material_, plastic_ ? &mean_eps_p : nullptr);
+    StressPostprocessor post(material_->elastic(), plastic_ ? &mean_eps_p : nullptr);
     DataOut<dim> out;
     out.attach_dof_handler(dof_handler_);
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(

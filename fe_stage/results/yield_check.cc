@@ -28,7 +28,7 @@ namespace clearjoint::fe::detail
           double cell_volume = 0.0, cell_above = 0.0;
           for (const unsigned int q : fv.quadrature_point_indices())
             {
-              const double vm = von_mises(material_.stress(eps[q]));
+              const double vm = von_mises(material_->elastic().stress(eps[q]));
               cell_volume += fv.JxW(q);
               if (vm > yield)
                 cell_above += fv.JxW(q);

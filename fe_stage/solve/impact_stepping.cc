@@ -245,7 +245,7 @@ namespace clearjoint::fe::detail
                 hht.predict(u, v, a, dt, u_hat, HhtAlpha::Predictor::newmark);
                 M_.vmult(dynamic_load_, u_hat);
                 dynamic_load_ *= c_m;
-                K_elastic_.vmult(tmp, u);
+                elastic_.K.vmult(tmp, u);
                 tmp -= lambda;
                 dynamic_load_.add(hht.alpha(), tmp);
                 set_contact_load_offsets();  // the friction rows read the traction K u − b
@@ -327,8 +327,8 @@ namespace clearjoint::fe::detail
         const double w_bodies = sym * trapezoidal_work(u_new, u, lambda_new, lambda);
         const double w_journal = deformable ? 0.0 : -0.5 * (d_new - d) * (F + F_new);
         work_contact += w_bodies + w_journal;
-        const double strain_total = energy(K_elastic_, u_new, false);
-        const double strain_j = deformable ? energy(K_elastic_, u_new, true) : 0.0;
+        const double strain_total = energy(elastic_.K, u_new, false);
+        const double strain_j = deformable ? energy(elastic_.K, u_new, true) : 0.0;
         const double kinetic_total = energy(M_, v_new, false);
         const double kinetic_fe_journal = deformable ? energy(M_, v_new, true) : 0.0;
         const double kinetic_b = kinetic_total - kinetic_fe_journal;

@@ -54,12 +54,18 @@ TEST(StepController, TheCarriedSizeGrowsBackAfterEasySteps)
 
 TEST(StepController, TheRemainingPartShortensAnAttemptWithoutChangingTheCarriedSize)
 {
-  StepController c(1.0, 2, 1);
+  StepController c(1.0, 4, 1);
   EXPECT_DOUBLE_EQ(c.begin_step(0.3), 0.3);  // e.g. the end time reached exactly
   ASSERT_TRUE(c.cut());
   EXPECT_DOUBLE_EQ(c.size(), 0.15);
   c.accept();  // a cut step carries its size
   EXPECT_DOUBLE_EQ(c.begin_step(), 0.15);
+  // the floor holds for a shortened step too: 1/16 here, so 0.15 → 0.075 is the last cut
+  ASSERT_TRUE(c.cut());
+  EXPECT_FALSE(c.cut());
+  EXPECT_DOUBLE_EQ(c.size(), 0.075);
+  EXPECT_NE(c.floor_note("s").find("halved 4 times, loading.max_cuts"), std::string::npos)
+    << c.floor_note("s");
   StepController d(1.0, 2, 1);
   d.begin_step(0.3);
   d.accept();  // no cut: the carried size stays the nominal
