@@ -101,6 +101,10 @@ namespace clearjoint::fe::detail
 
   class ContactModel
   {
+    // the impact study's stepper owns its loop and dynamic state; it works on the model's
+    // operator, solution and contact nodes (until those have owners of their own)
+    friend class HhtStepper;
+
   public:
     ContactModel(const FeScene &scene, const RunOptions &options);
     RunResult run();

@@ -8,8 +8,8 @@
 //      T_c = 2π √(m_J/k_c) is the period of the journal's mass on the contact (the contact
 //      lasts about T_c/2), and Δt = T_c / impact.steps_per_period (≥ 10: Δt/T ≤ 1/10). The
 //      bearing's own modes faster than that are not resolved; HHT's α < 0 damps them.
-//   2. time steps n → n+1. The bearing: M a + (1+α)(K u − λ)_{n+1} − α(K u − λ)_n = 0 with the
-//      contact force λ enforced exactly by the active set (the constraint rows of the
+//   2. time steps n → n+1 (HhtStepper, solve/hht_stepper.h). The bearing:
+//      M a + (1+α)(K u − λ)_{n+1} − α(K u − λ)_n = 0 with the contact force λ enforced exactly by the active set (the constraint rows of the
 //      quasi-static model): the condensed operator is c_m M + (1+α)K and the known part
 //      b = c_m M û + α(K u_n − λ_n) (û the Newmark predictor), so that the residual
 //      (c_m M + (1+α)K) u − b at the constrained DoFs is (1+α)λ_{n+1}. The journal (full-body
@@ -20,11 +20,11 @@
 //      [δ̂ − g(δ̂)/(m_J c_m), δ̂] (F ≥ 0 and grows with δ). A step that fails is halved, state
 //      restored (solve/step_controller.h: at most loading.max_cuts times a step, never below
 //      the nominal Δt halved as often); Δt grows back after four easy steps.
-//   3. the run stops when the journal has left the bearing (out of contact for T_c/10 after
-//      contact, moving away) or at the end time.
+//   3. what each step records, the peak and the separation: the run stops when the journal
+//      has left the bearing (out of contact for T_c/10 after contact, moving away) or at the
+//      end time.
 #include "fe_stage/core/contact_model.h"
-#include "fe_stage/solve/root_finder.h"
-#include "fe_stage/solve/step_controller.h"
+#include "fe_stage/solve/hht_stepper.h"
 
 namespace clearjoint::fe::detail
 {
@@ -121,17 +121,14 @@ namespace clearjoint::fe::detail
     S.contact_period = 2.0 * numbers::PI * std::sqrt(m_J / S.contact_stiffness);
     const double dt_nominal =
       I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
-    // Δt: halved on failure, carried over after cuts, doubled back after four easy steps (as
-    // Abaqus/Standard's automatic incrementation)
-    StepController control(dt_nominal, L.max_cuts, 4);
-    double dt = dt_nominal;
-    S.time_step = dt;
+    S.time_step = dt_nominal;
     const double t_end = I.end_time > 0.0 ? I.end_time : 4.0 * S.contact_period;
     if (rank_ == 0)
       log::info("fe_stage: impact: contact stiffness " + format_value(S.contact_stiffness) +
                 " N/m (static curve at the expected delta_max " + format_value(delta_estimate) +
                 " m), period T_c = " + format_value(S.contact_period) + " s, dt = " +
-                format_value(dt) + " s (T_c/" + format_value(S.contact_period / dt) +
+                format_value(dt_nominal) + " s (T_c/" +
+                format_value(S.contact_period / dt_nominal) +
                 "), end time " + format_value(t_end) + " s");
 
     // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
@@ -142,73 +139,13 @@ namespace clearjoint::fe::detail
         journal_driven_ = false;
         prepare_mesh();
       }
-    // the operator c_m M + (1+α)K is assembled for one Δt: again whenever Δt changes
-    double dt_operator = dt;
-    set_dynamic_operator(hht.coefficients(dt));
-    const auto operator_for = [&](const double dt_new) {
-      if (dt_new != dt_operator)
-        {
-          set_dynamic_operator(hht.coefficients(dt_new));
-          dt_operator = dt_new;
-        }
-    };
-    start_from_rest();
-    TrilinosWrappers::MPI::Vector u(owned_, comm_), v(owned_, comm_), a(owned_, comm_),
-      lambda(owned_, comm_), u_new(owned_, comm_), v_new(owned_, comm_), a_new(owned_, comm_),
-      lambda_new(owned_, comm_), tmp(owned_, comm_), u_peak(owned_, comm_);
-    double d = 0.0, d_rate = I.velocity, d_acc = 0.0, F = 0.0;  // the journal
-    const double sym = symmetry_factor_;
-    // A deformable journal: its DoFs (mask), its y-DoFs (the direction of δ), its mass from the
-    // FE mass matrix; it starts as a rigid translation at −v e_y. δ is its centre of mass's
-    // displacement: −(1_yᵀ M u)/(1_yᵀ M 1_y).
-    TrilinosWrappers::MPI::Vector journal_mask(owned_, comm_), journal_y(owned_, comm_);
-    double journal_mass_modelled = 0.0;
-    if (deformable)
-      {
-        std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
-        for (const auto &cell : dof_handler_.active_cell_iterators())
-          if (cell->is_locally_owned() && cell->material_id() == 1)
-            {
-              cell->get_dof_indices(dofs);
-              for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (owned_.is_element(dofs[i]))
-                  {
-                    journal_mask[dofs[i]] = 1.0;
-                    if (fe_->system_to_component_index(i).first == 1)
-                      journal_y[dofs[i]] = 1.0;
-                  }
-            }
-        journal_mask.compress(VectorOperation::insert);
-        journal_y.compress(VectorOperation::insert);
-        M_.vmult(tmp, journal_y);
-        journal_mass_modelled = journal_y * tmp;
-        S.journal_mass = sym * journal_mass_modelled;
-        v.add(-I.velocity, journal_y);
-        if (rank_ == 0)
-          log::info("fe_stage: impact: deformable journal, FE mass " +
-                    format_value(S.journal_mass) + " kg (rho pi R_J^2 L_J = " +
-                    format_value(m_J) + " kg)");
-      }
-    // ½ sym xᵀ A y restricted to the journal's DoFs (mask) or over all
-    auto energy = [&](const TrilinosWrappers::SparseMatrix &A, const TrilinosWrappers::MPI::Vector &x,
-                      const bool journal_only) {
-      A.vmult(tmp, x);
-      if (!journal_only)
-        return 0.5 * sym * (x * tmp);
-      TrilinosWrappers::MPI::Vector xm = x;
-      xm.scale(journal_mask);
-      return 0.5 * sym * (xm * tmp);
-    };
-    // the centre of mass's displacement toward the bearing (deformable journal)
-    auto centre_of_mass_y = [&](const TrilinosWrappers::MPI::Vector &x) {
-      M_.vmult(tmp, x);
-      return -(journal_y * tmp) / journal_mass_modelled;
-    };
-    EnergyLedger ledger;
+    HhtStepper stepper(*this, hht, dt_nominal, L.max_cuts, m_J, I.velocity, deformable);
+    S.journal_mass = stepper.journal_mass();
+    if (deformable && rank_ == 0)
+      log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +
+                " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
-    ledger.start(S.kinetic_initial);
-    double work_contact = 0.0;
-    double t = 0.0;
+    TrilinosWrappers::MPI::Vector u_peak(owned_, comm_);
     bool in_contact = false, have_peak = false;
     unsigned int free_steps = 0;  // steps without contact since the contact last ended
     double contact_end = 0.0;     // [s] when it last ended
@@ -223,151 +160,20 @@ namespace clearjoint::fe::detail
       }
     const double wall_dynamic_start = elapsed();
     unsigned int step = 0;
-    for (; step < I.max_steps && t < t_end * (1.0 - 1e-12); ++step)
+    for (; step < I.max_steps && stepper.time() < t_end * (1.0 - 1e-12); ++step)
       {
         DynamicStepRecord rec;
         rec.step = step + 1;
-        // a given end time is reached exactly: the last step is shortened to it
-        dt = control.begin_step();
-        if (I.end_time > 0.0 && t + dt > t_end * (1.0 + 1e-12))
-          dt = control.begin_step(t_end - t);
-        operator_for(dt);
-        const Snapshot saved{u, nodes_, n_sliding_rebuilds_};  // the converged state
-        IncrementRecord inc;
-        double d_new = 0.0;
-        for (;;)
+        if (!stepper.step(I.end_time, rec, result.message))
           {
-            try
-              {
-                const double c_m = hht.coefficients(dt).mass;
-                // the predictor û and the known part b = c_m M û + α(K u_n − λ_n)
-                TrilinosWrappers::MPI::Vector u_hat(owned_, comm_);
-                hht.predict(u, v, a, dt, u_hat, HhtAlpha::Predictor::newmark);
-                M_.vmult(dynamic_load_, u_hat);
-                dynamic_load_ *= c_m;
-                elastic_.K.vmult(tmp, u);
-                tmp -= lambda;
-                dynamic_load_.add(hht.alpha(), tmp);
-                set_contact_load_offsets();  // the friction rows read the traction K u − b
-                double d_hat = 0.0;
-                hht.predict(d, d_rate, d_acc, dt, d_hat, HhtAlpha::Predictor::newmark);
-                solution_owned_ = u_hat;
-                solution_ = solution_owned_;
-                if (deformable)
-                  {
-                    // the journal is part of the FE system: one contact solve
-                    inc = solve_increment(0.0);
-                    rec.contact_iterations += inc.contact_iterations;
-                    rec.linear_iterations += inc.linear_iterations;
-                    rec.journal_iterations = 1;
-                    break;
-                  }
-                // g(δ) = m_J c_m (δ − δ̂) + (1+α)F(δ) − αF_n, F from the contact solve; to
-                // 1e-9 of this step's force scale max(g(δ̂), m_J c_m 10⁻³ δ_max) (the linear
-                // solves hold the contact force to ~1e-10). From δ̂ (g ≥ 0 there), the second
-                // point the step with g's known slope part m_J c_m ≤ g's slope: a bracket.
-                auto g = [&](const double delta) {
-                  inc = solve_increment(delta);
-                  rec.contact_iterations += inc.contact_iterations;
-                  rec.linear_iterations += inc.linear_iterations;
-                  return m_J * c_m * (delta - d_hat) + inc.force - hht.alpha() * F;
-                };
-                IncreasingRoot position{g, 1e-9, 0.0, 60, "the journal's position"};
-                position.g_scale_from_first = true;
-                position.g_scale_floor = m_J * c_m * 1e-3 * L.delta_max;
-                const RootResult root = solve_increasing_from(position, d_hat, m_J * c_m);
-                if (!root.converged)
-                  throw StepFailure{root.message};
-                d_new = root.x;  // the last evaluation: the model's state is this one
-                rec.journal_iterations = root.evaluations;
-                break;
-              }
-            catch (const StepFailure &f)
-              {
-                restore_state(saved);
-                if (!control.cut())
-                  {
-                    result.message = "time step " + std::to_string(step + 1) + " at t = " +
-                                     format_value(t) + " s failed after " +
-                                     std::to_string(control.cuts()) + " cuts" +
-                                     control.floor_note("s") + ": " + f.reason;
-                    if (rank_ == 0)
-                      log::error("fe_stage: " + result.message);
-                    result.wall_time = elapsed();
-                    result.field_files = field_files_;
-                    return result;
-                  }
-                rec.cuts = control.cuts();
-                dt = control.size();
-                operator_for(dt);
-                if (rank_ == 0)
-                  log::warning("fe_stage: time step " + std::to_string(step + 1) +
-                               " failed (" + f.reason + "); retrying with dt " +
-                               format_value(dt) + " s");
-              }
+            if (rank_ == 0)
+              log::error("fe_stage: " + result.message);
+            result.wall_time = elapsed();
+            result.field_files = field_files_;
+            return result;
           }
-        // Converged: the Newmark updates, the new contact forces, the energies.
-        u_new = solution_owned_;
-        hht.update_rates(u_new, u, v, a, dt, v_new, a_new);
-        lambda_new = residual_owned_;  // (1+α)λ_{n+1} at the constrained DoFs
-        lambda_new *= 1.0 / hht.weight_new();
-        const double F_new = inc.force / hht.weight_new();
-        double d_rate_new = 0.0, d_acc_new = 0.0;
-        if (deformable)
-          {
-            d_new = centre_of_mass_y(u_new);
-            d_rate_new = centre_of_mass_y(v_new);
-            d_acc_new = centre_of_mass_y(a_new);
-          }
-        else
-          hht.update_rates(d_new, d, d_rate, d_acc, dt, d_rate_new, d_acc_new);
-        // net work of the contact forces: on the meshed bodies (λ at the contact DoFs, and at a
-        // deformable journal's mortar partners; the supports do not move) and on a rigid
-        // journal (F e_y along its displacement −δ e_y)
-        const double w_bodies = sym * trapezoidal_work(u_new, u, lambda_new, lambda);
-        const double w_journal = deformable ? 0.0 : -0.5 * (d_new - d) * (F + F_new);
-        work_contact += w_bodies + w_journal;
-        const double strain_total = energy(elastic_.K, u_new, false);
-        const double strain_j = deformable ? energy(elastic_.K, u_new, true) : 0.0;
-        const double kinetic_total = energy(M_, v_new, false);
-        const double kinetic_fe_journal = deformable ? energy(M_, v_new, true) : 0.0;
-        const double kinetic_b = kinetic_total - kinetic_fe_journal;
-        const double kinetic_j =
-          deformable ? kinetic_fe_journal : 0.5 * m_J * d_rate_new * d_rate_new;
-        const double strain = strain_total - strain_j;
-        const double strain_old = ledger.work_internal;
-        ledger.add_step(kinetic_b + kinetic_j, strain_total - strain_old, w_bodies + w_journal);
-        t += dt;
-        u = u_new;
-        v = v_new;
-        a = a_new;
-        lambda = lambda_new;
-        d = d_new;
-        d_rate = d_rate_new;
-        d_acc = d_acc_new;
-        F = F_new;
-        for (auto &cn : nodes_)
-          cn.relative_converged = cn.relative;
-        // after a cut, Δt grows back (doubling, up to its nominal value) once four steps in a
-        // row have converged without one
-        const double dt_step = dt;
-        control.accept();
-        dt = control.next_size();
-        operator_for(dt);
-
-        rec.time = t;
-        rec.time_step = dt_step;
-        rec.delta = d;
-        rec.delta_rate = d_rate;
-        rec.force = F;
-        rec.force_support = inc.force_support / hht.weight_new();
-        rec.kinetic_journal = kinetic_j;
-        rec.kinetic_bearing = kinetic_b;
-        rec.strain_bearing = strain;
-        rec.strain_journal = strain_j;
-        rec.work_contact = work_contact;
-        rec.numerical_dissipation = ledger.dissipation;
-        rec.n_active = inc.n_active;
+        const double t = stepper.time(), dt_step = rec.time_step, dt = stepper.next_dt();
+        const double d = rec.delta, d_rate = rec.delta_rate, F = rec.force;
         rec.wall_time = elapsed();
         result.dynamic_steps.push_back(rec);
         if (F > S.peak_force)
@@ -375,7 +181,7 @@ namespace clearjoint::fe::detail
             S.peak_force = F;
             S.time_of_peak = t;
             S.delta_at_peak = d;
-            u_peak = u;
+            u_peak = stepper.displacement();
             have_peak = true;
           }
         S.delta_max = std::max(S.delta_max, d);
@@ -404,7 +210,7 @@ namespace clearjoint::fe::detail
           }
         // Separation: out of contact for a tenth of the contact period (a momentary opening
         // of the contact inside the impact does not end it) and moving away.
-        if (inc.n_active > 0)
+        if (rec.n_active > 0)
           {
             in_contact = true;
             free_steps = 0;
@@ -429,7 +235,7 @@ namespace clearjoint::fe::detail
           }
         // (in whole steps, with a margin: T_c/dt differs between rank counts by round-off)
         const double free_needed = std::max(2.0, std::ceil(0.1 * S.contact_period / dt - 1e-6));
-        const bool last = !S.separated && in_contact && inc.n_active == 0 && d_rate < 0.0 &&
+        const bool last = !S.separated && in_contact && rec.n_active == 0 && d_rate < 0.0 &&
                           free_steps >= free_needed;
         if (fields && (rec.step % I.field_stride == 0 || last))
           write_fields(rec.step, t);
@@ -442,10 +248,11 @@ namespace clearjoint::fe::detail
               break;
           }
       }
-    if (step >= I.max_steps && !S.separated && t < t_end * (1.0 - 1e-12))
+    if (step >= I.max_steps && !S.separated && stepper.time() < t_end * (1.0 - 1e-12))
       {
         result.message = "impact.max_steps = " + std::to_string(I.max_steps) +
-                         " reached at t = " + format_value(t) + " s before the end time";
+                         " reached at t = " + format_value(stepper.time()) +
+                         " s before the end time";
         result.wall_time = elapsed();
         result.field_files = field_files_;
         return result;
@@ -453,8 +260,8 @@ namespace clearjoint::fe::detail
     S.n_steps = static_cast<unsigned int>(result.dynamic_steps.size());
     if (S.separated)
       S.restitution = S.velocity_out / I.velocity;
-    S.numerical_dissipation = ledger.dissipation;
-    S.work_contact = work_contact;
+    S.numerical_dissipation = stepper.numerical_dissipation();
+    S.work_contact = stepper.work_contact();
     if (!result.dynamic_steps.empty())
       {
         const auto &e = result.dynamic_steps.back();
