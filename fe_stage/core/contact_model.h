@@ -104,6 +104,7 @@ namespace clearjoint::fe::detail
     // the impact study's stepper owns its loop and dynamic state; it works on the model's
     // operator, solution and contact nodes (until those have owners of their own)
     friend class HhtStepper;
+    friend class SpinStepper;  // the rolling study's, likewise
 
   public:
     ContactModel(const FeScene &scene, const RunOptions &options);

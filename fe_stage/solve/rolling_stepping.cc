@@ -1,14 +1,13 @@
 // The rolling study (paper §3.4, docs/fe.md "Rolling study"): time steps over the push ramp.
 // Each step: the bearing turned to φ = ω_B t (its co-rotating frame: the mesh stays, the rigid
 // journal's axis turns round it), the journal pushed to δ(t), and the journal's spin rate γ̇
-// found from its torque balance  I (γ̇ − γ̇_n)/Δt = M(γ̇)  (backward Euler; M the contact's
-// torque on the journal, which falls as γ̇ rises: one root, bracketed and found by regula falsi).
-// Every evaluation of M is a state of the elastoplastic bearing: material Newton iterations,
-// each an active-set contact solve with Coulomb friction. A step that fails is halved
-// (loading.max_cuts times); what converged is kept.
+// found from its torque balance (SpinStepper, solve/spin_stepper.h). Every evaluation of the
+// journal's torque is a state of the elastoplastic bodies (solve_rolling_state below: material
+// Newton iterations, each an active-set contact solve with Coulomb friction). What this file
+// keeps: the study's set-up, what each converged step records (forces, torques, energies, the
+// paper's Eqs. 4–8), and the end state (strain profile, slip stages).
 #include "fe_stage/core/contact_model.h"
-#include "fe_stage/solve/root_finder.h"
-#include "fe_stage/solve/step_controller.h"
+#include "fe_stage/solve/spin_stepper.h"
 
 #include <cmath>
 
@@ -168,180 +167,22 @@ namespace clearjoint::fe::detail
     // (by the node's x-DoF: a deformable journal's search rebuilds nodes_ at every step)
     std::map<types::global_dof_index, Tensor<1, dim>> force_before, u_before;
     double work_frame = 0.0;
-    double t = 0.0, gamma = 0.0, gamma_rate = 0.0;
     double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction_work = 0.0;
     double bearing_plastic = 0.0;  // [J] the bearing's own, for its balance in its frame
     double torque_drive_prev = 0.0, force_prev = 0.0;
-    // the torque balance's scale and slope dM/dγ̇ from the last converged step (0: none yet;
-    // M falls as γ̇ rises, so a known slope is negative)
-    double last_force = 0.0, last_torque = 0.0, torque_rate_slope = 0.0;
-    // the state before the last converged step, for the predictor in time
-    TrilinosWrappers::MPI::Vector u_previous_step(owned_, comm_);
-    double dt_previous = 0.0;
-    bool have_previous = false;
     std::vector<double> times, slips;
-    double t_journal_search = 0.0;  // [s] the deformable journal's searches and rebuilds
-    unsigned int n_journal_searches = 0;
     const double wall_steps_start = elapsed();
     unsigned int step = 0;
-    // the step size carries over: a step that needed cuts starts the next one at its own size,
-    // which doubles (up to the nominal) after two steps without a cut
-    StepController control(dt_nominal, L.max_cuts, 2);
+    SpinStepper stepper(*this, motion, t_end, R.n_steps, L.max_cuts, inertia);
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
-    for (; t < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
+    for (; stepper.time() < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
       {
-        double dt = control.begin_step(t_end - t);
-        RollingSolve rs;
-        unsigned int spin_evaluations = 0;
-        double rate_new = gamma_rate;
-        const Snapshot saved = save_state();
-        bool predict_in_time = true;
-        for (;;)
-          {
-            const double t1 = t + dt;
-            rolling_phi_ = motion.phi(t1);
-            rolling_centre_previous_ = motion.centre_frame(t);
-            rolling_centre_ = motion.centre_frame(t1);
-            const double delta1 = motion.delta(t1);
-            const double dphi = motion.phi(t1) - motion.phi(t);
-            // the scale of the balance: from the last step's force and torque once there is
-            // one (so that it is known before the first evaluation), else from the first
-            // evaluation's
-            double torque_scale =
-              last_force > 0.0
-                ? std::max({scene_.contact.mu * last_force * G.R_J(), std::abs(last_torque),
-                            inertia * motion.rolling_rate(t1) / dt, 1e-30})
-                : 0.0;
-            bool predicted_in_time = false;
-            unsigned int n_evaluated = 0;
-            double rate_last = 0.0, rate_before = 0.0;
-            TrilinosWrappers::MPI::Vector u_last(owned_, comm_), u_before(owned_, comm_);
-            try
-              {
-                // g(γ̇) / scale, the scale μ F R_J (+ the inertia term): the balance holds
-                // to 1e-6 of the largest friction torque
-                auto g = [&](const double rate) {
-                  rolling_delta_psi_ = rate * dt - dphi;
-                  // Where the material Newton iteration starts (only the start: the same
-                  // converged state, fewer iterations):
-                  // - the attempt's first evaluation: the state extrapolated linearly in time
-                  //   from the last two converged steps (the reduced pipeline scene: 12.3 →
-                  //   11.4 s at 16 steps, 20.3 → 17.2 s at 32). A patch that moves far in a
-                  //   step is extrapolated badly (the 8-step scene's hold steps failed from
-                  //   it), so an attempt that fails from the prediction is tried again at the
-                  //   same Δt from the last state before the step is cut;
-                  // - later ones: the state predicted linearly in γ̇ from the attempt's last
-                  //   two evaluations, within two of their spacings (the state moves nearly
-                  //   linearly with the spin near the root: 14.2 → 12.3 s and 24.2 → 20.3 s)
-                  // start = last + w (last − before), as the quasi-static push's predictor
-                  const auto start_from = [&](const TrilinosWrappers::MPI::Vector &last,
-                                              const TrilinosWrappers::MPI::Vector &before,
-                                              const double w) {
-                    solution_owned_ = last;
-                    solution_owned_.sadd(1.0 + w, -w, before);
-                    solution_ = solution_owned_;
-                  };
-                  if (n_evaluated == 0 && have_previous && predict_in_time)
-                    {
-                      predicted_in_time = true;
-                      start_from(saved.u, u_previous_step, dt / dt_previous);
-                    }
-                  if (n_evaluated >= 2 && rate != rate_last && rate_last != rate_before &&
-                      std::abs(rate - rate_last) <= 2.0 * std::abs(rate_last - rate_before))
-                    start_from(u_last, u_before, (rate - rate_last) / (rate_last - rate_before));
-                  // The deformable journal turns over the bore: the bore nodes' partners are
-                  // found again for this pose, between the bore (X + u) and the journal placed
-                  // at c + Q(ψ)(X − a + u), both at the start state; the slip counts from the
-                  // step's start with them (follow_sliding, which rebuilds the sparsity pattern
-                  // when they do not fit it). Couplings kept from the step's start would be
-                  // off by R_J Δψ²/2 in the gap: 19 µm for a 3.6° step, more than the push.
-                  if (rolling_deformable_journal())
-                    {
-                      ScopedTimer timer(t_journal_search);
-                      follow_sliding(saved.u);
-                      ++n_journal_searches;
-                    }
-                  if (log::level() <= log::Level::debug && rank_ == 0)
-                    log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
-                               " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) +
-                               " s)");
-                  rs = solve_rolling_state(delta1);
-                  u_before.swap(u_last);
-                  u_last = solution_owned_;
-                  rate_before = rate_last;
-                  rate_last = rate;
-                  ++n_evaluated;
-                  const double inertial = inertia * (rate - gamma_rate) / dt;
-                  if (torque_scale == 0.0)
-                    torque_scale = std::max(
-                      {scene_.contact.mu * std::abs(rs.record.force) * G.R_J(),
-                       std::abs(rs.torque_journal), inertia * motion.rolling_rate(t1) / dt,
-                       1e-30});
-                  return (inertial - rs.torque_journal) / torque_scale;
-                };
-                // the bracket: spinning up, between the last rate and the rolling rate;
-                // rolling already (within 5 % of it), a narrow one at the last rate — the root
-                // moves little from step to step and the torque is steep there (stick), so
-                // the wide bracket cost 2–3 more evaluations a step, each a material Newton
-                // solve (the bracket widens itself if the root lies outside). Rolling already
-                // and the torque's slope dM/dγ̇ known from the last step: the second point is
-                // the Newton step with that slope instead, near the root as the slope changes
-                // little from step to step (the reduced pipeline scene: 81 → 76 evaluations
-                // at 16 steps, 142 → 136 at 32, docs/benchmarks.md)
-                const double a = gamma_rate;
-                const double roll = motion.rolling_rate(t1);
-                const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
-                const double slope_guess =
-                  torque_scale > 0.0 ? (inertia / dt - torque_rate_slope) / torque_scale : 0.0;
-                const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, R.max_spin_iterations,
-                                             "the journal's torque balance"};
-                const auto root =
-                  rolling_already && torque_rate_slope < 0.0 && std::isfinite(slope_guess)
-                    ? solve_increasing_from(balance, a, slope_guess)
-                    : solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
-                spin_evaluations = root.evaluations;
-                if (!root.converged)
-                  throw StepFailure{root.message};
-                rate_new = root.x;  // the last evaluation: the model's state is this one
-                // dM/dγ̇ [N m s] from g's slope: g = (I (γ̇ − γ̇_n)/Δt − M)/scale
-                if (root.evaluations >= 2 && root.slope > 0.0)
-                  torque_rate_slope = inertia / dt - root.slope * torque_scale;
-                last_force = std::abs(rs.record.force);
-                last_torque = rs.torque_journal;
-                break;
-              }
-            catch (const StepFailure &f)
-              {
-                restore_state(saved);
-                if (predicted_in_time)
-                  {
-                    predict_in_time = false;
-                    if (rank_ == 0)
-                      log::debug("fe_stage: time step to t = " + format_value(t + dt) +
-                                 " s failed from the state predicted in time (" + f.reason +
-                                 "); again from the last state");
-                    continue;
-                  }
-                // (the step controller's floor: a step that keeps failing would otherwise
-                // shrink without end, t + Δt → t)
-                if (!control.cut())
-                  {
-                    result.message = "time step to t = " + format_value(t + dt) +
-                                     " s failed after " + std::to_string(control.cuts()) +
-                                     " cuts" + control.floor_note("s") + ": " + f.reason;
-                    if (rank_ == 0)
-                      log::error("fe_stage: " + result.message);
-                    break;
-                  }
-                dt = control.size();
-                if (rank_ == 0)
-                  log::warning("fe_stage: time step to t = " + format_value(t + 2 * dt) +
-                               " s failed (" + f.reason + "); retrying with dt " +
-                               format_value(dt) + " s");
-              }
-          }
-        if (!result.message.empty())
+        SpinStepper::Step solved;
+        if (!stepper.solve(solved, result.message))
           break;
+        const double t = stepper.time(), dt = solved.dt, rate_new = solved.rate;
+        const double gamma = stepper.gamma();
+        const RollingSolve &rs = solved.state;
 
         // the converged step: friction's slip work, the contact forces (frame → fixed), the
         // torques; then commit the material and the contact's reference state
@@ -460,11 +301,11 @@ namespace clearjoint::fe::detail
         rec.plastic_volume = pe.plastic_volume;
         rec.n_active = Utilities::MPI::sum(n_active, comm_);
         rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
-        rec.spin_iterations = spin_evaluations;
+        rec.spin_iterations = solved.spin_evaluations;
         rec.newton_iterations = rs.newton_iterations;
         rec.contact_iterations = rs.contact_iterations;
         rec.linear_iterations = rs.linear_iterations;
-        rec.cuts = control.cuts();
+        rec.cuts = solved.cuts;
         // paper Eqs. 4–8: N_B at X0 = (0, −R_B, 0), N_J the journal point under it at t = 0
         const Vec3 X0{0.0, -G.R_B, 0.0};
         const Vec3 xB = rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0},
@@ -479,14 +320,8 @@ namespace clearjoint::fe::detail
         rec.wall_time = elapsed();
         torque_drive_prev = rec.torque_drive;
         force_prev = rec.force_normal;
-        gamma = rec.gamma;
-        gamma_rate = rate_new;
-        t = t1;
-        u_previous_step = saved.u;
-        dt_previous = dt;
-        have_previous = true;
-        control.accept();
-        times.push_back(t);
+        stepper.accept(solved);
+        times.push_back(t1);
         slips.push_back(rec.slip_speed);
         result.rolling_steps.push_back(rec);
 
@@ -501,8 +336,8 @@ namespace clearjoint::fe::detail
         result.increments.push_back(inc);
         if (rank_ == 0)
           {
-            const double per_second = (elapsed() - wall_steps_start) / t;
-            log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(t) +
+            const double per_second = (elapsed() - wall_steps_start) / t1;
+            log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(t1) +
                       " s, delta " + format_value(rec.delta) + " m, F " +
                       format_value(rec.force_normal) + " N, spin " +
                       format_value(rec.gamma_rate) + " rad/s (slip " +
@@ -511,23 +346,24 @@ namespace clearjoint::fe::detail
                       std::to_string(rec.spin_iterations) + " spin / " +
                       std::to_string(rec.contact_iterations) + " contact iterations" +
                       (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") + ", ETA " +
-                      log::format_duration(per_second * (t_end - t)));
+                      log::format_duration(per_second * (t_end - t1)));
           }
         if (options_.on_increment)
           options_.on_increment(inc);
         if (options_.on_rolling_step)
           options_.on_rolling_step(rec);
-        const bool last = t >= t_end * (1.0 - 1e-12);
+        const bool last = t1 >= t_end * (1.0 - 1e-12);
         if (fields && (rec.step % R.field_stride == 0 || last))
-          write_fields(field_counter++, t);
+          write_fields(field_counter++, t1);
       }
+    const double t = stepper.time();
     if (result.message.empty() && t < t_end * (1.0 - 1e-12))
       result.message = "the step limit (" + std::to_string(max_steps) + ") was reached at t = " +
                        format_value(t) + " s";
     // the end state: strains across the contact zone, the slip stages, the balance
     result.strain_profile = strain_profile(0, motion.phi(t), 30.0 * units::deg);
     if (rolling_deformable_journal())
-      for (const auto &p : strain_profile(1, gamma, 30.0 * units::deg))
+      for (const auto &p : strain_profile(1, stepper.gamma(), 30.0 * units::deg))
         result.strain_profile.push_back(p);
     const auto stages = rolling::slip_stages(times, slips);
     S.stages_found = stages.found;
@@ -546,9 +382,9 @@ namespace clearjoint::fe::detail
     result.sliding_rebuilds = n_sliding_rebuilds_;
     if (rolling_deformable_journal() && rank_ == 0)
       log::info("fe_stage: the deformable journal's coupling: " +
-                std::to_string(n_journal_searches) + " mortar searches, " +
+                std::to_string(stepper.n_searches()) + " mortar searches, " +
                 std::to_string(n_sliding_rebuilds_) + " of them with a new sparsity pattern, " +
-                log::format_duration(t_journal_search) + " in all");
+                log::format_duration(stepper.search_time()) + " in all");
     result.field_files = field_files_;
     result.complete = result.message.empty();
     result.wall_time = elapsed();

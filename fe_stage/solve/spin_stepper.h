@@ -1,0 +1,67 @@
+// The rolling study's time stepper (paper §3.4): the bearing turned to φ = ω_B t and the
+// journal pushed to δ(t) (rolling::Motion), and the journal's spin rate γ̇ found from its
+// torque balance  I (γ̇ − γ̇_n)/Δt = M(γ̇)  (backward Euler; M the contact's torque on the
+// journal, which falls as γ̇ rises: one root, found by solve/root_finder.h). Every evaluation of
+// M is a state of the elastoplastic bodies (ContactModel::solve_rolling_state). It owns the
+// spin's state (t, γ, γ̇), what carries from step to step — the balance's scale and slope
+// dM/dγ̇, the state before the last step (the predictor in time), Δt (solve/step_controller.h)
+// — and the journal's search counters; the study (solve/rolling_stepping.cc) records each step
+// and commits the material before accept().
+#pragma once
+
+#include "fe_stage/core/contact_model.h"
+#include "fe_stage/solve/rolling_kinematics.h"
+#include "fe_stage/solve/step_controller.h"
+
+#include <string>
+
+namespace clearjoint::fe::detail
+{
+  class SpinStepper
+  {
+  public:
+    /// A step the stepper solved: its Δt [s], the journal's new spin rate [rad/s], the model's
+    /// state there, the torque evaluations and the cuts it took.
+    struct Step
+    {
+      double dt = 0.0;
+      double rate = 0.0;
+      ContactModel::RollingSolve state;
+      unsigned int spin_evaluations = 0;
+      unsigned int cuts = 0;
+    };
+
+    SpinStepper(ContactModel &model, const rolling::Motion &motion, double t_end,
+                unsigned int n_steps, unsigned int max_cuts, double inertia);
+
+    /// Solves the next step from time() (Δt shortened to reach t_end): the model then holds its
+    /// converged state. False with `message` when it failed after its cuts (the model holds
+    /// the last converged state).
+    bool solve(Step &step, std::string &message);
+    /// The step was recorded and committed: time, γ, γ̇ move to its end.
+    void accept(const Step &step);
+
+    double time() const { return t_; }
+    double gamma() const { return gamma_; }
+    double gamma_rate() const { return gamma_rate_; }
+    unsigned int n_searches() const { return n_searches_; }
+    double search_time() const { return search_time_; }  // [s]
+
+  private:
+    ContactModel &m_;
+    const rolling::Motion motion_;
+    const double t_end_, inertia_;
+    StepController control_;
+    double t_ = 0.0, gamma_ = 0.0, gamma_rate_ = 0.0;
+    // the torque balance's scale and slope dM/dγ̇ from the last converged step (0: none yet;
+    // M falls as γ̇ rises, so a known slope is negative)
+    double last_force_ = 0.0, last_torque_ = 0.0, torque_rate_slope_ = 0.0;
+    // the state before the last converged step, for the predictor in time
+    TrilinosWrappers::MPI::Vector u_previous_step_;
+    double dt_previous_ = 0.0;
+    bool have_previous_ = false;
+    ContactModel::Snapshot saved_;  // the converged state the step in progress starts from
+    double search_time_ = 0.0;      // [s] the deformable journal's searches and rebuilds
+    unsigned int n_searches_ = 0;
+  };
+} // namespace clearjoint::fe::detail
