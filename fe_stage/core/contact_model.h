@@ -193,6 +193,10 @@ namespace clearjoint::fe::detail
     };
     RollingSolve solve_rolling_state(double delta);
     void refine_adaptively();
+    /// The quasi-static study's adaptive cycles before its curve, and the sequence closed
+    /// after it (solve/quasi_static_stepping.cc).
+    bool run_adaptive_cycles(RunResult &result, bool &last_mesh_marked);
+    void close_adaptive_sequence(RunResult &result, bool last_mesh_marked);
     /// One increment to `delta` from the current state; throws StepFailure.
     IncrementRecord solve_increment(double delta);
     // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)

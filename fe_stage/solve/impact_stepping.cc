@@ -9,8 +9,8 @@
 //      lasts about T_c/2), and Δt = T_c / impact.steps_per_period (≥ 10: Δt/T ≤ 1/10). The
 //      bearing's own modes faster than that are not resolved; HHT's α < 0 damps them.
 //   2. time steps n → n+1 (HhtStepper, solve/hht_stepper.h). The bearing:
-//      M a + (1+α)(K u − λ)_{n+1} − α(K u − λ)_n = 0 with the contact force λ enforced exactly by the active set (the constraint rows of the
-//      quasi-static model): the condensed operator is c_m M + (1+α)K and the known part
+//      M a + (1+α)(K u − λ)_{n+1} − α(K u − λ)_n = 0 with the contact force λ enforced
+//      exactly by the active set (the constraint rows of the quasi-static model): the condensed operator is c_m M + (1+α)K and the known part
 //      b = c_m M û + α(K u_n − λ_n) (û the Newmark predictor), so that the residual
 //      (c_m M + (1+α)K) u − b at the constrained DoFs is (1+α)λ_{n+1}. The journal (full-body
 //      mass m_J, one unknown δ): m_J δ̈_{n+1} + (1+α)F_{n+1} − αF_n = 0, F the contact force.

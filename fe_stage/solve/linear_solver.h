@@ -1,6 +1,6 @@
-// The linear solver (SystemSolver) of the contact model's systems: KLU below a size, else CG (GMRES where
-// friction makes the operator non-symmetric) preconditioned by ML's AMG on the six rigid-body
-// modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
+// The linear solver (SystemSolver) of the contact model's systems: KLU below a size, else CG
+// (GMRES where friction makes the operator non-symmetric) preconditioned by ML's AMG on the six
+// rigid-body modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
 // (invalidate()), again when a solve fails with the reused one, and when a solve to the full
 // tolerance takes more than twice the first one's iterations (+10) — reuse only while it stays
 // effective.

@@ -10,8 +10,8 @@ namespace clearjoint::fe::detail
   /// Pushes from δ = 0 through `targets` (increasing, the last δ_max): each target reached
   /// from the last converged state, with a linear predictor, and halved on failure up to
   /// loading.max_cuts times (state restored; solve/step_controller.h, one controller per
-  /// target: the increments to a target never grow back). `on_converged(k, record)` is called for target
-  /// k = 1, 2, … Returns false with `message` set when an increment fails for good.
+  /// target: the increments to a target never grow back). `on_converged(k, record)` is called
+  /// for target k = 1, 2, … Returns false with `message` set when an increment fails for good.
   bool ContactModel::push_through(
     const std::vector<double> &targets, std::string &message,
     const std::function<void(unsigned int, IncrementRecord &)> &on_converged)
@@ -167,36 +167,37 @@ namespace clearjoint::fe::detail
     tria_.execute_coarsening_and_refinement();
   }
 
-  RunResult ContactModel::run()
+  namespace
   {
-    if (plan_.dynamic)
-      return run_impact();
-    if (plan_.rolling)
-      return run_rolling();
-    RunResult result;
-    result.n_ranks = n_ranks_;
-    const auto &L = scene_.loading;
-    // the push to δ_max in n equal increments (the last exactly δ_max)
-    auto equal_steps = [&](const unsigned int n) {
+    /// The push to δ_max in n equal increments (the last exactly δ_max).
+    std::vector<double> equal_steps(const double delta_max, const unsigned int n)
+    {
       std::vector<double> t;
       for (unsigned int inc = 1; inc <= n; ++inc)
-        t.push_back(inc == n ? L.delta_max : inc * (L.delta_max / n));
+        t.push_back(inc == n ? delta_max : inc * (delta_max / n));
       return t;
-    };
-    const std::vector<double> targets = equal_steps(L.n_increments);
-    make_grid();
+    }
+  } // namespace
+
+  /// Adaptive cycles (mesh.adaptive_cycles; none: the mesh prepared once): marking pushes,
+  /// Kelly refinement, and the sequence F_k(N_k) in result.adaptive_cycles; the model is left
+  /// on the mesh the curve is computed on. False (result.message set) when a marking push
+  /// failed. last_mesh_marked: a target error stopped the cycles on a mesh that has its marking
+  /// run in the sequence.
+  bool ContactModel::run_adaptive_cycles(RunResult &result, bool &last_mesh_marked)
+  {
     // Adaptive cycles (mesh.adaptive_cycles): the push is computed on the current mesh (not
     // recorded), F(δ_max) kept, and the cells where Kelly's indicator is largest refined; the
     // recorded curve is the one on the last mesh. The marking meshes take the push in
     // mesh.adaptive_increments equal steps: only the state at δ_max is used there, and it
     // hardly depends on the path (μ = 0.1: 1 to 20 increments within 5e-6 of F, docs/fe.md),
     // so the sequence F_k(N_k) that gives the error estimate stays comparable with friction.
-    const std::vector<double> marking_targets = equal_steps(scene_.mesh.adaptive_increments);
+    const std::vector<double> marking_targets =
+      equal_steps(scene_.loading.delta_max, scene_.mesh.adaptive_increments);
     // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
     // estimate, extrapolated through the last three, meets it — the curve is then computed on
     // that mesh — or at adaptive_cycles, the most allowed.
     const double target = scene_.mesh.adaptive_target_error;
-    bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
     for (unsigned int cycle = 0; cycle <= scene_.mesh.adaptive_cycles; ++cycle)
       {
         if (cycle > 0)
@@ -215,7 +216,7 @@ namespace clearjoint::fe::detail
           {
             result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
             result.wall_time = elapsed();
-            return result;
+            return false;
           }
         c.wall_time = elapsed() - t0;
         result.adaptive_cycles.push_back(c);
@@ -243,6 +244,60 @@ namespace clearjoint::fe::detail
               }
           }
       }
+    return true;
+  }
+
+  /// The curve's F(δ_max) on the final mesh closes the adaptive sequence, and the error
+  /// estimate of the sequence goes into the result.
+  void ContactModel::close_adaptive_sequence(RunResult &result, const bool last_mesh_marked)
+  {
+    const double target = scene_.mesh.adaptive_target_error;
+    // the curve's F(δ_max) on the final mesh closes the sequence (in place of that mesh's
+    // marking run when the target stopped the cycles there: the same mesh)
+    AdaptiveCycle last;
+    last.n_dofs = result.n_dofs;
+    last.n_cells = result.n_cells;
+    last.force = result.increments.back().force;
+    last.wall_time = result.increments.back().wall_time - result.setup_time;
+    for (const auto &r : result.increments)
+      last.contact_iterations += r.contact_iterations;
+    if (last_mesh_marked)
+      result.adaptive_cycles.back() = last;
+    else
+      result.adaptive_cycles.push_back(last);
+    const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+    result.adaptive_error = e.error;
+    result.adaptive_error_method = e.method;
+    result.adaptive_order = e.order;
+    result.adaptive_extrapolated_force = e.extrapolated_force;
+    result.adaptive_target_reached = adaptive_target_met(e, target);
+    if (rank_ == 0 && result.adaptive_error >= 0.0)
+      log::info("fe_stage: estimated error of F(delta_max) on the final mesh " +
+                format_value(100.0 * result.adaptive_error) + " % (" +
+                result.adaptive_error_method + ")");
+    if (rank_ == 0 && target > 0.0 && !result.adaptive_target_reached)
+      log::warning("fe_stage: the target error " + format_value(100.0 * target) +
+                   " % (mesh.adaptive_target_error) was not reached in " +
+                   std::to_string(scene_.mesh.adaptive_cycles) +
+                   " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
+                   "last mesh, with the estimate above");
+  }
+
+  RunResult ContactModel::run()
+  {
+    // the study chosen once (its plan): impact and rolling have their own steppers
+    if (plan_.dynamic)
+      return run_impact();
+    if (plan_.rolling)
+      return run_rolling();
+    RunResult result;
+    result.n_ranks = n_ranks_;
+    const auto &L = scene_.loading;
+    const std::vector<double> targets = equal_steps(L.delta_max, L.n_increments);
+    make_grid();
+    bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
+    if (!run_adaptive_cycles(result, last_mesh_marked))
+      return result;
     result.n_dofs = dof_handler_.n_dofs();
     result.n_cells = tria_.n_global_active_cells();
     result.symmetry_factor = symmetry_factor_;
@@ -323,37 +378,7 @@ namespace clearjoint::fe::detail
       }
     result.complete = true;
     if (!result.adaptive_cycles.empty())
-      {
-        // the curve's F(δ_max) on the final mesh closes the sequence (in place of that mesh's
-        // marking run when the target stopped the cycles there: the same mesh)
-        AdaptiveCycle last;
-        last.n_dofs = result.n_dofs;
-        last.n_cells = result.n_cells;
-        last.force = result.increments.back().force;
-        last.wall_time = result.increments.back().wall_time - result.setup_time;
-        for (const auto &r : result.increments)
-          last.contact_iterations += r.contact_iterations;
-        if (last_mesh_marked)
-          result.adaptive_cycles.back() = last;
-        else
-          result.adaptive_cycles.push_back(last);
-        const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
-        result.adaptive_error = e.error;
-        result.adaptive_error_method = e.method;
-        result.adaptive_order = e.order;
-        result.adaptive_extrapolated_force = e.extrapolated_force;
-        result.adaptive_target_reached = adaptive_target_met(e, target);
-        if (rank_ == 0 && result.adaptive_error >= 0.0)
-          log::info("fe_stage: estimated error of F(delta_max) on the final mesh " +
-                    format_value(100.0 * result.adaptive_error) + " % (" +
-                    result.adaptive_error_method + ")");
-        if (rank_ == 0 && target > 0.0 && !result.adaptive_target_reached)
-          log::warning("fe_stage: the target error " + format_value(100.0 * target) +
-                       " % (mesh.adaptive_target_error) was not reached in " +
-                       std::to_string(scene_.mesh.adaptive_cycles) +
-                       " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
-                       "last mesh, with the estimate above");
-      }
+      close_adaptive_sequence(result, last_mesh_marked);
     result.sliding_rebuilds = n_sliding_rebuilds_;
     result.sliding_resolves = n_sliding_resolves_;
     if (rank_ == 0 && finite_sliding())

@@ -127,7 +127,8 @@ namespace clearjoint::fe::detail
             const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
             const double slope_guess =
               torque_scale > 0.0 ? (inertia_ / dt - torque_rate_slope_) / torque_scale : 0.0;
-            const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, m_.scene_.rolling.max_spin_iterations,
+            const IncreasingRoot balance{g, 1e-6, 1e-10 * roll,
+                                         m_.scene_.rolling.max_spin_iterations,
                                          "the journal's torque balance"};
             const auto root =
               rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess)
