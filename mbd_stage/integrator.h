@@ -52,7 +52,7 @@ namespace clearjoint::mbd
     /// at most to max(guard·c_r, δ_accepted + guard·c_r/2) deep (see Integrator::run).
     double depth_guard = 0.1;
     int n_step_samples = 8;       ///< samples per step while in contact (peak tracking)
-    int interpolant_degree = 3;   ///< Hermite dense output of the explicit methods (integrator.cc)
+    int interpolant_degree = 3;   ///< Hermite dense output, explicit methods (sundials_stepper.cc)
   };
 
   struct ContactEvent
