@@ -9,16 +9,20 @@
 // free-flight step that would land deep inside the bearing cannot happen: with the mode frozen
 // the motion in that step is free flight, and the step is cut back at the root.
 // Every SUNDIALS return flag is checked; a failure throws NumericalError naming the flag.
+// SUNDIALS itself is driven through sundials_stepper.h; run() holds the contact logic.
 #pragma once
 
 #include "mbd_stage/multibody_system.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace clearjoint::mbd
 {
+  class SundialsStepper;  // sundials_stepper.h, private to integrator.cc
+
   enum class IntegratorMethod
   {
     dopri5,
@@ -48,7 +52,7 @@ namespace clearjoint::mbd
     /// at most to max(guard·c_r, δ_accepted + guard·c_r/2) deep (see Integrator::run).
     double depth_guard = 0.1;
     int n_step_samples = 8;       ///< samples per step while in contact (peak tracking)
-    int interpolant_degree = 3;   ///< Hermite dense output of the explicit methods (integrator.cc)
+    int interpolant_degree = 3;   ///< Hermite dense output, explicit methods (sundials_stepper.cc)
   };
 
   struct ContactEvent
@@ -78,25 +82,33 @@ namespace clearjoint::mbd
     Integrator(const Integrator &) = delete;
     Integrator &operator=(const Integrator &) = delete;
 
+    using OutputCallback = std::function<void(double, const Eigen::VectorXd &)>;
+    using StepCallback = std::function<void(double, const Eigen::VectorXd &, bool interior)>;
+
     /// Integrates from t0 to t_end. `on_output(t, y)` is called at t0 and at every multiple of
     /// output_interval (dense output), and `on_step(t, y, false)` after every accepted step — and
     /// (with interior = true) at n_step_samples − 1 interior points (dense output) of each step in
     /// which an active contact turns from compression to restitution, so the peak contact force
     /// is not missed between step ends.
-    void run(double t0, double t_end, double output_interval,
-             const std::function<void(double, const Eigen::VectorXd &)> &on_output,
-             const std::function<void(double, const Eigen::VectorXd &, bool interior)> &on_step = {});
+    void run(double t0, double t_end, double output_interval, const OutputCallback &on_output,
+             const StepCallback &on_step = {});
 
     const StepStatistics &statistics() const { return stats_; }
     const std::vector<ContactEvent> &events() const { return events_; }
     static std::string method_name(IntegratorMethod m);
 
   private:
-    struct Impl;
-    Impl *impl_;
+    /// Keeps the accepted step size h_last [s] in the statistics (h_min, h_max) and makes a
+    /// tenth of it the initial step of the next restart.
+    void record_step_size(double h_last, double &h_restart);
+    /// Calls on_step(…, interior = true) at n_step_samples − 1 points inside the step
+    /// (t, t_reached).
+    void sample_step(double t, double t_reached, const StepCallback &on_step);
+
     MultibodySystem &system_;
     IntegratorSettings settings_;
     StepStatistics stats_;
     std::vector<ContactEvent> events_;
+    std::unique_ptr<SundialsStepper> stepper_;  // after settings_ and stats_: it refers to them
   };
 } // namespace clearjoint::mbd

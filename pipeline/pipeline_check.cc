@@ -10,21 +10,17 @@
 #include "common/document_reader.h"
 #include "common/error.h"
 #include "common/log.h"
-#include "laws/law_family.h"
 #include "laws/law_file.h"
 #include "pipeline/scene_builder.h"
+#include "pipeline/stage_check.h"
+#include "pipeline/stand_in_laws.h"
 #include "pipeline/study_values.h"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <climits>
 #include <filesystem>
 #include <set>
-
-#ifndef CLEARJOINT_SOURCE_DIR
-#define CLEARJOINT_SOURCE_DIR "."
-#endif
 
 namespace clearjoint::pipeline
 {
@@ -32,50 +28,6 @@ namespace clearjoint::pipeline
 
   namespace
   {
-    /// Where a scene key got its value: the pipeline key (and its value, for the message).
-    struct Origin
-    {
-      std::string scene_key, pipeline_key;
-      nlohmann::json value;
-    };
-
-    /// "clearance_joints[0].normal" → "clearance_joints.0.normal": the pipeline's spelling.
-    std::string dotted(const std::string &path)
-    {
-      std::string out;
-      for (const char c : path)
-        if (c == '[')
-          out += '.';
-        else if (c != ']')
-          out += c;
-      return out;
-    }
-
-    bool related(const std::string &a, const std::string &b)
-    {
-      return a == b || a.rfind(b + ".", 0) == 0 || b.rfind(a + ".", 0) == 0;
-    }
-
-    /// The key path an InputError message names ("... key 'a.b' has value ..."), or "".
-    std::string failing_key(const std::string &message)
-    {
-      const auto p = message.find("key '");
-      if (p == std::string::npos)
-        return "";
-      const auto q = message.find('\'', p + 5);
-      return q == std::string::npos ? "" : message.substr(p + 5, q - p - 5);
-    }
-
-    /// The stage's error message: from "input error" to the end of that line.
-    std::string error_line(const std::string &log)
-    {
-      const auto p = log.find("input error");
-      if (p == std::string::npos)
-        return log.substr(log.size() > 1000 ? log.size() - 1000 : 0);
-      const auto e = log.find('\n', p);
-      return log.substr(p, e == std::string::npos ? std::string::npos : e - p);
-    }
-
     /// A scratch folder outside the output root, removed when the check ends.
     class Scratch
     {
@@ -93,6 +45,7 @@ namespace clearjoint::pipeline
         fs::remove_all(path_, ec);
       }
       std::string file(const std::string &name) const { return (path_ / name).string(); }
+      const fs::path &path() const { return path_; }
 
     private:
       fs::path path_;
@@ -114,6 +67,48 @@ namespace clearjoint::pipeline
       if (first_invalid_utf8(name) != std::string::npos)
         throw InputError(source, key, "(bytes that are not UTF-8)", "UTF-8 text",
                          "names are written into JSON manifests and summaries");
+    }
+
+    /// Every FE case gets its own folder: names the file system accepts, and no two values of
+    /// one study with the same label.
+    void check_fe_study_names(const std::string &src, const std::vector<FeStudy> &studies)
+    {
+      for (std::size_t i = 0; i < studies.size(); ++i)
+      {
+        const FeStudy &s = studies[i];
+        const std::string key = "fe_studies[" + std::to_string(i) + "]";
+        check_name(src, key + ".name", s.name);
+        std::set<std::string> labels;
+        for (std::size_t v = 0; v < s.values.size(); ++v)
+        {
+          const std::string label = s.parameter + "=" + value_label(s.values[v]);
+          check_name(src, key + ".values[" + std::to_string(v) + "]", "fe_" + s.name + "_" + label);
+          if (!labels.insert(label).second)
+            throw InputError(src, key + ".values[" + std::to_string(v) + "]",
+                             value_label(s.values[v]), "values that differ from each other",
+                             "two cases of study '" + s.name + "' would share the folder " +
+                               label);
+        }
+      }
+    }
+
+    /// Every MBD run gets its own folders under mbd/: NAME, and NAME_band for a run with a
+    /// confidence band.
+    void check_mbd_run_names(const std::string &src, const std::vector<MbdRun> &runs)
+    {
+      std::set<std::string> names;
+      for (std::size_t i = 0; i < runs.size(); ++i)
+      {
+        const MbdRun &m = runs[i];
+        const std::string key = "mbd_runs[" + std::to_string(i) + "]";
+        check_name(src, key + ".name", "mbd_" + m.name + "_band");
+        for (const std::string &folder :
+             m.band ? std::vector<std::string>{m.name, m.name + "_band"}
+                    : std::vector<std::string>{m.name})
+          if (!names.insert(folder).second)
+            throw InputError(src, key + ".name", m.name, "a name not used by another MBD run",
+                             "two runs would write into the same folder mbd/" + folder);
+      }
     }
   } // namespace
 
@@ -157,86 +152,185 @@ namespace clearjoint::pipeline
                          " bytes");
   }
 
-  void PipelineRunner::check()
+  /// The steps of check() after the names: each generated scene (and fit command) handed to
+  /// its stage's own --check in a scratch folder, a failure traced back to the pipeline key
+  /// that produced the value.
+  class PipelineRunner::Checker
   {
-    const std::string &src = config_.source;
-    check_output_root();
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+  public:
+    explicit Checker(PipelineRunner &runner)
+      : runner_(runner)
+      , config_(runner.config_)
+      , src_(runner.config_.source)
+      , stand_ins_(scratch_.path(), runner.config_.fe_studies)
     {
-      const FeStudy &s = config_.fe_studies[i];
-      const std::string key = "fe_studies[" + std::to_string(i) + "]";
-      check_name(src, key + ".name", s.name);
-      std::set<std::string> labels;
-      for (std::size_t v = 0; v < s.values.size(); ++v)
-      {
-        const std::string label = s.parameter + "=" + value_label(s.values[v]);
-        check_name(src, key + ".values[" + std::to_string(v) + "]", "fe_" + s.name + "_" + label);
-        if (!labels.insert(label).second)
-          throw InputError(src, key + ".values[" + std::to_string(v) + "]",
-                           value_label(s.values[v]), "values that differ from each other",
-                           "two cases of study '" + s.name + "' would share the folder " +
-                             label);
-      }
-    }
-    for (std::size_t i = 0; i < config_.mbd_runs.size(); ++i)
-    {
-      const MbdRun &m = config_.mbd_runs[i];
-      const std::string key = "mbd_runs[" + std::to_string(i) + "]";
-      check_name(src, key + ".name", "mbd_" + m.name + "_band");
-      // Folders under mbd/: NAME, and NAME_band for a run with a confidence band.
-      for (const std::string &folder :
-           m.band ? std::vector<std::string>{m.name, m.name + "_band"}
-                  : std::vector<std::string>{m.name})
-        if (!names.insert(folder).second)
-          throw InputError(src, key + ".name", m.name, "a name not used by another MBD run",
-                           "two runs would write into the same folder mbd/" + folder);
     }
 
-    const Scratch scratch;
-    // Runs STAGE ARGS... --check -q; the log goes to log_path.
-    const auto run_stage_check = [&](const std::string &stage, std::vector<std::string> args,
-                                     const std::string &log_path,
-                                     const std::vector<Origin> &origins,
-                                     const std::string &base_key, const std::string &what) {
-      args.insert(args.begin(), stage_executable(stage));
-      args.push_back("--check");
-      args.push_back("-q");
-      const int status = run_process(args, log_path);
-      if (interrupt_requested())
-        throw NumericalError("interrupted while checking the scenes; nothing was written");
-      if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
-        return;
-      std::string log;
+    /// Each FE case's scene: base + preset + overrides + its value.
+    void fe_cases()
+    {
+      for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+      {
+        const FeStudy &study = config_.fe_studies[i];
+        const std::string key = "fe_studies[" + std::to_string(i) + "]";
+        for (std::size_t v = 0; v < study.values.size(); ++v)
+        {
+          std::vector<std::string> unused;
+          nlohmann::json scene = runner_.fe_case_scene(study, study.values[v], true, unused);
+          // A mesh a mesh task will make does not exist yet: check the rest of the scene (the
+          // mesh is checked against the scene when the FE case runs).
+          const nlohmann::json *mesh = find_key_path(scene, "geometry.mesh");
+          if (mesh && mesh->is_string() && !fs::exists(mesh->get<std::string>()))
+            scene["geometry"].erase("mesh");
+          const std::string label = study.parameter + "=" + value_label(study.values[v]);
+          const std::string file = write_scene("fe_" + study.name + "_" + label + ".yaml", scene);
+          std::vector<Origin> origins = preset_origins("fe");
+          for (const auto &[k, val] : study.overrides)
+            origins.push_back({k, key + ".overrides." + k, val});
+          origins.push_back({study.key, key + ".values[" + std::to_string(v) + "]",
+                             study.keywords[v].empty() ? nlohmann::json(study.values[v])
+                                                       : nlohmann::json(study.keywords[v])});
+          run_scene_check("fe_stage", file, origins, key + ".scene",
+                          "FE case " + study.name + " " + label + " (scene " + study.scene + ")");
+        }
+      }
+    }
+
+    /// The fit commands the run will give (fit_stage --check): the data files do not exist
+    /// yet, so this checks the options the pipeline and its preset put on the command line
+    /// (the weighting, the range policy, the preset's measured discretisation error, the
+    /// family's parameter and values).
+    void fit_commands()
+    {
+      for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+      {
+        const FeStudy &study = config_.fe_studies[i];
+        const std::string key = "fe_studies[" + std::to_string(i) + "]";
+        const std::vector<std::string> mesh_error = runner_.discretisation_error_args(study.name);
+        const std::vector<Origin> origins = fit_origins(study, key, mesh_error);
+        std::vector<std::string> fit_args = {scratch_.file("fe_" + study.name + ".csv"),
+                                             "--output", scratch_.file("law.json"), "--weighting",
+                                             config_.fit_weighting, "--no-plots"};
+        fit_args.insert(fit_args.end(), mesh_error.begin(), mesh_error.end());
+        run_stage_check("fit_stage", fit_args, scratch_.file("fit_" + study.name + ".log"),
+                        origins, key, "the fit of study " + study.name);
+        if (study.values.size() < 2)
+          continue;
+        std::vector<std::string> family_args = {"--family", study.parameter};
+        for (std::size_t v = 0; v < study.values.size(); ++v)
+          family_args.push_back(
+            scratch_.file("fe_" + study.name + "_" + std::to_string(v) + ".csv") + "=" +
+            value_label(to_si(study.values[v], study.unit).value));
+        for (const auto &a : std::vector<std::string>{
+               "--parameter-unit", to_si(1.0, study.unit).unit, "--family-out-of-range",
+               config_.family_out_of_range, "--output", scratch_.file("family.json"),
+               "--weighting", config_.fit_weighting, "--no-plots"})
+          family_args.push_back(a);
+        family_args.insert(family_args.end(), mesh_error.begin(), mesh_error.end());
+        run_stage_check("fit_stage", family_args,
+                        scratch_.file("family_" + study.name + ".log"), origins, key,
+                        "the law family of study " + study.name);
+      }
+    }
+
+    /// The FE impact study's scene, that it is one (study: impact), and a law given as a file
+    /// (a fitted one is checked when impact_compare runs).
+    void impact()
+    {
+      const nlohmann::json scene = compose_scene(config_, config_.impact->scene, "fe", {});
+      const std::string file = write_scene("fe_impact.yaml", scene);
+      run_scene_check("fe_stage", file, preset_origins("fe"), "impact.scene",
+                      "FE impact study (scene " + config_.impact->scene + ")");
+      const nlohmann::json *study = find_key_path(scene, "study");
+      if (!study || !study->is_string() || study->get<std::string>() != "impact")
+        throw InputError(src_, "impact.scene", config_.impact->scene,
+                         "a scene with study: impact");
+      if (config_.impact->law.file)
+        try
+        {
+          laws::read_law_file(*config_.impact->law.file);
+        }
+        catch (const InputError &e)
+        {
+          throw InputError(src_, "impact.law.file", *config_.impact->law.file,
+                           "a readable law file (clearjoint.law/1)", e.what());
+        }
+    }
+
+    /// The FE rolling study's scene: it exists, is readable, is a rolling scene, and fe_stage
+    /// accepts it with the preset's and the rolling block's overrides.
+    void rolling()
+    {
+      const std::string &base = config_.rolling->scene;
+      std::error_code ec;
+      if (!fs::is_regular_file(base, ec))
+        throw InputError(src_, "rolling.scene", base,
+                         "an existing FE scene file (clearjoint.fe/1) with study: rolling",
+                         "no such file (relative paths are taken from the folder run_pipeline "
+                         "runs in)");
+      nlohmann::json scene;
       try
       {
-        log = read_file(log_path);
+        scene = runner_.rolling_scene();
       }
-      catch (...)
+      catch (const InputError &e)
       {
+        throw InputError(src_, "rolling.scene", base, "a readable FE scene (clearjoint.fe/1)",
+                         e.what());
       }
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != exit_input_error)
-        throw NumericalError(stage + " --check failed on the generated scene of " + what +
-                             " (exit status " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                             "): " + error_line(log));
-      const std::string scene_key = dotted(failing_key(error_line(log)));
-      // The last override applied to that key (or to a key above or below it) made it.
-      for (auto it = origins.rbegin(); it != origins.rend(); ++it)
-        if (!scene_key.empty() && related(dotted(it->scene_key), scene_key))
-          throw InputError(src, it->pipeline_key, json_excerpt(it->value),
-                           "a value " + stage + " accepts",
-                           what + ": " + stage + " reports: " + error_line(log));
-      throw InputError(src, base_key, what,
-                       (stage == "fit_stage" ? "a command " : "a scene ") + stage + " accepts",
-                       stage + " reports: " + error_line(log));
-    };
-    const auto run_check = [&](const std::string &stage, const std::string &scene_file,
-                               const std::vector<Origin> &origins,
-                               const std::string &base_key, const std::string &what) {
-      run_stage_check(stage, {scene_file}, scene_file + ".log", origins, base_key, what);
-    };
-    const auto preset_origins = [&](const std::string &stage, std::vector<Origin> &origins) {
+      // Before fe_stage's check: a scene of another study (or none, which is radial) would
+      // pass it and then run the wrong study.
+      const nlohmann::json *study = find_key_path(scene, "study");
+      if (!study || !study->is_string() || study->get<std::string>() != "rolling")
+        throw InputError(src_, "rolling.scene", base, "a scene with study: rolling",
+                         "its study is " + (study ? json_excerpt(*study) : "radial (not stated)"));
+      const std::string file = write_scene("fe_rolling.yaml", scene);
+      std::vector<Origin> origins = preset_origins("fe");
+      for (const auto &[k, val] : config_.rolling->overrides)
+        origins.push_back({k, "rolling.overrides." + k, val});
+      run_scene_check("fe_stage", file, origins, "rolling.scene",
+                      "FE rolling study (scene " + base + ")");
+    }
+
+    /// Each MBD run's scene with its laws (stand-ins for the fitted ones).
+    void mbd_runs()
+    {
+      for (std::size_t i = 0; i < config_.mbd_runs.size(); ++i)
+      {
+        const MbdRun &m = config_.mbd_runs[i];
+        const std::string key = "mbd_runs[" + std::to_string(i) + "]";
+        std::vector<Origin> origins = preset_origins("mbd");
+        Overrides overrides = m.overrides;
+        for (const auto &[k, val] : m.overrides)
+          origins.push_back({k, key + ".overrides." + k, val});
+        for (std::size_t l = 0; l < m.laws.size(); ++l)
+        {
+          const std::string law = stand_ins_.for_choice(m.laws[l]);
+          overrides.emplace_back(m.laws[l].key, law);
+          origins.push_back({m.laws[l].key, key + ".laws[" + std::to_string(l) + "]",
+                             m.laws[l].file ? nlohmann::json(*m.laws[l].file)
+                                            : nlohmann::json("study " + *m.laws[l].study)});
+        }
+        const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
+        const std::string file = write_scene("mbd_" + m.name + ".yaml", scene);
+        run_scene_check("mbd_stage", file, origins, key + ".scene",
+                        "MBD run " + m.name + " (scene " + m.scene + ")");
+      }
+    }
+
+  private:
+    /// Writes a generated scene into the scratch folder; returns its path.
+    std::string write_scene(const std::string &name, const nlohmann::json &scene) const
+    {
+      const std::string file = scratch_.file(name);
+      write_file_atomically(file, json_text(scene) + "\n");
+      return file;
+    }
+
+    /// The chosen preset's keys for `stage` ("fe" or "mbd"), as origins of scene keys.
+    std::vector<Origin> preset_origins(const std::string &stage) const
+    {
+      std::vector<Origin> origins;
       const auto preset = config_.presets.find(config_.preset);
       if (preset != config_.presets.end())
         for (const auto &[key, value] : preset->second)
@@ -245,194 +339,58 @@ namespace clearjoint::pipeline
                                "presets." + config_.preset + "." + stage + "." +
                                  key.substr(stage.size() + 1),
                                value});
-    };
-
-    for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
-    {
-      const FeStudy &study = config_.fe_studies[i];
-      const std::string key = "fe_studies[" + std::to_string(i) + "]";
-      for (std::size_t v = 0; v < study.values.size(); ++v)
-      {
-        std::vector<std::string> unused;
-        nlohmann::json scene = fe_case_scene(study, study.values[v], true, unused);
-        // A mesh a mesh task will make does not exist yet: check the rest of the scene (the
-        // mesh is checked against the scene when the FE case runs).
-        const nlohmann::json *mesh = find_key_path(scene, "geometry.mesh");
-        if (mesh && mesh->is_string() && !fs::exists(mesh->get<std::string>()))
-          scene["geometry"].erase("mesh");
-        const std::string label = study.parameter + "=" + value_label(study.values[v]);
-        const std::string file = scratch.file("fe_" + study.name + "_" + label + ".yaml");
-        write_file_atomically(file, json_text(scene) + "\n");
-        std::vector<Origin> origins;
-        preset_origins("fe", origins);
-        for (const auto &[k, val] : study.overrides)
-          origins.push_back({k, key + ".overrides." + k, val});
-        origins.push_back({study.key, key + ".values[" + std::to_string(v) + "]",
-                           study.keywords[v].empty() ? nlohmann::json(study.values[v])
-                                                     : nlohmann::json(study.keywords[v])});
-        run_check("fe_stage", file, origins, key + ".scene",
-                  "FE case " + study.name + " " + label + " (scene " + study.scene + ")");
-      }
+      return origins;
     }
 
-    // The fit commands the run will give (fit_stage --check): the data files do not exist yet,
-    // so this checks the options the pipeline and its preset put on the command line (the
-    // weighting, the range policy, the preset's measured discretisation error, the family's
-    // parameter and values).
-    for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+    /// The pipeline keys behind the options of a study's fit commands.
+    std::vector<Origin> fit_origins(const FeStudy &study, const std::string &key,
+                                    const std::vector<std::string> &mesh_error) const
     {
-      const FeStudy &study = config_.fe_studies[i];
-      const std::string key = "fe_studies[" + std::to_string(i) + "]";
-      const std::vector<std::string> mesh_error = discretisation_error_args(study.name);
-      std::vector<Origin> origins = {
-        {"--weighting", "fit.weighting", config_.fit_weighting},
-        {"--family-out-of-range", "fit.family_out_of_range", config_.family_out_of_range},
-        {"--discretisation-error",
-         "presets." + config_.preset + ".measured.error_F_max." + study.name + ".percent",
-         mesh_error.size() > 1 ? nlohmann::json(std::stod(mesh_error[1])) : nlohmann::json()},
-        {"--family", key + ".parameter.name", study.parameter},
-        {"--parameter-unit", key + ".parameter.unit", study.unit}};
-      std::vector<std::string> fit_args = {scratch.file("fe_" + study.name + ".csv"), "--output",
-                                           scratch.file("law.json"), "--weighting",
-                                           config_.fit_weighting, "--no-plots"};
-      fit_args.insert(fit_args.end(), mesh_error.begin(), mesh_error.end());
-      run_stage_check("fit_stage", fit_args, scratch.file("fit_" + study.name + ".log"), origins,
-                      key, "the fit of study " + study.name);
-      if (study.values.size() < 2)
-        continue;
-      std::vector<std::string> family_args = {"--family", study.parameter};
-      for (std::size_t v = 0; v < study.values.size(); ++v)
-        family_args.push_back(scratch.file("fe_" + study.name + "_" + std::to_string(v) + ".csv") +
-                              "=" + value_label(to_si(study.values[v], study.unit).value));
-      for (const auto &a : std::vector<std::string>{
-             "--parameter-unit", to_si(1.0, study.unit).unit, "--family-out-of-range",
-             config_.family_out_of_range, "--output", scratch.file("family.json"),
-             "--weighting", config_.fit_weighting, "--no-plots"})
-        family_args.push_back(a);
-      family_args.insert(family_args.end(), mesh_error.begin(), mesh_error.end());
-      run_stage_check("fit_stage", family_args, scratch.file("family_" + study.name + ".log"),
-                      origins, key, "the law family of study " + study.name);
+      return {{"--weighting", "fit.weighting", config_.fit_weighting},
+              {"--family-out-of-range", "fit.family_out_of_range", config_.family_out_of_range},
+              {"--discretisation-error",
+               "presets." + config_.preset + ".measured.error_F_max." + study.name + ".percent",
+               mesh_error.size() > 1 ? nlohmann::json(std::stod(mesh_error[1]))
+                                     : nlohmann::json()},
+              {"--family", key + ".parameter.name", study.parameter},
+              {"--parameter-unit", key + ".parameter.unit", study.unit}};
     }
 
+    void run_scene_check(const std::string &stage, const std::string &scene_file,
+                         const std::vector<Origin> &origins, const std::string &base_key,
+                         const std::string &what) const
+    {
+      run_stage_check(stage, {scene_file}, scene_file + ".log", origins, base_key, what);
+    }
+
+    void run_stage_check(const std::string &stage, std::vector<std::string> args,
+                         const std::string &log_path, const std::vector<Origin> &origins,
+                         const std::string &base_key, const std::string &what) const
+    {
+      pipeline::run_stage_check({stage, runner_.stage_executable(stage), src_}, std::move(args),
+                                log_path, origins, base_key, what);
+    }
+
+    PipelineRunner &runner_;
+    const PipelineConfig &config_;
+    const std::string &src_;
+    const Scratch scratch_;
+    StandInLaws stand_ins_;
+  };
+
+  void PipelineRunner::check()
+  {
+    check_output_root();
+    check_fe_study_names(config_.source, config_.fe_studies);
+    check_mbd_run_names(config_.source, config_.mbd_runs);
+    Checker checker(*this);
+    checker.fe_cases();
+    checker.fit_commands();
     if (config_.impact)
-    {
-      const nlohmann::json scene = compose_scene(config_, config_.impact->scene, "fe", {});
-      const std::string file = scratch.file("fe_impact.yaml");
-      write_file_atomically(file, json_text(scene) + "\n");
-      std::vector<Origin> origins;
-      preset_origins("fe", origins);
-      run_check("fe_stage", file, origins, "impact.scene",
-                "FE impact study (scene " + config_.impact->scene + ")");
-      const nlohmann::json *study = find_key_path(scene, "study");
-      if (!study || !study->is_string() || study->get<std::string>() != "impact")
-        throw InputError(src, "impact.scene", config_.impact->scene, "a scene with study: impact");
-      // a law given as a file is read now (a fitted one is checked when impact_compare runs)
-      if (config_.impact->law.file)
-        try
-        {
-          laws::read_law_file(*config_.impact->law.file);
-        }
-        catch (const InputError &e)
-        {
-          throw InputError(src, "impact.law.file", *config_.impact->law.file,
-                           "a readable law file (clearjoint.law/1)", e.what());
-        }
-    }
-
+      checker.impact();
     if (config_.rolling)
-    {
-      const std::string &base = config_.rolling->scene;
-      std::error_code ec;
-      if (!fs::is_regular_file(base, ec))
-        throw InputError(src, "rolling.scene", base,
-                         "an existing FE scene file (clearjoint.fe/1) with study: rolling",
-                         "no such file (relative paths are taken from the folder run_pipeline "
-                         "runs in)");
-      nlohmann::json scene;
-      try
-      {
-        scene = rolling_scene();
-      }
-      catch (const InputError &e)
-      {
-        throw InputError(src, "rolling.scene", base, "a readable FE scene (clearjoint.fe/1)",
-                         e.what());
-      }
-      // Before fe_stage's check: a scene of another study (or none, which is radial) would
-      // pass it and then run the wrong study.
-      const nlohmann::json *study = find_key_path(scene, "study");
-      if (!study || !study->is_string() || study->get<std::string>() != "rolling")
-        throw InputError(src, "rolling.scene", base, "a scene with study: rolling",
-                         "its study is " + (study ? json_excerpt(*study) : "radial (not stated)"));
-      const std::string file = scratch.file("fe_rolling.yaml");
-      write_file_atomically(file, json_text(scene) + "\n");
-      std::vector<Origin> origins;
-      preset_origins("fe", origins);
-      for (const auto &[k, val] : config_.rolling->overrides)
-        origins.push_back({k, "rolling.overrides." + k, val});
-      run_check("fe_stage", file, origins, "rolling.scene", "FE rolling study (scene " + base + ")");
-    }
-
-    // Fitted laws do not exist before the run: the MBD scenes are checked with a stand-in (the
-    // paper's law for t_B = 4 mm, and a two-member family of it over the study's parameter),
-    // which validates every other key; the fitted law itself is checked when mbd_stage runs.
-    std::string stand_in_law;
-    std::map<std::string, std::string> stand_in_families;
-    const auto law_for = [&](const LawChoice &choice) -> std::string {
-      if (choice.file)
-        return fs::absolute(*choice.file).string();
-      if (stand_in_law.empty())
-      {
-        stand_in_law = scratch.file("stand_in_law.json");
-        laws::write_law_file(stand_in_law, laws::read_law_file(std::string(CLEARJOINT_SOURCE_DIR) +
-                                                               "/laws/paper_tB4.json"));
-      }
-      if (choice.value || !choice.value_keyword.empty())
-        return stand_in_law;
-      auto &family = stand_in_families[*choice.study];
-      if (family.empty())
-      {
-        const FeStudy *study = nullptr;
-        for (const auto &s : config_.fe_studies)
-          if (s.name == *choice.study)
-            study = &s;
-        const laws::LawFile law = laws::read_law_file(stand_in_law);
-        const SiValue lo = to_si(study->values.front(), study->unit);
-        const SiValue hi = to_si(study->values.back(), study->unit);
-        family = scratch.file("stand_in_family_" + study->name + ".json");
-        laws::write_law_family(
-          family, laws::LawFamily(study->parameter, lo.unit, law.delta_ref,
-                                  {{std::min(lo.value, hi.value), law},
-                                   {std::max(lo.value, hi.value) +
-                                      (lo.value == hi.value ? 1.0 : 0.0),
-                                    law}},
-                                  laws::RangePolicy::clamp));
-      }
-      return family;
-    };
-    for (std::size_t i = 0; i < config_.mbd_runs.size(); ++i)
-    {
-      const MbdRun &m = config_.mbd_runs[i];
-      const std::string key = "mbd_runs[" + std::to_string(i) + "]";
-      std::vector<Origin> origins;
-      preset_origins("mbd", origins);
-      Overrides overrides = m.overrides;
-      for (const auto &[k, val] : m.overrides)
-        origins.push_back({k, key + ".overrides." + k, val});
-      for (std::size_t l = 0; l < m.laws.size(); ++l)
-      {
-        const std::string law = law_for(m.laws[l]);
-        overrides.emplace_back(m.laws[l].key, law);
-        origins.push_back({m.laws[l].key, key + ".laws[" + std::to_string(l) + "]",
-                           m.laws[l].file ? nlohmann::json(*m.laws[l].file)
-                                          : nlohmann::json("study " + *m.laws[l].study)});
-      }
-      const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
-      const std::string file = scratch.file("mbd_" + m.name + ".yaml");
-      write_file_atomically(file, json_text(scene) + "\n");
-      run_check("mbd_stage", file, origins, key + ".scene",
-                "MBD run " + m.name + " (scene " + m.scene + ")");
-    }
-    log::info("run_pipeline: checked " + src + ": every generated scene is valid");
+      checker.rolling();
+    checker.mbd_runs();
+    log::info("run_pipeline: checked " + config_.source + ": every generated scene is valid");
   }
 } // namespace clearjoint::pipeline

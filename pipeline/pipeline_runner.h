@@ -72,6 +72,7 @@ namespace clearjoint::pipeline
     /// [s], if measured.
     std::optional<double> preset_time(const std::string &which) const;
     void check_output_root() const;
+    class Checker;  ///< the steps of check() after the names (pipeline_check.cc)
     std::string stage_executable(const std::string &stage) const;
 
     PipelineConfig config_;

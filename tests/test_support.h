@@ -1,9 +1,12 @@
-// Small helpers shared by the tests: a fresh scratch directory per test, writing files, and
+// Small helpers shared by the tests: a fresh scratch directory per test, writing files,
 // running an executable with its exit code — in the foreground, or in the background to be
-// interrupted.
+// interrupted — and the message of the input error a call throws.
 #pragma once
 
+#include "common/error.h"
+
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -84,5 +87,30 @@ namespace clearjoint::test_support
   {
     std::ifstream in(path);
     return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+
+  /// What input_error_of() returns when the call throws nothing.
+  inline const std::string accepted = "(accepted)";
+
+  /// The message of the InputError that `call()` throws, `accepted` if it throws none, and
+  /// "(not an InputError) ..." for any other exception — so that a test of a bad input checks
+  /// the message with EXPECT_NE(message.find(...), npos) << message, and a wrong outcome shows
+  /// in the failure instead of ending the test.
+  template <typename Call>
+  std::string input_error_of(Call &&call)
+  {
+    try
+    {
+      call();
+    }
+    catch (const InputError &e)
+    {
+      return e.what();
+    }
+    catch (const std::exception &e)
+    {
+      return std::string("(not an InputError) ") + e.what();
+    }
+    return accepted;
   }
 } // namespace clearjoint::test_support

@@ -10,6 +10,7 @@ import re
 
 import matplotlib.pyplot as plt
 
+from plotting import _paper
 from plotting._common import read_table
 from plotting._report_common import readable_log_axis
 
@@ -51,10 +52,15 @@ def main(argv):
         pts = [(x, f) for x, f in zip(delta_mm, d["force"]) if x > 0 and f > 0]
         ax2.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, label=label)
     if paper:
-        xs = [0.005 * i for i in range(1, 11)]
-        ys = [338240.0 * x ** 1.0114 for x in xs]
+        # The paper's law over its own δ range (ten points up to DELTA_MAX), from _paper.py so
+        # that this plot and the report draw the same curve.
+        deltas = [_paper.DELTA_MAX * i / 10 for i in range(1, 11)]
+        xs = [x * 1e3 for x in deltas]
+        ys = [_paper.tb4_force(x) for x in deltas]
+        paper_label = (f"paper t_B = {_paper.TB4_T_B * 1e3:g} mm: "
+                       f"{_paper.TB4_K_MM:g}·δ^{_paper.TB4_N:g}")
         for ax in (ax1, ax2):
-            ax.plot(xs, ys, "k--", label="paper t_B = 4 mm: 338240·δ^1.0114")
+            ax.plot(xs, ys, "k--", label=paper_label)
     for ax in (ax1, ax2):
         ax.set_xlabel("δ [mm]")
         ax.set_ylabel("F [N]")

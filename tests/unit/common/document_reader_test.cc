@@ -8,28 +8,11 @@
 
 #include <gtest/gtest.h>
 
-#include <functional>
-
 using namespace clearjoint;
 
 namespace
 {
-  std::string message_of(const std::function<void()> &f)
-  {
-    try
-    {
-      f();
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    catch (const std::exception &e)
-    {
-      return std::string("(not an InputError) ") + e.what();
-    }
-    return "(no error)";
-  }
+  using test_support::input_error_of;
 
   bool contains(const std::string &m, const std::string &part)
   {
@@ -50,7 +33,7 @@ namespace
 TEST(DocumentReader, DeepJsonNestingIsAnInputErrorNotACrash)
 {
   // 100000 levels crashed mbd_stage (exit 139) before the depth limit existed.
-  const std::string m = message_of([] { parse_json_string(nested_json(100000), "law.json"); });
+  const std::string m = input_error_of([] { parse_json_string(nested_json(100000), "law.json"); });
   EXPECT_TRUE(contains(m, "input error in law.json")) << m;
   EXPECT_TRUE(contains(m, "levels of nesting")) << m;
   EXPECT_TRUE(contains(m, "a.a.a")) << "names the key path: " << m;
@@ -76,7 +59,7 @@ TEST(DocumentReader, DeepYamlNestingIsAnInputError)
           return s + "1" + std::string(100, '}');
         }()})
   {
-    const std::string m = message_of([&] { parse_yaml_string(text, "scene.yaml"); });
+    const std::string m = input_error_of([&] { parse_yaml_string(text, "scene.yaml"); });
     EXPECT_TRUE(contains(m, "input error in scene.yaml")) << m;
     EXPECT_TRUE(contains(m, "levels of nesting")) << m;
   }
@@ -89,13 +72,13 @@ TEST(DocumentReader, DeepYamlNestingIsAnInputError)
   std::string expected = "extra[1]";
   for (int i = 0; i < max_document_depth - 2; ++i)
     expected += "[0]";
-  const std::string m = message_of([&] { parse_yaml_string(block, "scene.yaml"); });
+  const std::string m = input_error_of([&] { parse_yaml_string(block, "scene.yaml"); });
   EXPECT_TRUE(contains(m, "key '" + expected + "'")) << m;
   std::string flow = "{a: {b: ";
   for (int i = 0; i < max_document_depth; ++i)
     flow += "{k: ";
   flow += "1" + std::string(max_document_depth + 2, '}');
-  const std::string f = message_of([&] { parse_yaml_string(flow, "scene.yaml"); });
+  const std::string f = input_error_of([&] { parse_yaml_string(flow, "scene.yaml"); });
   EXPECT_TRUE(contains(f, "key 'a.b.k.k.k")) << f;
   // The limit itself is accepted, one more level is not.
   std::string at_limit, over_limit;
@@ -108,7 +91,7 @@ TEST(DocumentReader, DeepYamlNestingIsAnInputError)
 
 TEST(DocumentReader, BytesThatAreNotUtf8AreNamedWithTheirPosition)
 {
-  const std::string m = message_of([] { parse_yaml_string("a: 1\nb: x\xff\n", "s.yaml"); });
+  const std::string m = input_error_of([] { parse_yaml_string("a: 1\nb: x\xff\n", "s.yaml"); });
   EXPECT_TRUE(contains(m, "s.yaml")) << m;
   EXPECT_TRUE(contains(m, "0xFF")) << m;
   EXPECT_TRUE(contains(m, "line 2, column 5")) << m;
@@ -126,13 +109,13 @@ TEST(DocumentReader, BytesThatAreNotUtf8AreNamedWithTheirPosition)
 
 TEST(DocumentReader, NumbersThatOverflowAreInputErrorsNamingTheKey)
 {
-  const std::string j = message_of([] {
+  const std::string j = input_error_of([] {
     parse_json_string(R"({"geometry": {"t_B": 1e400}})", "scene.json");
   });
   EXPECT_TRUE(contains(j, "key 'geometry.t_B'")) << j;
   EXPECT_TRUE(contains(j, "1e400")) << j;
   EXPECT_TRUE(contains(j, "finite")) << j;
-  const std::string y = message_of([] { parse_yaml_string("K: [1, -1e999]\n", "law.yaml"); });
+  const std::string y = input_error_of([] { parse_yaml_string("K: [1, -1e999]\n", "law.yaml"); });
   EXPECT_TRUE(contains(y, "key 'K[1]'")) << y;
   // Integers too large for 64 bits are still numbers (doubles), not errors.
   EXPECT_TRUE(parse_yaml_string("n: 123456789012345678901234\n", "s")["n"].is_number_float());
@@ -155,12 +138,12 @@ TEST(DocumentReader, NonFiniteWordsAreNotNumbers)
 
 TEST(DocumentReader, DuplicateKeysAreRejectedInBothFormats)
 {
-  const std::string j = message_of([] {
+  const std::string j = input_error_of([] {
     parse_json_string(R"({"schema": "clearjoint.law/1", "K": 1, "K": 2})", "law.json");
   });
   EXPECT_TRUE(contains(j, "key 'K'")) << j;
   EXPECT_TRUE(contains(j, "duplicate")) << j;
-  const std::string y = message_of([] { parse_yaml_string("a:\n  b: 1\n  b: 2\n", "s.yaml"); });
+  const std::string y = input_error_of([] { parse_yaml_string("a:\n  b: 1\n  b: 2\n", "s.yaml"); });
   EXPECT_TRUE(contains(y, "key 'a.b'")) << y;
   EXPECT_TRUE(contains(y, "line 3")) << y;
   // The same key in different mappings is fine.
@@ -177,35 +160,35 @@ TEST(DocumentReader, AliasBombsAndSecondDocumentsAreRejected)
             ", *" + prev + ", *" + prev + ", *" + prev + ", *" + prev + ", *" + prev +
             ", *" + prev + ", *" + prev + "]\n";
   }
-  const std::string m = message_of([&] { parse_yaml_string(bomb, "bomb.yaml"); });
+  const std::string m = input_error_of([&] { parse_yaml_string(bomb, "bomb.yaml"); });
   EXPECT_TRUE(contains(m, "too many values")) << m;
-  const std::string d = message_of([] { parse_yaml_string("a: 1\n---\nb: 2\n", "two.yaml"); });
+  const std::string d = input_error_of([] { parse_yaml_string("a: 1\n---\nb: 2\n", "two.yaml"); });
   EXPECT_TRUE(contains(d, "one YAML document")) << d;
   // yaml-cpp 0.7 alone loops forever on these (found by fuzz_document): input errors now.
   for (const std::string hang : {",x", ",\":]", "- a\n,x\n", ",  1\x1bK\":\x02] m4}"})
-    EXPECT_TRUE(contains(message_of([&] { parse_yaml_string(hang, "h.yaml"); }), "input error"))
+    EXPECT_TRUE(contains(input_error_of([&] { parse_yaml_string(hang, "h.yaml"); }), "input error"))
       << hang;
 }
 
 TEST(DocumentReader, SyntaxErrorsNameTheFile)
 {
-  const std::string j = message_of([] { parse_json_string("{\"a\": [1, 2}", "bad.json"); });
+  const std::string j = input_error_of([] { parse_json_string("{\"a\": [1, 2}", "bad.json"); });
   EXPECT_TRUE(contains(j, "malformed JSON in 'bad.json'")) << j;
   EXPECT_TRUE(contains(j, "line 1")) << j;
-  const std::string y = message_of([] { parse_yaml_string("a: [1, 2\n", "bad.yaml"); });
+  const std::string y = input_error_of([] { parse_yaml_string("a: [1, 2\n", "bad.yaml"); });
   EXPECT_TRUE(contains(y, "malformed YAML in 'bad.yaml'")) << y;
-  const std::string k = message_of([] { parse_yaml_string("? [a, b]\n: 1\n", "k.yaml"); });
+  const std::string k = input_error_of([] { parse_yaml_string("? [a, b]\n: 1\n", "k.yaml"); });
   EXPECT_TRUE(contains(k, "plain text keys")) << k;
 }
 
 TEST(DocumentReader, FilesThatAreNotDocumentsAreRefused)
 {
   test_support::ScratchDir dir("document_reader");
-  EXPECT_TRUE(contains(message_of([&] { read_yaml_file(dir.path().string()); }), "directory"));
-  EXPECT_TRUE(contains(message_of([&] { read_yaml_file(dir.file("none.yaml")); }),
+  EXPECT_TRUE(contains(input_error_of([&] { read_yaml_file(dir.path().string()); }), "directory"));
+  EXPECT_TRUE(contains(input_error_of([&] { read_yaml_file(dir.file("none.yaml")); }),
                        "no such file"));
   test_support::write_text(dir.file("big.yaml"), "a: 1\n" + std::string(2000, '#'));
-  EXPECT_TRUE(contains(message_of([&] { read_input_file(dir.file("big.yaml"), 1000); }),
+  EXPECT_TRUE(contains(input_error_of([&] { read_input_file(dir.file("big.yaml"), 1000); }),
                        "too large"));
 }
 

@@ -1,26 +1,16 @@
 #include "common/error.h"
 #include "common/strict_reader.h"
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 
-#include <functional>
 
 using namespace clearjoint;
 
 namespace
 {
-  std::string message_of(const std::function<void()> &f)
-  {
-    try
-    {
-      f();
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(no error)";
-  }
+  using test_support::input_error_of;
 
   const char *scene = R"(
 schema: clearjoint.test/1
@@ -53,7 +43,7 @@ TEST(StrictReader, UnknownKeyIsNamedWithItsPath)
   StrictObject top(j, "s.yaml");
   auto g = top.object("geometry");
   g.number("t_B", Range::positive("m"));
-  const std::string m = message_of([&] { g.finish(); });
+  const std::string m = input_error_of([&] { g.finish(); });
   EXPECT_NE(m.find("s.yaml"), std::string::npos) << m;
   EXPECT_NE(m.find("geometry.tB"), std::string::npos) << m;
   EXPECT_NE(m.find("t_B"), std::string::npos) << "lists the valid keys: " << m;
@@ -63,10 +53,10 @@ TEST(StrictReader, MissingKeyAndOutOfRangeValue)
 {
   const auto j = parse_yaml_string("t_B: -1\n", "s.yaml");
   StrictObject top(j, "s.yaml");
-  std::string m = message_of([&] { top.number("c_r", Range::positive("m")); });
+  std::string m = input_error_of([&] { top.number("c_r", Range::positive("m")); });
   EXPECT_NE(m.find("'c_r'"), std::string::npos) << m;
   EXPECT_NE(m.find("missing"), std::string::npos) << m;
-  m = message_of([&] { top.number("t_B", Range::positive("m")); });
+  m = input_error_of([&] { top.number("t_B", Range::positive("m")); });
   EXPECT_NE(m.find("'-1'"), std::string::npos) << m;
   EXPECT_NE(m.find("(0, inf) m"), std::string::npos) << m;
 }
@@ -75,17 +65,17 @@ TEST(StrictReader, WrongSchemaVersionAndWrongType)
 {
   const auto j = nlohmann::json::parse(R"({"schema": "clearjoint.law/2", "K": "big"})");
   StrictObject top(j, "law.json");
-  std::string m = message_of([&] { top.expect_schema("clearjoint.law/1"); });
+  std::string m = input_error_of([&] { top.expect_schema("clearjoint.law/1"); });
   EXPECT_NE(m.find("clearjoint.law/2"), std::string::npos) << m;
   EXPECT_NE(m.find("clearjoint.law/1"), std::string::npos) << m;
-  m = message_of([&] { top.number("K", Range::positive()); });
+  m = input_error_of([&] { top.number("K", Range::positive()); });
   EXPECT_NE(m.find("a number"), std::string::npos) << m;
 }
 
 TEST(StrictReader, MalformedYamlAndDuplicateKeys)
 {
   EXPECT_THROW(parse_yaml_string("a: [1, 2\n", "bad.yaml"), InputError);
-  const std::string m = message_of([] { parse_yaml_string("a: 1\na: 2\n", "dup.yaml"); });
+  const std::string m = input_error_of([] { parse_yaml_string("a: 1\na: 2\n", "dup.yaml"); });
   EXPECT_NE(m.find("key 'a'"), std::string::npos) << m;
   EXPECT_NE(m.find("duplicate key"), std::string::npos) << m;
 }
@@ -95,6 +85,6 @@ TEST(StrictReader, StringChoices)
   const auto j = parse_yaml_string("loading: sideways\n", "s.yaml");
   StrictObject top(j, "s.yaml");
   const std::string m =
-    message_of([&] { top.string("loading", {"axis_line", "end_faces", "rigid"}); });
+    input_error_of([&] { top.string("loading", {"axis_line", "end_faces", "rigid"}); });
   EXPECT_NE(m.find("one of axis_line|end_faces|rigid"), std::string::npos) << m;
 }

@@ -1,6 +1,8 @@
 #include "common/error.h"
 #include "fit_stage/power_law_fitter.h"
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,15 +33,7 @@ namespace
   std::string message_of(const std::vector<double> &d, const std::vector<double> &f,
                          const FitOptions &o = {})
   {
-    try
-    {
-      fit_power_law(d, f, o);
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of([&] { fit_power_law(d, f, o); });
   }
 } // namespace
 

@@ -101,15 +101,7 @@ namespace
 
   std::string error_of(const std::string &path)
   {
-    try
-    {
-      read_joint_mesh(path);
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(no InputError)";
+    return test_support::input_error_of([&] { read_joint_mesh(path); });
   }
 
   bool has(const std::string &m, const std::string &s) { return m.find(s) != std::string::npos; }

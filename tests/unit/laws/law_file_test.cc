@@ -16,15 +16,7 @@ namespace
 
   std::string error_of(const nlohmann::json &j)
   {
-    try
-    {
-      law_from_json(j, "law.json");
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of([&] { law_from_json(j, "law.json"); });
   }
 
   LawFile fitted_law()

@@ -42,15 +42,7 @@ namespace
   {
     nlohmann::json d = base();
     mutate(d);
-    try
-    {
-      mbd::scene_from_json(d, "s.yaml", scenes);
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of([&] { mbd::scene_from_json(d, "s.yaml", scenes); });
   }
 
   bool has(const std::string &text, const std::string &part)

@@ -8,6 +8,8 @@
 #include "common/strict_reader.h"
 #include "laws/law_family.h"
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -34,17 +36,10 @@ namespace
   {
     nlohmann::json doc = base();
     mutate(doc);
-    try
-    {
-      scene_from_json(doc, "bad.yaml", scenes);
-      ADD_FAILURE() << "no error for " << needles.front();
-    }
-    catch (const InputError &e)
-    {
-      const std::string msg = e.what();
-      for (const auto &n : needles)
-        EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
-    }
+    const std::string msg =
+      test_support::input_error_of([&] { scene_from_json(doc, "bad.yaml", scenes); });
+    for (const auto &n : needles)
+      EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
   }
 
   std::string temp_dir(const std::string &name)

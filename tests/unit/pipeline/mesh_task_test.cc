@@ -17,15 +17,8 @@ namespace
 
   std::string error_for(const nlohmann::json &mesh)
   {
-    try
-    {
-      geo_to_mesh({{"geometry", {{"mesh", mesh}}}}, "scene.yaml");
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of(
+      [&] { geo_to_mesh({{"geometry", {{"mesh", mesh}}}}, "scene.yaml"); });
   }
 } // namespace
 

@@ -44,15 +44,7 @@ mbd_runs:
     EXPECT_NE(p, std::string::npos) << from;
     text.replace(p, from.size(), to);
     test_support::write_text(dir.file("p.yaml"), text);
-    try
-    {
-      read_pipeline_config(dir.file("p.yaml"));
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of([&] { read_pipeline_config(dir.file("p.yaml")); });
   }
 } // namespace
 

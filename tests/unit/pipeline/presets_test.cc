@@ -38,15 +38,7 @@ namespace
   std::string error_for(const std::string &fast_measured)
   {
     test_support::ScratchDir dir("presets_bad");
-    try
-    {
-      read(dir, fast_measured);
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of([&] { read(dir, fast_measured); });
   }
 } // namespace
 

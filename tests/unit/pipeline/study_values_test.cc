@@ -38,15 +38,7 @@ namespace
 
   std::string resolve_error(PipelineConfig c)
   {
-    try
-    {
-      resolve_value_keywords(c);
-    }
-    catch (const InputError &e)
-    {
-      return e.what();
-    }
-    return "(accepted)";
+    return test_support::input_error_of([&] { resolve_value_keywords(c); });
   }
 } // namespace
 

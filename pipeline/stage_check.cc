@@ -1,0 +1,89 @@
+#include "pipeline/stage_check.h"
+
+#include "common/atomic_file.h"
+#include "common/document_reader.h"
+#include "common/error.h"
+#include "pipeline/task_runner.h"
+
+#include <sys/wait.h>
+
+namespace clearjoint::pipeline
+{
+  namespace
+  {
+    /// "clearance_joints[0].normal" → "clearance_joints.0.normal": the pipeline's spelling.
+    std::string dotted(const std::string &path)
+    {
+      std::string out;
+      for (const char c : path)
+        if (c == '[')
+          out += '.';
+        else if (c != ']')
+          out += c;
+      return out;
+    }
+
+    bool related(const std::string &a, const std::string &b)
+    {
+      return a == b || a.rfind(b + ".", 0) == 0 || b.rfind(a + ".", 0) == 0;
+    }
+
+    /// The key path an InputError message names ("... key 'a.b' has value ..."), or "".
+    std::string failing_key(const std::string &message)
+    {
+      const auto p = message.find("key '");
+      if (p == std::string::npos)
+        return "";
+      const auto q = message.find('\'', p + 5);
+      return q == std::string::npos ? "" : message.substr(p + 5, q - p - 5);
+    }
+
+    /// The stage's error message: from "input error" to the end of that line.
+    std::string error_line(const std::string &log)
+    {
+      const auto p = log.find("input error");
+      if (p == std::string::npos)
+        return log.substr(log.size() > 1000 ? log.size() - 1000 : 0);
+      const auto e = log.find('\n', p);
+      return log.substr(p, e == std::string::npos ? std::string::npos : e - p);
+    }
+  } // namespace
+
+  void run_stage_check(const StageCheck &check, std::vector<std::string> args,
+                       const std::string &log_path, const std::vector<Origin> &origins,
+                       const std::string &base_key, const std::string &what)
+  {
+    const std::string &stage = check.stage, &src = check.source;
+    args.insert(args.begin(), check.executable);
+    args.push_back("--check");
+    args.push_back("-q");
+    const int status = run_process(args, log_path);
+    if (interrupt_requested())
+      throw NumericalError("interrupted while checking the scenes; nothing was written");
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      return;
+    std::string log;
+    try
+    {
+      log = read_file(log_path);
+    }
+    catch (...)
+    {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != exit_input_error)
+      throw NumericalError(stage + " --check failed on the generated scene of " + what +
+                           " (exit status " +
+                           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                           "): " + error_line(log));
+    const std::string scene_key = dotted(failing_key(error_line(log)));
+    // The last override applied to that key (or to a key above or below it) made it.
+    for (auto it = origins.rbegin(); it != origins.rend(); ++it)
+      if (!scene_key.empty() && related(dotted(it->scene_key), scene_key))
+        throw InputError(src, it->pipeline_key, json_excerpt(it->value),
+                         "a value " + stage + " accepts",
+                         what + ": " + stage + " reports: " + error_line(log));
+    throw InputError(src, base_key, what,
+                     (stage == "fit_stage" ? "a command " : "a scene ") + stage + " accepts",
+                     stage + " reports: " + error_line(log));
+  }
+} // namespace clearjoint::pipeline
