@@ -7,6 +7,7 @@
 #include "fe_stage/contact/coulomb_ssn.h"
 
 #include "common/error.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 using namespace clearjoint::fe;
+using clearjoint::test_support::input_error_of;
 using Eigen::MatrixXd;
 using Eigen::Vector2d;
 using Eigen::VectorXd;
@@ -310,15 +312,9 @@ TEST(CoulombSsn, BadInput)
 {
   CoulombParameters p;
   p.mu = -0.1;
-  try
-    {
-      check_coulomb_parameters(p, "contact", "scene.yaml");
-      FAIL();
-    }
-  catch (const clearjoint::InputError &e)
-    {
-      EXPECT_EQ(e.key_path(), "contact.mu");
-    }
+  const std::string message =
+    input_error_of([&] { check_coulomb_parameters(p, "contact", "scene.yaml"); });
+  EXPECT_NE(message.find("key 'contact.mu'"), std::string::npos) << message;
   p.mu  = 0.1;
   p.c_t = 0.0;
   EXPECT_THROW(check_coulomb_parameters(p, "contact"), clearjoint::InputError);

@@ -4,6 +4,7 @@
 #include "fe_stage/material/hardening_table.h"
 
 #include "common/error.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -22,17 +23,11 @@ namespace
   void expect_input_error(const std::vector<HardeningPoint> &points, const std::string &key,
                           const std::string &allowed_fragment)
   {
-    try
-      {
-        HardeningTable t(points, "material.hardening", "scene.yaml");
-        FAIL() << "no error for a table that should fail at " << key;
-      }
-    catch (const InputError &e)
-      {
-        EXPECT_EQ(e.key_path(), key);
-        EXPECT_EQ(e.file(), "scene.yaml");
-        EXPECT_NE(std::string(e.what()).find(allowed_fragment), std::string::npos) << e.what();
-      }
+    const std::string message = clearjoint::test_support::input_error_of(
+      [&] { HardeningTable t(points, "material.hardening", "scene.yaml"); });
+    EXPECT_NE(message.find("input error in scene.yaml: key '" + key + "'"), std::string::npos)
+      << message;
+    EXPECT_NE(message.find(allowed_fragment), std::string::npos) << message;
   }
 } // namespace
 
