@@ -25,7 +25,7 @@ namespace clearjoint::fe
       friction_ = scene.contact.mu > 0.0;
       obstacle_ = plan_.obstacle;
     }
-  } // namespace detail
+  }  // namespace detail
 
   RunResult run_scene(const FeScene &scene, const RunOptions &options)
   {
@@ -46,4 +46,4 @@ namespace clearjoint::fe
                            std::to_string(DEAL_II_TRILINOS_VERSION_MINOR) + "." +
                            std::to_string(DEAL_II_TRILINOS_VERSION_SUBMINOR)}};
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -27,7 +27,7 @@ namespace clearjoint::fe::mortar
     struct Shape
     {
       unsigned n = 0;
-      double   N[max_nodes], Na[max_nodes], Nb[max_nodes];
+      double N[max_nodes], Na[max_nodes], Nb[max_nodes];
     };
 
     /// 1-D Lagrange polynomials on the support points {0, 1, ½} (degree 2) or {0, 1}
@@ -54,7 +54,7 @@ namespace clearjoint::fe::mortar
       s.n = n_nodes;
       for (unsigned k = 0; k < n_nodes; ++k)
         {
-          s.N[k]  = la[pos_a[k]] * lb[pos_b[k]];
+          s.N[k] = la[pos_a[k]] * lb[pos_b[k]];
           s.Na[k] = dla[pos_a[k]] * lb[pos_b[k]];
           s.Nb[k] = la[pos_a[k]] * dlb[pos_b[k]];
         }
@@ -71,7 +71,7 @@ namespace clearjoint::fe::mortar
           double z = std::cos(pi * (i + 0.75) / (n + 0.5)), dp = 1;
           for (int it = 0; it < 100; ++it)
             {
-              double p0 = 1, p1 = z; // P_0, P_1; recurrence up to P_n
+              double p0 = 1, p1 = z;  // P_0, P_1; recurrence up to P_n
               for (unsigned k = 2; k <= n; ++k)
                 {
                   const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
@@ -79,7 +79,7 @@ namespace clearjoint::fe::mortar
                 }
               if (n == 1)
                 p0 = 1;
-              dp             = n * (z * p1 - p0) / (z * z - 1);
+              dp = n * (z * p1 - p0) / (z * z - 1);
               const double d = p1 / dp;
               z -= d;
               if (std::abs(d) < 1e-16)
@@ -92,7 +92,7 @@ namespace clearjoint::fe::mortar
               const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
               p0 = p1, p1 = p2;
             }
-          dp   = n * (z * p1 - p0) / (z * z - 1);
+          dp = n * (z * p1 - p0) / (z * z - 1);
           x[i] = 0.5 * (1 - z);                  // map [-1,1] → [0,1]
           w[i] = 1.0 / ((1 - z * z) * dp * dp);  // 2/((1−z²)P'²), halved for [0,1]
         }
@@ -150,9 +150,8 @@ namespace clearjoint::fe::mortar
           lo[d] = std::min(lo[d], X[d]), hi[d] = std::max(hi[d], X[d]);
       const double diag2 = (hi - lo).squaredNorm();
       if (!(area > 1e-12 * diag2))
-        throw std::invalid_argument("mortar: " + face_name(which, i) +
-                                    " is degenerate (area " + std::to_string(area) +
-                                    " m² for a bounding-box diagonal of " +
+        throw std::invalid_argument("mortar: " + face_name(which, i) + " is degenerate (area " +
+                                    std::to_string(area) + " m² for a bounding-box diagonal of " +
                                     std::to_string(std::sqrt(diag2)) + " m)");
     }
 
@@ -167,7 +166,7 @@ namespace clearjoint::fe::mortar
       {
         const std::size_t n = faces.size();
         lo_.resize(n), hi_.resize(n);
-        Vec3   all_lo = Vec3::Constant(std::numeric_limits<double>::infinity()), all_hi = -all_lo;
+        Vec3 all_lo = Vec3::Constant(std::numeric_limits<double>::infinity()), all_hi = -all_lo;
         double mean_extent = 0;
         for (std::size_t i = 0; i < n; ++i)
           {
@@ -188,8 +187,8 @@ namespace clearjoint::fe::mortar
         origin_ = all_lo;
         // Cell ≈ one inflated face; coarsen if the grid would have far more cells than faces
         // (a thin surface in a big box), so memory stays O(n).
-        double       h     = std::max(mean_extent, 1e-300);
-        const Vec3   span  = (all_hi - all_lo).cwiseMax(Vec3::Constant(1e-300));
+        double h = std::max(mean_extent, 1e-300);
+        const Vec3 span = (all_hi - all_lo).cwiseMax(Vec3::Constant(1e-300));
         const double limit = 8.0 * double(n) + 64;
         for (;;)
           {
@@ -241,7 +240,7 @@ namespace clearjoint::fe::mortar
         for (int d = 0; d < 3; ++d)
           if (x[d] < origin_[d] || x[d] > origin_[d] + h_ * dims_[d])
             return;
-        const auto        c    = cell_index(x);
+        const auto c = cell_index(x);
         const std::size_t cell = std::size_t((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
         for (std::size_t j = start_[cell]; j < start_[cell + 1]; ++j)
           {
@@ -275,13 +274,13 @@ namespace clearjoint::fe::mortar
         return c;
       }
 
-      const std::vector<Face>  &faces_;
-      std::vector<Vec3>         lo_, hi_;
-      Vec3                      origin_ = Vec3::Zero();
-      double                    h_      = 1;
-      std::array<long, 3>       dims_{{1, 1, 1}};
-      std::vector<std::size_t>  start_;
-      std::vector<unsigned>     items_;
+      const std::vector<Face> &faces_;
+      std::vector<Vec3> lo_, hi_;
+      Vec3 origin_ = Vec3::Zero();
+      double h_ = 1;
+      std::array<long, 3> dims_{{1, 1, 1}};
+      std::vector<std::size_t> start_;
+      std::vector<unsigned> items_;
     };
 
     /// Newton on X_master(a,b) + g n − x = 0 for (a, b, g), started at the face centre.
@@ -291,19 +290,19 @@ namespace clearjoint::fe::mortar
                  double &b, double &g)
     {
       const unsigned nn = unsigned(f.nodes.size());
-      Shape          s;
+      Shape s;
       a = 0.5, b = 0.5;
       eval_shape(nn, a, b, s);
       g = n.dot(x - point(f, s));
       // The step tolerance in g is relative to the face size (round-off of the positions).
-      const double size = (Vec3(f.X[0][0], f.X[0][1], f.X[0][2]) -
-                           Vec3(f.X[3][0], f.X[3][1], f.X[3][2])).norm();
+      const double size =
+        (Vec3(f.X[0][0], f.X[0][1], f.X[0][2]) - Vec3(f.X[3][0], f.X[3][1], f.X[3][2])).norm();
       for (int it = 0; it < 30; ++it)
         {
           eval_shape(nn, a, b, s);
           Vec3 ta, tb;
           tangents(f, s, ta, tb);
-          const Vec3      F = point(f, s) + g * n - x;
+          const Vec3 F = point(f, s) + g * n - x;
           Eigen::Matrix3d J;
           J.col(0) = ta, J.col(1) = tb, J.col(2) = n;
           const double det = J.determinant();
@@ -313,7 +312,7 @@ namespace clearjoint::fe::mortar
           const Vec3 d = -J.inverse() * F;
           a += d[0], b += d[1], g += d[2];
           if (!(std::abs(a - 0.5) < 10 && std::abs(b - 0.5) < 10))
-            return false; // diverging or a root far outside: not this face
+            return false;  // diverging or a root far outside: not this face
           // Newton converges quadratically, so a step below 1e-10 leaves an error ~1e-20; a
           // tighter test could stall on round-off for faces far from the origin.
           if (std::abs(d[0]) + std::abs(d[1]) < 1e-10 && std::abs(d[2]) < 1e-10 * size)
@@ -329,7 +328,7 @@ namespace clearjoint::fe::mortar
     /// Per slave face: master node → column, and the local M (slave face node × column).
     struct LocalM
     {
-      std::vector<long>                         columns;
+      std::vector<long> columns;
       std::vector<std::array<double, max_nodes>> values;
       /// master face → its nodes' columns, cached because consecutive quadrature points
       /// mostly hit the same master face.
@@ -359,21 +358,19 @@ namespace clearjoint::fe::mortar
         return face_cols.back().second;
       }
     };
-  } // namespace
+  }  // namespace
 
-  std::vector<Coupling> couple(const std::vector<Face>      &slave_faces,
+  std::vector<Coupling> couple(const std::vector<Face> &slave_faces,
                                const std::vector<SlaveNode> &slave_nodes,
-                               const std::vector<Face>      &master_faces,
-                               const Options                &options)
+                               const std::vector<Face> &master_faces, const Options &options)
   {
     if (!(options.max_distance > 0) || !std::isfinite(options.max_distance))
-      throw std::invalid_argument("mortar: Options::max_distance = " +
-                                  std::to_string(options.max_distance) +
-                                  " m; allowed is (0, inf) m");
+      throw std::invalid_argument(
+        "mortar: Options::max_distance = " + std::to_string(options.max_distance) +
+        " m; allowed is (0, inf) m");
     if (options.subdivisions < 1 || options.subdivisions > 1000)
       throw std::invalid_argument("mortar: Options::subdivisions = " +
-                                  std::to_string(options.subdivisions) +
-                                  "; allowed is 1..1000");
+                                  std::to_string(options.subdivisions) + "; allowed is 1..1000");
     if (options.gauss_points < 1 || options.gauss_points > 20)
       throw std::invalid_argument("mortar: Options::gauss_points = " +
                                   std::to_string(options.gauss_points) + "; allowed is 1..20");
@@ -390,7 +387,7 @@ namespace clearjoint::fe::mortar
     std::unordered_map<long, std::size_t> index;
     for (std::size_t i = 0; i < slave_nodes.size(); ++i)
       {
-        const auto  &n   = slave_nodes[i].normal;
+        const auto &n = slave_nodes[i].normal;
         const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (!(len > 0.5 && len < 2))
           throw std::invalid_argument("mortar: slave node " + std::to_string(slave_nodes[i].id) +
@@ -406,7 +403,8 @@ namespace clearjoint::fe::mortar
     gauss_legendre(options.gauss_points, gx, gw);
     for (unsigned s = 0; s < options.subdivisions; ++s)
       for (unsigned i = 0; i < gx.size(); ++i)
-        qa.push_back((s + gx[i]) / options.subdivisions), qw.push_back(gw[i] / options.subdivisions);
+        qa.push_back((s + gx[i]) / options.subdivisions),
+          qw.push_back(gw[i] / options.subdivisions);
     const std::size_t n_q1 = qa.size();
 
     // Master faces: structure and area (a 3×3 Gauss rule suffices to see a zero area).
@@ -417,7 +415,7 @@ namespace clearjoint::fe::mortar
         std::vector<double> x3, w3;
         gauss_legendre(3, x3, w3);
         double area = 0;
-        Shape  s;
+        Shape s;
         for (unsigned i1 = 0; i1 < 3; ++i1)
           for (unsigned i2 = 0; i2 < 3; ++i2)
             {
@@ -433,12 +431,12 @@ namespace clearjoint::fe::mortar
     std::vector<Coupling> out(slave_nodes.size());
     std::vector<std::vector<std::pair<long, double>>> M(slave_nodes.size());
     std::vector<double> D(slave_nodes.size(), 0.0), G(slave_nodes.size(), 0.0);
-    std::vector<char>   incomplete(slave_nodes.size(), 0), on_face(slave_nodes.size(), 0);
+    std::vector<char> incomplete(slave_nodes.size(), 0), on_face(slave_nodes.size(), 0);
 
     // Per-face work arrays, reused.
     const std::size_t n_q = n_q1 * n_q1;
     std::vector<Shape> shape(n_q);
-    std::vector<Vec3>  xq(n_q), nq(n_q);
+    std::vector<Vec3> xq(n_q), nq(n_q);
     std::vector<double> wq(n_q);
     LocalM local;
 
@@ -448,18 +446,18 @@ namespace clearjoint::fe::mortar
         check_face(f, "slave", e);
         const unsigned nn = unsigned(f.nodes.size());
         std::array<std::size_t, max_nodes> node{};
-        std::array<Vec3, max_nodes>        normal;
+        std::array<Vec3, max_nodes> normal;
         for (unsigned k = 0; k < nn; ++k)
           {
             const auto it = index.find(f.nodes[k]);
             if (it == index.end())
-              throw std::invalid_argument("mortar: slave face " + std::to_string(e) +
-                                          " has node " + std::to_string(f.nodes[k]) +
+              throw std::invalid_argument("mortar: slave face " + std::to_string(e) + " has node " +
+                                          std::to_string(f.nodes[k]) +
                                           " which has no normal in slave_nodes");
-            node[k]        = it->second;
+            node[k] = it->second;
             on_face[node[k]] = 1;
-            const auto &n  = slave_nodes[it->second].normal;
-            normal[k]      = Vec3(n[0], n[1], n[2]);
+            const auto &n = slave_nodes[it->second].normal;
+            normal[k] = Vec3(n[0], n[1], n[2]);
           }
 
         // Quadrature points, weights and area first (a degenerate face is reported as such,
@@ -472,7 +470,7 @@ namespace clearjoint::fe::mortar
               eval_shape(nn, qa[i], qa[j], s);
               Vec3 ta, tb;
               tangents(f, s, ta, tb);
-              nq[q] = ta.cross(tb); // unnormalised here
+              nq[q] = ta.cross(tb);  // unnormalised here
               xq[q] = point(f, s);
               wq[q] = qw[i] * qw[j] * nq[q].norm();
               area += wq[q];
@@ -483,9 +481,9 @@ namespace clearjoint::fe::mortar
         Eigen::MatrixXd Me = Eigen::MatrixXd::Zero(nn, nn);
         for (std::size_t q = 0; q < n_q; ++q)
           {
-            const Shape &s  = shape[q];
+            const Shape &s = shape[q];
             const double Jq = nq[q].norm();
-            Vec3 n_interp   = Vec3::Zero();
+            Vec3 n_interp = Vec3::Zero();
             for (unsigned k = 0; k < nn; ++k)
               n_interp += s.N[k] * normal[k];
             // Orientation from the caller's node normals, so the sign of the face
@@ -495,7 +493,8 @@ namespace clearjoint::fe::mortar
               throw std::invalid_argument(
                 "mortar: slave face " + std::to_string(e) +
                 ": the node normals are (nearly) tangent to the face or cancel out "
-                "(cosine to the face normal " + std::to_string(cosine) + ")");
+                "(cosine to the face normal " +
+                std::to_string(cosine) + ")");
             nq[q] = Jq > 0 ? Vec3((cosine > 0 ? 1.0 : -1.0) * nq[q] / Jq) : Vec3::Zero();
             for (unsigned k = 0; k < nn; ++k)
               {
@@ -517,11 +516,11 @@ namespace clearjoint::fe::mortar
 
         local.clear();
         double Ge[max_nodes] = {};
-        bool   missed[max_nodes] = {};
+        bool missed[max_nodes] = {};
         for (std::size_t q = 0; q < n_q; ++q)
           {
             const Shape &s = shape[q];
-            double       psi[max_nodes];
+            double psi[max_nodes];
             for (unsigned k = 0; k < nn; ++k)
               {
                 psi[k] = 0;
@@ -530,7 +529,7 @@ namespace clearjoint::fe::mortar
               }
 
             // Closest accepting master face (smallest |g|; several accept at shared edges).
-            long   best = -1;
+            long best = -1;
             double ba = 0, bb = 0, bg = std::numeric_limits<double>::infinity();
             if (wq[q] > 0)
               search.for_candidates(xq[q], nq[q], options.max_distance, [&](unsigned mf) {
@@ -548,7 +547,7 @@ namespace clearjoint::fe::mortar
                 continue;
               }
             const Face &mf = master_faces[std::size_t(best)];
-            Shape       ms;
+            Shape ms;
             eval_shape(unsigned(mf.nodes.size()), std::clamp(ba, 0.0, 1.0),
                        std::clamp(bb, 0.0, 1.0), ms);
             const auto &cols = local.cols_of(unsigned(best), mf);
@@ -575,17 +574,17 @@ namespace clearjoint::fe::mortar
     for (std::size_t i = 0; i < slave_nodes.size(); ++i)
       {
         Coupling &c = out[i];
-        c.node      = slave_nodes[i].id;
-        c.weight    = D[i];
-        c.complete  = on_face[i] && !incomplete[i];
-        c.gap       = D[i] > 0 ? G[i] / D[i] : 0.0;
-        auto &row   = M[i];
+        c.node = slave_nodes[i].id;
+        c.weight = D[i];
+        c.complete = on_face[i] && !incomplete[i];
+        c.gap = D[i] > 0 ? G[i] / D[i] : 0.0;
+        auto &row = M[i];
         std::sort(row.begin(), row.end(),
                   [](const auto &x, const auto &y) { return x.first < y.first; });
         for (std::size_t j = 0; j < row.size();)
           {
-            const long id  = row[j].first;
-            double     sum = 0;
+            const long id = row[j].first;
+            double sum = 0;
             for (; j < row.size() && row[j].first == id; ++j)
               sum += row[j].second;
             if (D[i] > 0 && std::abs(sum / D[i]) >= 1e-14)
@@ -595,4 +594,4 @@ namespace clearjoint::fe::mortar
       }
     return out;
   }
-} // namespace clearjoint::fe::mortar
+}  // namespace clearjoint::fe::mortar

@@ -22,8 +22,8 @@ namespace clearjoint::fe::mortar
   /// The geometry is isoparametric: x(a,b) = Σ_k N_k(a,b) X_k.
   struct Face
   {
-    std::vector<long>                  nodes; ///< node ids (any unique key per body)
-    std::vector<std::array<double, 3>> X;     ///< node positions [m], same order as `nodes`
+    std::vector<long> nodes;               ///< node ids (any unique key per body)
+    std::vector<std::array<double, 3>> X;  ///< node positions [m], same order as `nodes`
   };
 
   /// A slave node's normal: unit vector from the master body INTO the slave body (the slave
@@ -31,8 +31,8 @@ namespace clearjoint::fe::mortar
   /// only to orient the faces' geometric normals; the caller uses them in the constraint.
   struct SlaveNode
   {
-    long                  id;
-    std::array<double, 3> normal; ///< [-], unit
+    long id;
+    std::array<double, 3> normal;  ///< [-], unit
   };
 
   struct Options
@@ -42,8 +42,8 @@ namespace clearjoint::fe::mortar
     /// integrands have kinks where master faces meet, so one high-order rule would not help.
     /// subdivisions × gauss_points must be ≥ 3: with fewer points per direction the 9-node
     /// mass matrix Me is singular.
-    unsigned subdivisions = 4; ///< 1..1000
-    unsigned gauss_points = 3; ///< 1..20
+    unsigned subdivisions = 4;  ///< 1..1000
+    unsigned gauss_points = 3;  ///< 1..20
     /// [m] largest |gap| a quadrature point may have to its master face; also inflates the
     /// master faces' bounding boxes for the search. Must be set (> 0).
     double max_distance = 0.0;
@@ -52,9 +52,9 @@ namespace clearjoint::fe::mortar
   /// The result for one slave node.
   struct Coupling
   {
-    long   node;   ///< slave node id
-    double weight; ///< D_s = Σ_e ∫_e N_s dA [m²] (0 if the node is on no slave face)
-    double gap;    ///< weighted gap G_s / D_s [m]; > 0 open, < 0 penetration
+    long node;      ///< slave node id
+    double weight;  ///< D_s = Σ_e ∫_e N_s dA [m²] (0 if the node is on no slave face)
+    double gap;     ///< weighted gap G_s / D_s [m]; > 0 open, < 0 penetration
     /// True iff every quadrature point of every slave face containing the node, where the
     /// node's dual shape function ψ_s is non-zero, found a master face. ψ_s is a polynomial
     /// on the whole face, so one face hanging over the master's edge makes ALL its nodes
@@ -74,8 +74,7 @@ namespace clearjoint::fe::mortar
   /// Cost: master faces sit in a uniform bucket grid; ~2 s per 10⁶ slave quadrature points
   /// (7200 Q2 slave faces on 5200 master faces) on one core.
   /// Note: the caller must check `complete` and not use an incomplete node.
-  std::vector<Coupling> couple(const std::vector<Face>      &slave_faces,
+  std::vector<Coupling> couple(const std::vector<Face> &slave_faces,
                                const std::vector<SlaveNode> &slave_nodes,
-                               const std::vector<Face>      &master_faces,
-                               const Options                &options);
-} // namespace clearjoint::fe::mortar
+                               const std::vector<Face> &master_faces, const Options &options);
+}  // namespace clearjoint::fe::mortar

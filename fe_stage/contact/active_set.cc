@@ -9,8 +9,7 @@
 
 namespace clearjoint::fe::detail
 {
-  ContactModel::ActiveSetChange ContactModel::update_active_set(const double c,
-                                                                const double eps_g)
+  ContactModel::ActiveSetChange ContactModel::update_active_set(const double c, const double eps_g)
   {
     // Normal: with ξ = λ − c·ĝ, active where ξ > 0 (the primal–dual active set, step-41).
     // Friction, with t the tangential contact force and s_T the slip in this increment,
@@ -34,8 +33,7 @@ namespace clearjoint::fe::detail
         if (friction_ && now)
           {
             const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
-            const Tensor<1, dim> w =
-              t - tangential_scale_ * c * contact_slip_increment(cn);
+            const Tensor<1, dim> w = t - tangential_scale_ * c * contact_slip_increment(cn);
             stick = coulomb_state(xi, w.norm(), mu, band) == FrictionState::stick;
             if (!stick)
               {
@@ -70,4 +68,4 @@ namespace clearjoint::fe::detail
     return {Utilities::MPI::sum(n_changed, comm_), Utilities::MPI::max(slip_residual, comm_),
             Utilities::MPI::max(force_scale, comm_), changed};
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -36,7 +36,7 @@ namespace clearjoint::fe::detail
     bool two_body = false;
     Point<dim> X;
     unsigned int constrained_component = 1;
-    bool owned = false;   // owned by this rank (its x-DoF is locally owned)
+    bool owned = false;     // owned by this rank (its x-DoF is locally owned)
     bool candidate = true;  // false: only watched for penetration, never constrained
     bool active = false;
     // Values of the last evaluation:
@@ -50,10 +50,10 @@ namespace clearjoint::fe::detail
     // constrained: no new tangential slip) or slips (normal constraint, and the friction force
     // linearised about the last iterate: μλ·ŵ along the slip direction plus κ·Q·w across it).
     bool stick = true;
-    Tensor<1, dim> traction;     // [N] total contact force on this node (K u at its DoFs)
-    Tensor<1, dim> slip_direction;  // ŵ = w/|w|: unit tangent of the friction force (slipping)
-    double kappa = 0.0;          // [1] μξ/|w| < 1 of the slipping node's linearisation
-    Tensor<1, dim> relative;     // [m] u − u_partner (rigid obstacle: − its translation)
+    Tensor<1, dim> traction;            // [N] total contact force on this node (K u at its DoFs)
+    Tensor<1, dim> slip_direction;      // ŵ = w/|w|: unit tangent of the friction force (slipping)
+    double kappa = 0.0;                 // [1] μξ/|w| < 1 of the slipping node's linearisation
+    Tensor<1, dim> relative;            // [m] u − u_partner (rigid obstacle: − its translation)
     Tensor<1, dim> relative_converged;  // [m] the same at the last converged increment
     /// [m] the rigid obstacle's surface point facing the node: its displacement since the
     /// start (radial: (0, −δ, 0); rolling: accumulated step by step), now and at the last
@@ -70,4 +70,4 @@ namespace clearjoint::fe::detail
   {
     return v - (v * n) * n;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

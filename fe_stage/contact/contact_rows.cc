@@ -92,9 +92,10 @@ namespace clearjoint::fe::detail
             cn.obstacle_u = Tensor<1, dim>({0.0, -delta, 0.0});
           else
             {
-              const auto d = rolling::journal_surface_step(
-                rolling_centre_previous_, rolling_centre_, scene_.geometry.R_J(),
-                {cn.n[0], cn.n[1], cn.n[2]}, rolling_delta_psi_);
+              const auto d =
+                rolling::journal_surface_step(rolling_centre_previous_, rolling_centre_,
+                                              scene_.geometry.R_J(), {cn.n[0], cn.n[1], cn.n[2]},
+                                              rolling_delta_psi_);
               cn.obstacle_u = cn.obstacle_u_converged + Tensor<1, dim>({d[0], d[1], d[2]});
             }
         }
@@ -185,8 +186,8 @@ namespace clearjoint::fe::detail
                 for (unsigned int j = 0; j < n; ++j)
                   Ks(c, j) += share * Kc(r, j);
             }
-        const Tensor<2, dim> Q = tangent_projection(cn) - outer_product(cn.slip_direction,
-                                                                         cn.slip_direction);
+        const Tensor<2, dim> Q =
+          tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
         const double mu = scene_.contact.mu;
         FullMatrix<double> F(dim, n);
         for (unsigned int j = 0; j < n; ++j)
@@ -255,8 +256,7 @@ namespace clearjoint::fe::detail
     // D as (DoF list, 3 × 3 block per body point): the node +I, each partner −w_p Q (its
     // displacement turned into the slave's frame)
     const Tensor<2, dim> I(unit_symmetric_tensor<dim>());
-    std::vector<std::pair<const std::array<types::global_dof_index, dim> *, Tensor<2, dim>>>
-      points;
+    std::vector<std::pair<const std::array<types::global_dof_index, dim> *, Tensor<2, dim>>> points;
     points.emplace_back(&cn.dofs, I);
     for (const auto &p : cn.partners)
       points.emplace_back(&p.dofs, -p.weight * partner_rotation_);
@@ -310,7 +310,8 @@ namespace clearjoint::fe::detail
   /// The constraints of this iteration: the active nodes' lines (a sticking node: no new
   /// tangential slip, all its free components; otherwise its normal gap on the constrained
   /// component), then the fixed constraints at δ.
-  void ContactModel::build_contact_constraints(const double /*delta: in each node's g0, obstacle_u*/)
+  void ContactModel::build_contact_constraints(
+    const double /*delta: in each node's g0, obstacle_u*/)
   {
     constraints_.clear();
     constraints_.reinit(relevant_);
@@ -357,4 +358,4 @@ namespace clearjoint::fe::detail
     constraints_.close();
   }
 
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -37,54 +37,55 @@ namespace clearjoint::fe
           slip_t.allFinite()))
       throw std::invalid_argument("evaluate_coulomb_ncp: non-finite multiplier, gap or slip");
 
-    const Eigen::Matrix2d I  = Eigen::Matrix2d::Identity();
-    NodeNcp               out;
+    const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+    NodeNcp out;
     out.jacobian.setZero();
-    const double          xi = lambda_n - p.c_n * gap;
-    const Eigen::Vector2d w  = lambda_t - p.c_t * slip_t;
-    const double          wn = w.norm();
-    const double          r  = p.mu * xi; // disc radius when active
+    const double xi = lambda_n - p.c_n * gap;
+    const Eigen::Vector2d w = lambda_t - p.c_t * slip_t;
+    const double wn = w.norm();
+    const double r = p.mu * xi;  // disc radius when active
 
     out.state = coulomb_state(xi, wn, p.mu);
     if (out.state == FrictionState::inactive)
       {
-        out.r_n                                       = lambda_n;
-        out.r_t                                       = lambda_t;
-        out.jacobian(0, col_lambda_n)                 = 1.0;
-        out.jacobian.block<2, 2>(1, col_lambda_t1)    = I;
-        return out; // both forms: λ = 0 on inactive nodes
+        out.r_n = lambda_n;
+        out.r_t = lambda_t;
+        out.jacobian(0, col_lambda_n) = 1.0;
+        out.jacobian.block<2, 2>(1, col_lambda_t1) = I;
+        return out;  // both forms: λ = 0 on inactive nodes
       }
 
-    out.r_n                       = p.c_n * gap;
-    out.jacobian(0, col_gap)      = p.c_n;
+    out.r_n = p.c_n * gap;
+    out.jacobian(0, col_gap) = p.c_n;
     if (out.state == FrictionState::stick)
       {
-        out.r_t                                    = p.c_t * slip_t;
-        out.jacobian.block<2, 2>(1, col_slip_t1)   = p.c_t * I;
+        out.r_t = p.c_t * slip_t;
+        out.jacobian.block<2, 2>(1, col_slip_t1) = p.c_t * I;
       }
     else
       {
         // wn > r ≥ 0 here, except μ = 0 with w = 0, where the direction is multiplied by 0.
         const Eigen::Vector2d w_hat = wn > 0.0 ? Eigen::Vector2d(w / wn) : Eigen::Vector2d::Zero();
-        const Eigen::Matrix2d D     = wn > 0.0 ? Eigen::Matrix2d((r / wn) * (I - w_hat * w_hat.transpose()))
-                                               : Eigen::Matrix2d::Zero();
-        out.r_t                                    = lambda_t - r * w_hat;
-        out.jacobian.block<2, 1>(1, col_lambda_n)  = -p.mu * w_hat;
-        out.jacobian.block<2, 1>(1, col_gap)       = p.mu * p.c_n * w_hat;
+        const Eigen::Matrix2d D = wn > 0.0 ?
+                                    Eigen::Matrix2d((r / wn) * (I - w_hat * w_hat.transpose())) :
+                                    Eigen::Matrix2d::Zero();
+        out.r_t = lambda_t - r * w_hat;
+        out.jacobian.block<2, 1>(1, col_lambda_n) = -p.mu * w_hat;
+        out.jacobian.block<2, 1>(1, col_gap) = p.mu * p.c_n * w_hat;
         out.jacobian.block<2, 2>(1, col_lambda_t1) = I - D;
-        out.jacobian.block<2, 2>(1, col_slip_t1)   = p.c_t * D;
+        out.jacobian.block<2, 2>(1, col_slip_t1) = p.c_t * D;
       }
 
     if (p.form == CoulombNcpForm::hsw)
       {
         // C_T = m R_T with m = max(μξ, |w|): μξ on stick nodes, |w| on slip nodes.
         Eigen::Matrix<double, 1, 6> dm = Eigen::Matrix<double, 1, 6>::Zero();
-        double                      m;
+        double m;
         if (out.state == FrictionState::stick)
           {
-            m                 = r;
-            dm(col_lambda_n)  = p.mu;
-            dm(col_gap)       = -p.mu * p.c_n;
+            m = r;
+            dm(col_lambda_n) = p.mu;
+            dm(col_gap) = -p.mu * p.c_n;
           }
         else
           {
@@ -93,7 +94,7 @@ namespace clearjoint::fe
               {
                 const Eigen::Vector2d w_hat = w / wn;
                 dm.segment<2>(col_lambda_t1) = w_hat.transpose();
-                dm.segment<2>(col_slip_t1)   = -p.c_t * w_hat.transpose();
+                dm.segment<2>(col_slip_t1) = -p.c_t * w_hat.transpose();
               }
           }
         out.jacobian.bottomRows<2>() = m * out.jacobian.bottomRows<2>() + out.r_t * dm;
@@ -101,4 +102,4 @@ namespace clearjoint::fe
       }
     return out;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

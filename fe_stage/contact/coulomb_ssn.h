@@ -50,15 +50,15 @@ namespace clearjoint::fe
 
   enum class CoulombNcpForm
   {
-    projection, ///< R_T = λ_T − P(w): force units, bounded derivative (default)
-    hsw,        ///< HSW 2008's C_T on active nodes (force² units)
+    projection,  ///< R_T = λ_T − P(w): force units, bounded derivative (default)
+    hsw,         ///< HSW 2008's C_T on active nodes (force² units)
   };
 
   struct CoulombParameters
   {
-    double         mu  = 0.1; ///< friction coefficient [-], ≥ 0
-    double         c_n = 1.0; ///< normal complementarity constant [λ unit / g unit], > 0
-    double         c_t = 1.0; ///< tangential complementarity constant [λ unit / s unit], > 0
+    double mu = 0.1;   ///< friction coefficient [-], ≥ 0
+    double c_n = 1.0;  ///< normal complementarity constant [λ unit / g unit], > 0
+    double c_t = 1.0;  ///< tangential complementarity constant [λ unit / s unit], > 0
     CoulombNcpForm form = CoulombNcpForm::projection;
   };
 
@@ -71,19 +71,19 @@ namespace clearjoint::fe
   /// Column order of NodeNcp::jacobian.
   enum NcpColumn : int
   {
-    col_lambda_n  = 0,
+    col_lambda_n = 0,
     col_lambda_t1 = 1,
     col_lambda_t2 = 2,
-    col_gap       = 3,
-    col_slip_t1   = 4,
-    col_slip_t2   = 5,
+    col_gap = 3,
+    col_slip_t1 = 4,
+    col_slip_t2 = 5,
   };
 
   struct NodeNcp
   {
-    FrictionState   state;
-    double          r_n;   ///< R_n [λ unit]
-    Eigen::Vector2d r_t;   ///< R_T [λ unit] (projection form) or [λ unit²] (hsw form)
+    FrictionState state;
+    double r_n;           ///< R_n [λ unit]
+    Eigen::Vector2d r_t;  ///< R_T [λ unit] (projection form) or [λ unit²] (hsw form)
     /// ∂(R_n, R_T1, R_T2)/∂(λ_n, λ_T1, λ_T2, g, s_T1, s_T2), columns as NcpColumn.
     Eigen::Matrix<double, 3, 6> jacobian;
   };
@@ -99,4 +99,4 @@ namespace clearjoint::fe
   /// must be finite (std::invalid_argument otherwise: the caller's Newton has diverged).
   NodeNcp evaluate_coulomb_ncp(double lambda_n, const Eigen::Vector2d &lambda_t, double gap,
                                const Eigen::Vector2d &slip_t, const CoulombParameters &p);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -41,8 +41,9 @@ namespace clearjoint::fe::detail
     const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
     const bool journal_slave = joint && plan_.journal_is_slave;
     const types::boundary_id slave_id = slave_surface_id();
-    const types::boundary_id master_id =
-      journal_slave ? bid_contact : joint ? bid_journal_surface : bid_indenter_surface;
+    const types::boundary_id master_id = journal_slave ? bid_contact :
+                                         joint         ? bid_journal_surface :
+                                                         bid_indenter_surface;
     auto slave_normal = [&](const Point<dim> &X) {
       if (!joint)
         return Tensor<1, dim>({0.0, -1.0, 0.0});
@@ -70,9 +71,8 @@ namespace clearjoint::fe::detail
     // basis function is non-zero on its whole face, so such a face would make the rim nodes it
     // shares incomplete (and drop them) — it is left out: the journal's ends are mesh planes.
     // (The journal as slave lies wholly over the longer bore.)
-    const double z_end = joint && !journal_slave ?
-                           plan_.obstacle.half_length * (1.0 + 1e-9) :
-                           std::numeric_limits<double>::infinity();
+    const double z_end = joint && !journal_slave ? plan_.obstacle.half_length * (1.0 + 1e-9) :
+                                                   std::numeric_limits<double>::infinity();
 
     std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
     using NodeDofs = std::array<types::global_dof_index, dim>;
@@ -94,8 +94,8 @@ namespace clearjoint::fe::detail
                   const Point<dim> &X = support.at(d[0]);
                   const bool driven =
                     std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), d[1]);
-                  mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0],
-                                           x[1], x[2], driven ? 1.0 : 0.0});
+                  mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0], x[1],
+                                           x[2], driven ? 1.0 : 0.0});
                   for (unsigned int c = 0; c < dim; ++c)
                     mine.push_back(u ? (*u)[d[c]] : 0.0);
                   mine.insert(mine.end(), {X[0], X[1], X[2]});
@@ -112,8 +112,8 @@ namespace clearjoint::fe::detail
           mortar::Face face;
           for (unsigned int k = 0; k < nn; ++k, i += 13)
             {
-              master_X[static_cast<long>(part[i])] = Point<dim>(part[i + 10], part[i + 11],
-                                                                part[i + 12]);
+              master_X[static_cast<long>(part[i])] =
+                Point<dim>(part[i + 10], part[i + 11], part[i + 12]);
               NodeDofs d;
               for (unsigned int c = 0; c < dim; ++c)
                 d[c] = static_cast<types::global_dof_index>(part[i + c]);
@@ -209,4 +209,4 @@ namespace clearjoint::fe::detail
         by_x_dof.emplace(dofs[0], cn);
       }
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

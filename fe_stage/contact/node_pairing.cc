@@ -40,8 +40,7 @@ namespace clearjoint::fe::detail
     // Two bodies: the journal's surface nodes, keyed by (φ, z) — they lie on the same rays as
     // the bearing's (RayChart), so pairing is an exact lookup.
     auto key_of = [](const Point<dim> &p) {
-      return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9),
-                            std::lround(p[2] / 1e-11));
+      return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9), std::lround(p[2] / 1e-11));
     };
     // Every rank gets every journal surface node (a few thousand): with several ranks the
     // journal cell facing a bearing node is often neither owned nor a ghost, so the owner of
@@ -68,12 +67,13 @@ namespace clearjoint::fe::detail
                     {
                       const Point<dim> &X = support.at(dofs[0]);
                       const auto key = key_of(X);
-                      mine.insert(mine.end(), {double(key.first), double(key.second),
-                                               double(dofs[0]), double(dofs[1]),
-                                               double(dofs[2]), X[0], X[1], X[2],
-                                               std::binary_search(loaded_sorted_.begin(),
-                                                                  loaded_sorted_.end(),
-                                                                  dofs[1]) ? 1.0 : 0.0});
+                      mine.insert(mine.end(),
+                                  {double(key.first), double(key.second), double(dofs[0]),
+                                   double(dofs[1]), double(dofs[2]), X[0], X[1], X[2],
+                                   std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(),
+                                                      dofs[1]) ?
+                                     1.0 :
+                                     0.0});
                     }
         for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
           for (std::size_t i = 0; i + 9 <= part.size(); i += 9)
@@ -91,52 +91,52 @@ namespace clearjoint::fe::detail
     if (mortar)
       find_mortar_contact_nodes(support, by_x_dof, search_displacement_);
     else
-    for (const auto &cell : dof_handler_.active_cell_iterators())
-      if (cell->is_locally_owned() || cell->is_ghost())
-        for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
-            {
-              for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
-                {
-                  if (by_x_dof.count(dofs[0]))
-                    continue;
-                  ContactNode cn;
-                  cn.dofs = dofs;
-                  cn.X = support.at(dofs[0]);
-                  double g0;
-                  Tensor<1, dim> n;
-                  if (!obstacle_gap(cn.X, scene_.loading.delta_max, g0, n))
-                    continue;
-                  if (plan_.rolling)
-                    rolling_gap_on_path(cn.X, g0, n);
-                  cn.owned = owned_.is_element(dofs[0]);
-                  if (g0 > window_gap)
-                    {
-                      cn.candidate = false;  // watched only
-                      by_x_dof.emplace(dofs[0], cn);
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
+              {
+                for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
+                  {
+                    if (by_x_dof.count(dofs[0]))
                       continue;
-                    }
-                  // Hanging or supported nodes are skipped: they follow their masters.
-                  if (!choose_constrained_component(cn, n))
-                    continue;
-                  if (two_body_)
-                    {
-                      const auto it = journal_nodes.find(key_of(cn.X));
-                      if (it == journal_nodes.end())
-                        throw NumericalError(
-                          "fe_stage: no journal node faces the bearing node at (" +
-                          format_value(cn.X[0]) + ", " + format_value(cn.X[1]) + ", " +
-                          format_value(cn.X[2]) + ") m: the contact meshes do not match");
-                      cn.two_body = true;
-                      cn.partners = {{it->second.dofs, 1.0, it->second.driven_y}};
-                      const Point<dim> &XJ = it->second.X;
-                      const double rB = std::hypot(cn.X[0], cn.X[1]);
-                      cn.n = Tensor<1, dim>({cn.X[0] / rB, cn.X[1] / rB, 0.0});
-                      cn.g0 = rB - std::hypot(XJ[0], XJ[1]);  // along the common ray
-                    }
-                  by_x_dof.emplace(dofs[0], cn);
-                }
-            }
+                    ContactNode cn;
+                    cn.dofs = dofs;
+                    cn.X = support.at(dofs[0]);
+                    double g0;
+                    Tensor<1, dim> n;
+                    if (!obstacle_gap(cn.X, scene_.loading.delta_max, g0, n))
+                      continue;
+                    if (plan_.rolling)
+                      rolling_gap_on_path(cn.X, g0, n);
+                    cn.owned = owned_.is_element(dofs[0]);
+                    if (g0 > window_gap)
+                      {
+                        cn.candidate = false;  // watched only
+                        by_x_dof.emplace(dofs[0], cn);
+                        continue;
+                      }
+                    // Hanging or supported nodes are skipped: they follow their masters.
+                    if (!choose_constrained_component(cn, n))
+                      continue;
+                    if (two_body_)
+                      {
+                        const auto it = journal_nodes.find(key_of(cn.X));
+                        if (it == journal_nodes.end())
+                          throw NumericalError(
+                            "fe_stage: no journal node faces the bearing node at (" +
+                            format_value(cn.X[0]) + ", " + format_value(cn.X[1]) + ", " +
+                            format_value(cn.X[2]) + ") m: the contact meshes do not match");
+                        cn.two_body = true;
+                        cn.partners = {{it->second.dofs, 1.0, it->second.driven_y}};
+                        const Point<dim> &XJ = it->second.X;
+                        const double rB = std::hypot(cn.X[0], cn.X[1]);
+                        cn.n = Tensor<1, dim>({cn.X[0] / rB, cn.X[1] / rB, 0.0});
+                        cn.g0 = rB - std::hypot(XJ[0], XJ[1]);  // along the common ray
+                      }
+                    by_x_dof.emplace(dofs[0], cn);
+                  }
+              }
     nodes_.clear();
     for (auto &[d, cn] : by_x_dof)
       nodes_.push_back(cn);
@@ -162,9 +162,8 @@ namespace clearjoint::fe::detail
           relevant_.compress();
           build_fixed_constraints();
         };
-        add_ghosts([](const types::global_dof_index p) {
-          return std::vector<types::global_dof_index>{p};
-        });
+        add_ghosts(
+          [](const types::global_dof_index p) { return std::vector<types::global_dof_index>{p}; });
         add_ghosts([&](const types::global_dof_index p) {
           std::vector<types::global_dof_index> masters;
           if (const auto *e = fixed_constraints_.get_constraint_entries(p))
@@ -210,4 +209,4 @@ namespace clearjoint::fe::detail
     contact_cell_matrices_.resize(n);
     contact_cell_dofs_.resize(n);
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

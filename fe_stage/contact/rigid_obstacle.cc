@@ -14,7 +14,7 @@ namespace clearjoint::fe
     Vec3 divided(const Vec3 &a, const double s) { return scaled(1.0 / s, a); }
     Vec3 minus(const Vec3 &a, const Vec3 &b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
     Vec3 plus(const Vec3 &a, const Vec3 &b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-  } // namespace
+  }  // namespace
 
   bool RigidObstacle::gap(const Vec3 &X, const double delta, double &g0, Vec3 &n) const
   {
@@ -89,4 +89,4 @@ namespace clearjoint::fe
       }
     return false;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

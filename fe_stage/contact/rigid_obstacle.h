@@ -18,11 +18,17 @@ namespace clearjoint::fe
     /// cylinder: the aligned journal (axis z; bearing nodes beyond its ends never touch);
     /// tilted_cylinder: the journal of the misalignment study, a finite cylinder whose axis
     /// a = (0, sin θ, cos θ) lies in the y–z plane, with rims (its end circles) as edges.
-    enum class Kind { cylinder, tilted_cylinder, sphere, plane } kind = Kind::cylinder;
-    double radius = 0.0;      // [m] cylinder / sphere radius
-    double offset = 0.0;      // [m] cylinders: centre at y = −offset − δ; sphere: y = radius − δ
+    enum class Kind
+    {
+      cylinder,
+      tilted_cylinder,
+      sphere,
+      plane
+    } kind = Kind::cylinder;
+    double radius = 0.0;  // [m] cylinder / sphere radius
+    double offset = 0.0;  // [m] cylinders: centre at y = −offset − δ; sphere: y = radius − δ
     double half_length = std::numeric_limits<double>::infinity();  // [m] cylinder half length
-    double tilt = 0.0;        // [rad] tilted_cylinder: θ
+    double tilt = 0.0;                                             // [rad] tilted_cylinder: θ
     /// [rad] cylinder: the obstacle seen from a frame turned by this angle about +z (the
     /// rolling study's co-rotating bearing frame): its axis at R(−frame_angle)·(0, −offset − δ)
     double frame_angle = 0.0;
@@ -30,4 +36,4 @@ namespace clearjoint::fe
     /// Returns false if X can never touch the obstacle (beyond the aligned cylinder's end).
     bool gap(const Vec3 &X, double delta, double &g0, Vec3 &n) const;
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -130,7 +130,8 @@ namespace clearjoint::fe::detail
       {
         for (unsigned int c = 0; c < dim; ++c)
           cn.relative_converged[c] = start[cn.dofs[c]];
-        cn.relative_converged -= partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
+        cn.relative_converged -=
+          partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
       }
     evaluate_contact(0.0);  // relative displacements and gaps at u with the new couplings
     return change;
@@ -141,4 +142,4 @@ namespace clearjoint::fe::detail
     const Point<dim> c(rolling_centre_[0], rolling_centre_[1], rolling_centre_[2]);
     return c + rotation_z(rolling_psi()) * (X - Point<dim>(journal_axis_mesh_) + u);
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

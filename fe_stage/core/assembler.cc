@@ -85,8 +85,8 @@ namespace clearjoint::fe::detail
           else
             {
               cell_rhs = 0.0;
-              fixed_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs,
-                                                            A_static_, rhs_static_unit_);
+              fixed_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, A_static_,
+                                                            rhs_static_unit_);
             }
         }
     K_.compress(VectorOperation::add);
@@ -126,8 +126,7 @@ namespace clearjoint::fe::detail
       if (friction_ && friction_cell_matrix(k, friction_matrix, friction_dofs))
         {
           Vector<double> zero(friction_dofs.size());
-          constraints_.distribute_local_to_global(friction_matrix, zero, friction_dofs, A_,
-                                                  rhs_);
+          constraints_.distribute_local_to_global(friction_matrix, zero, friction_dofs, A_, rhs_);
         }
       else
         {
@@ -139,8 +138,8 @@ namespace clearjoint::fe::detail
     for (const unsigned int i : slipping_)
       if (nodes_[i].owned)  // once per node over all ranks
         {
-          friction_node_matrix(nodes_[i], tangential_scale_ * c, delta,
-                               friction_matrix, node_rhs, friction_dofs);
+          friction_node_matrix(nodes_[i], tangential_scale_ * c, delta, friction_matrix, node_rhs,
+                               friction_dofs);
           constraints_.distribute_local_to_global(friction_matrix, node_rhs, friction_dofs, A_,
                                                   rhs_);
         }
@@ -229,4 +228,4 @@ namespace clearjoint::fe::detail
     rhs += moved;
   }
 
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -98,11 +98,10 @@ namespace clearjoint::fe::detail
                           // carries the push and the spin: its core is clamped there (u = 0).
                           const double slide =
                             scene_.loading.axial_slide / scene_.loading.delta_max;
-                          fixed_constraints_.set_inhomogeneity(
-                            dofs[i], plan_.rolling    ? 0.0 :
-                                     component == 1   ? -1.0 :
-                                     component == 2   ? slide :
-                                                        0.0);
+                          fixed_constraints_.set_inhomogeneity(dofs[i], plan_.rolling  ? 0.0 :
+                                                                        component == 1 ? -1.0 :
+                                                                        component == 2 ? slide :
+                                                                                         0.0);
                         }
                     }
                 }
@@ -129,4 +128,4 @@ namespace clearjoint::fe::detail
       if (line.inhomogeneity != 0.0)
         fixed_delta_.set_inhomogeneity(line.index, delta * line.inhomogeneity);
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -49,6 +49,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -64,15 +65,14 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
-#include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -85,8 +85,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -266,9 +266,8 @@ namespace clearjoint::fe::detail
     bool choose_constrained_component(ContactNode &cn, const Tensor<1, dim> &n) const
     {
       std::array<unsigned int, dim> order = {0, 1, 2};
-      std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
-        return std::abs(n[a]) > std::abs(n[b]);
-      });
+      std::sort(order.begin(), order.end(),
+                [&](unsigned a, unsigned b) { return std::abs(n[a]) > std::abs(n[b]); });
       for (const unsigned int c : order)
         if (std::abs(n[c]) > 0.3 && !fixed_constraints_.is_constrained(cn.dofs[c]))
           {
@@ -352,22 +351,22 @@ namespace clearjoint::fe::detail
     /// linear elastic); material_->elastic() is the law of the static operator.
     std::unique_ptr<MaterialLaw> material_;
 
-    AffineConstraints<double> hanging_constraints_; // hanging nodes only (residual condensing)
-    AffineConstraints<double> fixed_constraints_;   // hanging nodes, symmetry, supports,
-                                                    // journal load at δ = 1 (scaled by δ)
-    AffineConstraints<double> fixed_delta_;         // the same at the current δ
-    TrilinosWrappers::MPI::Vector rhs_static_unit_; // static cells' right-hand side at δ = 1
+    AffineConstraints<double> hanging_constraints_;  // hanging nodes only (residual condensing)
+    AffineConstraints<double> fixed_constraints_;    // hanging nodes, symmetry, supports,
+                                                     // journal load at δ = 1 (scaled by δ)
+    AffineConstraints<double> fixed_delta_;          // the same at the current δ
+    TrilinosWrappers::MPI::Vector rhs_static_unit_;  // static cells' right-hand side at δ = 1
     std::vector<types::global_dof_index> loaded_y_dofs_;  // owned journal DoFs driven by δ
     std::vector<types::global_dof_index> loaded_sorted_;  // the same, sorted (lookups)
     bool two_body_ = false;
-    bool journal_driven_ = true;                    // false: a deformable journal is free
-    bool friction_ = false;                         // contact.mu > 0
-    bool nonsymmetric_ = false;                     // slipping nodes in A_ (GMRES, not CG)
+    bool journal_driven_ = true;          // false: a deformable journal is free
+    bool friction_ = false;               // contact.mu > 0
+    bool nonsymmetric_ = false;           // slipping nodes in A_ (GMRES, not CG)
     std::vector<unsigned int> slipping_;  // nodes slipping in this iteration (indices, ascending)
     std::map<types::global_dof_index, unsigned int> slipping_dof_;  // any of their DoFs → node
-    AffineConstraints<double> constraints_;         // + contact lines of the active set
-    TrilinosWrappers::SparseMatrix K_;              // unconstrained stiffness (reactions);
-                                                    // dynamic: c_m M + c_k K
+    AffineConstraints<double> constraints_;  // + contact lines of the active set
+    TrilinosWrappers::SparseMatrix K_;       // unconstrained stiffness (reactions);
+                                             // dynamic: c_m M + c_k K
     // Implicit dynamics (study impact): the operator K_ and the condensed matrices hold
     // c_m M + c_k K; the residual K_ u − dynamic_load_ is then the constraint forces.
     bool dynamic_ = false;
@@ -435,7 +434,7 @@ namespace clearjoint::fe::detail
     /// After a new sparsity pattern (follow_sliding's rebuild) the elastic operator that every
     /// elastoplastic assembly starts from is copied again.
     void keep_elastic_operator();
-    MatrixCoefficients operator_coefficients_;      // {mass 0, stiffness 1}: quasi-static
+    MatrixCoefficients operator_coefficients_;  // {mass 0, stiffness 1}: quasi-static
     /// The elastic operator, kept apart from K_ where K_ means something else: the dynamic
     /// study's K (K_ holds c_m M + c_k K; assembled with it), the elastoplastic study's elastic
     /// K, condensed static part and contact cells (every tangent assembly starts from them;
@@ -446,16 +445,16 @@ namespace clearjoint::fe::detail
       TrilinosWrappers::SparseMatrix A_static;  // condensed, cells without contact nodes
       std::vector<FullMatrix<double>> contact_cells;
     } elastic_;
-    TrilinosWrappers::SparseMatrix M_;  // mass (unconstrained; dynamic)
-    TrilinosWrappers::MPI::Vector dynamic_load_;    // owned: the known part of the step's rhs
-    TrilinosWrappers::SparseMatrix A_static_;       // condensed, cells without contact nodes
-    TrilinosWrappers::SparseMatrix A_;              // condensed system of this iteration
+    TrilinosWrappers::SparseMatrix M_;            // mass (unconstrained; dynamic)
+    TrilinosWrappers::MPI::Vector dynamic_load_;  // owned: the known part of the step's rhs
+    TrilinosWrappers::SparseMatrix A_static_;     // condensed, cells without contact nodes
+    TrilinosWrappers::SparseMatrix A_;            // condensed system of this iteration
     TrilinosWrappers::MPI::Vector solution_owned_, rhs_, residual_owned_;
-    TrilinosWrappers::MPI::Vector solution_, residual_;  // ghosted
+    TrilinosWrappers::MPI::Vector solution_, residual_;    // ghosted
     std::vector<types::global_dof_index> support_y_dofs_;  // owned y-DoFs of the supports
 
-    std::vector<ContactNode> nodes_;                 // locally relevant candidates
-    std::vector<int> contact_cell_of_;               // active_cell_index → index or −1
+    std::vector<ContactNode> nodes_;    // locally relevant candidates
+    std::vector<int> contact_cell_of_;  // active_cell_index → index or −1
     std::vector<FullMatrix<double>> contact_cell_matrices_;
     std::vector<std::vector<types::global_dof_index>> contact_cell_dofs_;
 
@@ -467,5 +466,4 @@ namespace clearjoint::fe::detail
     double t_assemble_ = 0, t_solve_ = 0, t_evaluate_ = 0;
   };
 
-
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -7,4 +7,4 @@ namespace clearjoint::fe::detail
 {
   using namespace dealii;
   constexpr int dim = 3;
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -11,9 +11,9 @@ namespace clearjoint::fe::detail
 {
   /// The DoFs of each node of a face, grouped per node (x, y, z), in face order.
   template <typename CellIterator>
-  std::vector<std::array<dealii::types::global_dof_index, 3>>
-  face_node_dofs(const CellIterator &cell, const unsigned int f,
-                 std::vector<dealii::types::global_dof_index> &face_dofs)
+  std::vector<std::array<dealii::types::global_dof_index, 3>> face_node_dofs(
+    const CellIterator &cell, const unsigned int f,
+    std::vector<dealii::types::global_dof_index> &face_dofs)
   {
     const auto &fe = cell->get_fe();
     face_dofs.resize(fe.n_dofs_per_face());
@@ -26,4 +26,4 @@ namespace clearjoint::fe::detail
       }
     return nodes;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -19,8 +19,8 @@ namespace clearjoint::fe::detail
     support_y_dofs_.clear();
     {
       const FEValuesExtractors::Scalar uy(1);
-      const IndexSet sy = DoFTools::extract_boundary_dofs(dof_handler_, fe_->component_mask(uy),
-                                                         {bid_fixed});
+      const IndexSet sy =
+        DoFTools::extract_boundary_dofs(dof_handler_, fe_->component_mask(uy), {bid_fixed});
       for (const auto i : sy)
         if (owned_.is_element(i))
           support_y_dofs_.push_back(i);
@@ -52,8 +52,7 @@ namespace clearjoint::fe::detail
           // a sticking node constrains its other free components to its partners too
           if (friction_)
             for (unsigned int k = 0; k < dim; ++k)
-              if (k != cn.constrained_component &&
-                  !fixed_constraints_.is_constrained(cn.dofs[k]))
+              if (k != cn.constrained_component && !fixed_constraints_.is_constrained(cn.dofs[k]))
                 {
                   worst.add_line(cn.dofs[k]);
                   // (the rolling study's turning journal: its partners' x and y mix)
@@ -146,10 +145,16 @@ namespace clearjoint::fe::detail
     bool direct = false;
     switch (scene_.solver.linear)
       {
-        case LinearSolver::direct: direct = true; break;
-        case LinearSolver::cg_amg: direct = false; break;
-        case LinearSolver::automatic: direct = n_dofs < scene_.solver.direct_below_dofs; break;
+        case LinearSolver::direct:
+          direct = true;
+          break;
+        case LinearSolver::cg_amg:
+          direct = false;
+          break;
+        case LinearSolver::automatic:
+          direct = n_dofs < scene_.solver.direct_below_dofs;
+          break;
       }
     solver_.configure(direct, scene_.solver.tolerance, scene_.solver.max_linear_iterations);
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -27,7 +27,8 @@ namespace clearjoint::fe::detail
       if (line.inhomogeneity != 0.0)
         throw NumericalError("fe_stage: the elastoplastic assembly needs homogeneous supports "
                              "(a rigid journal, or a deformable one clamped in its own frame); "
-                             "DoF " + std::to_string(line.index) + " is prescribed");
+                             "DoF " +
+                             std::to_string(line.index) + " is prescribed");
   }
 
   /// The elastic operator, kept: every assembly starts from it.
@@ -260,9 +261,9 @@ namespace clearjoint::fe::detail
                   const double r = std::hypot(p[0], p[1]);
                   const Tensor<1, dim> er({p[0] / r, p[1] / r, 0.0});
                   const Tensor<1, dim> et({-p[1] / r, p[0] / r, 0.0});
-                  mine.insert(mine.end(), {a, er * (eps[q] * er), et * (eps[q] * et),
-                                           eps[q][2][2], alpha,
-                                           von_mises(material_->elastic().stress(eps[q] - mean_eps_p))});
+                  mine.insert(mine.end(),
+                              {a, er * (eps[q] * er), et * (eps[q] * et), eps[q][2][2], alpha,
+                               von_mises(material_->elastic().stress(eps[q] - mean_eps_p))});
                 }
             }
     std::vector<StrainProfilePoint> profile;
@@ -284,4 +285,4 @@ namespace clearjoint::fe::detail
               [](const auto &a, const auto &b) { return a.angle < b.angle; });
     return profile;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -8,7 +8,10 @@ namespace clearjoint::fe::detail
   /// Adds the seconds since construction to `target` on destruction.
   struct ScopedTimer
   {
-    explicit ScopedTimer(double &target) : target_(target), t0_(std::chrono::steady_clock::now()) {}
+    explicit ScopedTimer(double &target)
+      : target_(target)
+      , t0_(std::chrono::steady_clock::now())
+    {}
     ~ScopedTimer()
     {
       target_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
@@ -16,4 +19,4 @@ namespace clearjoint::fe::detail
     double &target_;
     std::chrono::steady_clock::time_point t0_;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -10,4 +10,4 @@ namespace clearjoint::fe::detail
   {
     std::string reason;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

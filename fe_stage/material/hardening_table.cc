@@ -15,7 +15,7 @@ namespace clearjoint::fe
     {
       return key_path + "[" + std::to_string(i) + "][" + std::to_string(column) + "]";
     }
-  } // namespace
+  }  // namespace
 
   HardeningTable::HardeningTable(std::vector<HardeningPoint> points, const std::string &key_path,
                                  const std::string &file, const Beyond beyond)
@@ -24,8 +24,9 @@ namespace clearjoint::fe
     , tail_slope_(0.0)
   {
     if (points_.empty())
-      throw InputError(file, key_path, "[]",
-                       "a list of at least one [eps_p, sigma_y] point (eps_p in [-], sigma_y in Pa)");
+      throw InputError(
+        file, key_path, "[]",
+        "a list of at least one [eps_p, sigma_y] point (eps_p in [-], sigma_y in Pa)");
     for (std::size_t i = 0; i < points_.size(); ++i)
       {
         const HardeningPoint &p = points_[i];
@@ -89,7 +90,8 @@ namespace clearjoint::fe
     const std::size_t k = segment(eps_p);
     if (k + 1 == points_.size())
       return tail_slope_;
-    return (points_[k + 1].sigma_y - points_[k].sigma_y) / (points_[k + 1].eps_p - points_[k].eps_p);
+    return (points_[k + 1].sigma_y - points_[k].sigma_y) /
+           (points_[k + 1].eps_p - points_[k].eps_p);
   }
 
   double HardeningTable::yield_stress(const double eps_p) const
@@ -97,4 +99,4 @@ namespace clearjoint::fe
     const std::size_t k = segment(eps_p);
     return points_[k].sigma_y + slope(eps_p) * (eps_p - points_[k].eps_p);
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -19,8 +19,8 @@ namespace clearjoint::fe
 {
   struct HardeningPoint
   {
-    double eps_p;   ///< equivalent plastic strain [-], ≥ 0
-    double sigma_y; ///< yield stress at eps_p [Pa], > 0
+    double eps_p;    ///< equivalent plastic strain [-], ≥ 0
+    double sigma_y;  ///< yield stress at eps_p [Pa], > 0
   };
 
   class HardeningTable
@@ -29,8 +29,8 @@ namespace clearjoint::fe
     /// What σ_y does beyond the last point.
     enum class Beyond
     {
-      extend_last_segment, ///< linear extrapolation with the last segment's slope (default)
-      hold_last,           ///< σ_y stays at the last value (Abaqus *PLASTIC convention)
+      extend_last_segment,  ///< linear extrapolation with the last segment's slope (default)
+      hold_last,            ///< σ_y stays at the last value (Abaqus *PLASTIC convention)
     };
 
     /// Checks the table and throws clearjoint::InputError naming `key_path` (e.g.
@@ -61,13 +61,13 @@ namespace clearjoint::fe
     /// Strain where segment k ends: ε_{k+1}, or +∞ for the tail k = n_points() − 1.
     double segment_end(std::size_t k) const;
 
-    std::size_t                        n_points() const { return points_.size(); }
+    std::size_t n_points() const { return points_.size(); }
     const std::vector<HardeningPoint> &points() const { return points_; }
-    Beyond                             beyond() const { return beyond_; }
+    Beyond beyond() const { return beyond_; }
 
   private:
     std::vector<HardeningPoint> points_;
-    Beyond                      beyond_;
-    double                      tail_slope_; ///< [Pa] slope beyond the last point
+    Beyond beyond_;
+    double tail_slope_;  ///< [Pa] slope beyond the last point
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -38,7 +38,7 @@ namespace clearjoint::fe::detail
               t[i][j][k][l] = C(voigt_of(i, j), voigt_of(k, l));
       return t;
     }
-  } // namespace
+  }  // namespace
 
   J2Law::J2Law(J2Plasticity law, const LinearElastic &elastic)
     : law_(std::move(law))
@@ -46,10 +46,7 @@ namespace clearjoint::fe::detail
     , elastic_tangent_(to_deal(law_.elastic_tangent()))
   {}
 
-  void J2Law::resize(const std::size_t n_points)
-  {
-    history_.assign(n_points, J2History());
-  }
+  void J2Law::resize(const std::size_t n_points) { history_.assign(n_points, J2History()); }
 
   MaterialResponse J2Law::evaluate(const std::size_t point, const SymmetricTensor<2, 3> &eps)
   {
@@ -89,10 +86,9 @@ namespace clearjoint::fe::detail
       LinearElastic::from_young_poisson(scene.material.E, scene.material.nu);
     if (!elastoplastic)
       return std::make_unique<ElasticLaw>(elastic);
-    return std::make_unique<J2Law>(
-      J2Plasticity(scene.material.E, scene.material.nu,
-                   hardening_table(scene.material, scene.source_file), "material",
-                   scene.source_file),
-      elastic);
+    return std::make_unique<J2Law>(J2Plasticity(scene.material.E, scene.material.nu,
+                                                hardening_table(scene.material, scene.source_file),
+                                                "material", scene.source_file),
+                                   elastic);
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

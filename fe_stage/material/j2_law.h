@@ -20,8 +20,7 @@ namespace clearjoint::fe::detail
     dealii::SymmetricTensor<4, 3> elastic_tangent() const override { return elastic_tangent_; }
     bool has_history() const override { return true; }
     void resize(std::size_t n_points) override;
-    MaterialResponse evaluate(std::size_t point,
-                              const dealii::SymmetricTensor<2, 3> &eps) override;
+    MaterialResponse evaluate(std::size_t point, const dealii::SymmetricTensor<2, 3> &eps) override;
     void commit(std::size_t point) override { history_[point].commit(); }
     dealii::SymmetricTensor<2, 3> plastic_strain(std::size_t point,
                                                  bool trial = false) const override;
@@ -35,4 +34,4 @@ namespace clearjoint::fe::detail
     dealii::SymmetricTensor<4, 3> elastic_tangent_;  // the law's own K 1⊗1 + 2G I_dev
     std::vector<J2History> history_;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

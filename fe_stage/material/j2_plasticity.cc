@@ -22,10 +22,10 @@ namespace clearjoint::fe
     double sigma_on_segment(const HardeningTable &t, std::size_t k, double alpha, double &H)
     {
       const auto &p = t.points();
-      H             = t.slope(p[k].eps_p); // the slope to the right of point k: segment k's
+      H = t.slope(p[k].eps_p);  // the slope to the right of point k: segment k's
       return p[k].sigma_y + H * (alpha - p[k].eps_p);
     }
-  } // namespace
+  }  // namespace
 
   double von_mises_stress(const Eigen::Matrix3d &sigma)
   {
@@ -43,8 +43,8 @@ namespace clearjoint::fe
   Eigen::Matrix3d voigt_to_strain(const Vector6 &e)
   {
     Eigen::Matrix3d m;
-    m << e(0), e(5) / 2, e(4) / 2, //
-      e(5) / 2, e(1), e(3) / 2,    //
+    m << e(0), e(5) / 2, e(4) / 2,  //
+      e(5) / 2, e(1), e(3) / 2,     //
       e(4) / 2, e(3) / 2, e(2);
     return m;
   }
@@ -59,8 +59,8 @@ namespace clearjoint::fe
   Eigen::Matrix3d voigt_to_stress(const Vector6 &v)
   {
     Eigen::Matrix3d m;
-    m << v(0), v(5), v(4), //
-      v(5), v(1), v(3),    //
+    m << v(0), v(5), v(4),  //
+      v(5), v(1), v(3),     //
       v(4), v(3), v(2);
     return m;
   }
@@ -86,59 +86,59 @@ namespace clearjoint::fe
       for (int J = 0; J < 3; ++J)
         C(I, J) = K_ + 2.0 * G_ * ((I == J ? 1.0 : 0.0) - 1.0 / 3.0);
     for (int I = 3; I < 6; ++I)
-      C(I, I) = G_; // 2G·½ on the engineering shear strain
+      C(I, I) = G_;  // 2G·½ on the engineering shear strain
     return C;
   }
 
   double J2Plasticity::elastic_energy(const Eigen::Matrix3d &eps, const J2State &state) const
   {
-    const Eigen::Matrix3d e  = eps - state.eps_p;
-    const double          tr = e.trace();
-    const Eigen::Matrix3d d  = deviator(e);
+    const Eigen::Matrix3d e = eps - state.eps_p;
+    const double tr = e.trace();
+    const Eigen::Matrix3d d = deviator(e);
     return 0.5 * K_ * tr * tr + G_ * d.cwiseProduct(d).sum();
   }
 
   J2Response J2Plasticity::evaluate(const Eigen::Matrix3d &eps, J2History &history) const
   {
-    J2Response     out;
+    J2Response out;
     const J2State &n = history.committed;
     if (!eps.allFinite())
       {
         out.status.converged = false;
-        out.status.residual  = std::numeric_limits<double>::quiet_NaN();
+        out.status.residual = std::numeric_limits<double>::quiet_NaN();
         return out;
       }
-    const Eigen::Matrix3d eps_e  = eps - n.eps_p;
-    const double          tr     = eps_e.trace();
-    const Eigen::Matrix3d s_tr   = 2.0 * G_ * deviator(eps_e);
-    const double          s_norm = std::sqrt(s_tr.cwiseProduct(s_tr).sum());
-    const double          q_tr   = sqrt_3_2 * s_norm;
-    const double          sy_n   = table_.yield_stress(n.alpha);
+    const Eigen::Matrix3d eps_e = eps - n.eps_p;
+    const double tr = eps_e.trace();
+    const Eigen::Matrix3d s_tr = 2.0 * G_ * deviator(eps_e);
+    const double s_norm = std::sqrt(s_tr.cwiseProduct(s_tr).sum());
+    const double q_tr = sqrt_3_2 * s_norm;
+    const double sy_n = table_.yield_stress(n.alpha);
 
     // Elastic unless the trial stress is outside the yield surface by more than round-off
     // (1e-12 relative): re-evaluating a converged plastic state must not start a new return.
     if (q_tr - sy_n <= 1e-12 * sy_n)
       {
         history.trial = n;
-        out.stress    = K_ * tr * Eigen::Matrix3d::Identity() + s_tr;
-        out.tangent   = elastic_tangent();
+        out.stress = K_ * tr * Eigen::Matrix3d::Identity() + s_tr;
+        out.tangent = elastic_tangent();
         return out;
       }
 
     // Return: Newton on f(Δγ) = q* − 3GΔγ − σ_y(α_n + Δγ), steps clamped to segment ends.
-    const int   max_iter = static_cast<int>(table_.n_points()) + extra_iterations;
-    std::size_t k        = table_.segment(n.alpha);
-    double      dg       = 0.0;
-    double      H        = 0.0;
-    double      r        = 0.0;
-    int         it       = 0;
-    bool        done     = false;
+    const int max_iter = static_cast<int>(table_.n_points()) + extra_iterations;
+    std::size_t k = table_.segment(n.alpha);
+    double dg = 0.0;
+    double H = 0.0;
+    double r = 0.0;
+    int it = 0;
+    bool done = false;
     while (it < max_iter && !done)
       {
         ++it;
-        r                 = q_tr - 3.0 * G_ * dg - sigma_on_segment(table_, k, n.alpha + dg, H);
+        r = q_tr - 3.0 * G_ * dg - sigma_on_segment(table_, k, n.alpha + dg, H);
         const double step = r / (3.0 * G_ + H);
-        const double end  = table_.segment_end(k) - n.alpha; // Δγ at the end of segment k
+        const double end = table_.segment_end(k) - n.alpha;  // Δγ at the end of segment k
         if (dg + step <= end)
           {
             dg += step;
@@ -146,33 +146,33 @@ namespace clearjoint::fe
           }
         else
           {
-            dg = end; // the root lies beyond this table point
+            dg = end;  // the root lies beyond this table point
             ++k;
           }
       }
     r = q_tr - 3.0 * G_ * dg - sigma_on_segment(table_, k, n.alpha + dg, H);
     out.status.iterations = it;
-    out.status.residual   = std::abs(r);
+    out.status.residual = std::abs(r);
     // Inside one segment the step is exact up to rounding of numbers of size q*; 1e-10·q*
     // leaves room for a few roundings while catching a wrong segment or a failed walk.
     out.status.converged = done && std::isfinite(dg) && std::abs(r) <= 1e-10 * q_tr;
     if (!out.status.converged)
       return out;
 
-    const Eigen::Matrix3d nn      = s_tr / s_norm;
-    const Eigen::Matrix3d deps_p  = sqrt_3_2 * dg * nn;
-    history.trial.eps_p           = n.eps_p + deps_p;
-    history.trial.alpha           = n.alpha + dg;
-    out.stress                    = K_ * tr * Eigen::Matrix3d::Identity() + s_tr - 2.0 * G_ * deps_p;
-    out.plastic                   = true;
-    out.delta_alpha               = dg;
-    out.plastic_work              = out.stress.cwiseProduct(deps_p).sum();
+    const Eigen::Matrix3d nn = s_tr / s_norm;
+    const Eigen::Matrix3d deps_p = sqrt_3_2 * dg * nn;
+    history.trial.eps_p = n.eps_p + deps_p;
+    history.trial.alpha = n.alpha + dg;
+    out.stress = K_ * tr * Eigen::Matrix3d::Identity() + s_tr - 2.0 * G_ * deps_p;
+    out.plastic = true;
+    out.delta_alpha = dg;
+    out.plastic_work = out.stress.cwiseProduct(deps_p).sum();
 
     // Consistent tangent (Simo & Hughes Eq. 3.3.10); H is the slope of the final segment.
-    const double theta     = 1.0 - 3.0 * G_ * dg / q_tr;
+    const double theta = 1.0 - 3.0 * G_ * dg / q_tr;
     const double theta_bar = 3.0 * G_ / (3.0 * G_ + H) - (1.0 - theta);
-    const Vector6 N        = stress_to_voigt(nn); // tensor components, no factor 2
-    Matrix6       C        = Matrix6::Zero();
+    const Vector6 N = stress_to_voigt(nn);  // tensor components, no factor 2
+    Matrix6 C = Matrix6::Zero();
     for (int I = 0; I < 3; ++I)
       for (int J = 0; J < 3; ++J)
         C(I, J) = K_ + 2.0 * G_ * theta * ((I == J ? 1.0 : 0.0) - 1.0 / 3.0);
@@ -182,4 +182,4 @@ namespace clearjoint::fe
     out.tangent = C;
     return out;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

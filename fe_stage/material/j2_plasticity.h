@@ -44,24 +44,24 @@ namespace clearjoint::fe
   /// SymmetricTensor<4, 3>) with no factors.
   constexpr int voigt_of(int i, int j)
   {
-    return i == j ? i : 6 - i - j; // (1,2) → 3, (0,2) → 4, (0,1) → 5
+    return i == j ? i : 6 - i - j;  // (1,2) → 3, (0,2) → 4, (0,1) → 5
   }
 
   /// von Mises equivalent stress √(3/2 s:s) [Pa] of a symmetric stress tensor.
   double von_mises_stress(const Eigen::Matrix3d &sigma);
 
   /// Symmetric strain tensor → Voigt strain (engineering shear); the inverse below.
-  Vector6         strain_to_voigt(const Eigen::Matrix3d &eps);
+  Vector6 strain_to_voigt(const Eigen::Matrix3d &eps);
   Eigen::Matrix3d voigt_to_strain(const Vector6 &e);
   /// Symmetric stress tensor → Voigt stress (no factors); the inverse below.
-  Vector6         stress_to_voigt(const Eigen::Matrix3d &sigma);
+  Vector6 stress_to_voigt(const Eigen::Matrix3d &sigma);
   Eigen::Matrix3d voigt_to_stress(const Vector6 &s);
 
   /// History of one quadrature point.
   struct J2State
   {
-    Eigen::Matrix3d eps_p = Eigen::Matrix3d::Zero(); ///< plastic strain tensor [-], trace 0
-    double          alpha = 0.0; ///< equivalent plastic strain ∫√(2/3)|dε_p| [-]
+    Eigen::Matrix3d eps_p = Eigen::Matrix3d::Zero();  ///< plastic strain tensor [-], trace 0
+    double alpha = 0.0;  ///< equivalent plastic strain ∫√(2/3)|dε_p| [-]
   };
 
   /// Trial/commit: evaluate() writes only `trial`; the caller copies it to `committed` after a
@@ -70,26 +70,26 @@ namespace clearjoint::fe
   {
     J2State committed;
     J2State trial;
-    void    commit() { committed = trial; }
+    void commit() { committed = trial; }
   };
 
   struct ReturnStatus
   {
-    bool   converged  = true;
-    int    iterations = 0;   ///< local Newton steps (0 for an elastic step)
-    double residual   = 0.0; ///< |f(Δγ)| at the end [Pa]
+    bool converged = true;
+    int iterations = 0;     ///< local Newton steps (0 for an elastic step)
+    double residual = 0.0;  ///< |f(Δγ)| at the end [Pa]
   };
 
   struct J2Response
   {
     Eigen::Matrix3d stress;  ///< Cauchy stress σ_{n+1} [Pa] (small strain)
-    Matrix6         tangent; ///< consistent tangent dσ/dε, Voigt layout above [Pa]
-    bool            plastic = false;
-    double          delta_alpha = 0.0; ///< Δγ = α_{n+1} − α_n [-]
+    Matrix6 tangent;         ///< consistent tangent dσ/dε, Voigt layout above [Pa]
+    bool plastic = false;
+    double delta_alpha = 0.0;  ///< Δγ = α_{n+1} − α_n [-]
     /// Plastic work per volume of the step, σ_{n+1} : Δε_p = σ_y(α_{n+1}) Δα ≥ 0 [J/m³]:
     /// what backward Euler dissipates plus the energy stored by hardening (cold work).
-    double          plastic_work = 0.0;
-    ReturnStatus    status;
+    double plastic_work = 0.0;
+    ReturnStatus status;
   };
 
   class J2Plasticity
@@ -119,7 +119,7 @@ namespace clearjoint::fe
     static constexpr int extra_iterations = 5;
 
   private:
-    double         E_, nu_, K_, G_;
+    double E_, nu_, K_, G_;
     HardeningTable table_;
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -33,4 +33,4 @@ namespace clearjoint::fe::detail
     const dealii::SymmetricTensor<2, 3> s = dealii::deviator(sigma);
     return std::sqrt(1.5 * (s * s));
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

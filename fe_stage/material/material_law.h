@@ -29,12 +29,12 @@ namespace clearjoint::fe::detail
 {
   struct MaterialResponse
   {
-    dealii::SymmetricTensor<2, 3> stress;   ///< σ [Pa]
+    dealii::SymmetricTensor<2, 3> stress;  ///< σ [Pa]
     /// dσ/dε [Pa]; only set where `yielding` (elsewhere the elastic tangent holds)
     dealii::SymmetricTensor<4, 3> tangent;
-    bool yielding = false;       ///< the point yields in this step (tangent ≠ elastic)
-    bool converged = true;       ///< false: the local return did not converge (cut the step)
-    double plastic_work = 0.0;   ///< [J/m³] σ : Δε_p of the step
+    bool yielding = false;      ///< the point yields in this step (tangent ≠ elastic)
+    bool converged = true;      ///< false: the local return did not converge (cut the step)
+    double plastic_work = 0.0;  ///< [J/m³] σ : Δε_p of the step
   };
 
   class MaterialLaw
@@ -76,7 +76,9 @@ namespace clearjoint::fe::detail
   class ElasticLaw : public MaterialLaw
   {
   public:
-    explicit ElasticLaw(const LinearElastic &law) : law_(law) {}
+    explicit ElasticLaw(const LinearElastic &law)
+      : law_(law)
+    {}
     const LinearElastic &elastic() const override { return law_; }
     dealii::SymmetricTensor<4, 3> elastic_tangent() const override
     {
@@ -93,10 +95,7 @@ namespace clearjoint::fe::detail
       return r;
     }
     void commit(std::size_t) override {}
-    dealii::SymmetricTensor<2, 3> plastic_strain(std::size_t, bool) const override
-    {
-      return {};
-    }
+    dealii::SymmetricTensor<2, 3> plastic_strain(std::size_t, bool) const override { return {}; }
     double equivalent_plastic_strain(std::size_t, bool) const override { return 0.0; }
     double elastic_energy(std::size_t, const dealii::SymmetricTensor<2, 3> &eps) const override
     {
@@ -110,4 +109,4 @@ namespace clearjoint::fe::detail
   /// The scene's material: J2 with the scene's hardening table where `elastoplastic` (the
   /// rolling study), else linear elastic (material.E, material.nu).
   std::unique_ptr<MaterialLaw> make_material(const FeScene &scene, bool elastoplastic);
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -16,7 +16,8 @@ namespace clearjoint::fe::detail
                           std::vector<dealii::Point<3>> &vertices,
                           std::vector<dealii::CellData<3>> &cells)
   {
-    auto [body_vertices, body_cells, body_sub] = dealii::GridTools::get_coarse_mesh_description(body);
+    auto [body_vertices, body_cells, body_sub] =
+      dealii::GridTools::get_coarse_mesh_description(body);
     (void)body_sub;
     const unsigned int offset = vertices.size();
     vertices.insert(vertices.end(), body_vertices.begin(), body_vertices.end());
@@ -28,4 +29,4 @@ namespace clearjoint::fe::detail
         cells.push_back(c);
       }
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -30,8 +30,7 @@ namespace clearjoint::fe::detail
                                                   Point<dim>(V.block_width, V.indenter_height,
                                                              V.block_width));
         if (plan_.hertz)
-          GridTools::transform([&](const Point<dim> &p) { return chart.push_forward(p); },
-                               upper);
+          GridTools::transform([&](const Point<dim> &p) { return chart.push_forward(p); }, upper);
         std::vector<Point<dim>> vertices;
         std::vector<CellData<dim>> cells;
         append_body(lower, 0, vertices, cells);
@@ -74,7 +73,8 @@ namespace clearjoint::fe::detail
               }
             else if (all([&](const Point<dim> &X) { return std::abs(X[1]) < tol; }))
               id = bid_contact;
-            else if (all([&](const Point<dim> &X) { return std::abs(X[1] + V.block_height) < tol; }))
+            else if (all(
+                       [&](const Point<dim> &X) { return std::abs(X[1] + V.block_height) < tol; }))
               id = bid_fixed;
             if (id == bid_free)
               {
@@ -115,4 +115,4 @@ namespace clearjoint::fe::detail
       }
     symmetry_factor_ = 4.0;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -2,9 +2,9 @@
 // bearing and the journal place their nodes on common rays. deal.II; header-only.
 #pragma once
 
-#include <deal.II/base/numbers.h>
 #include "fe_stage/core/dim.h"
 #include "fe_stage/mesh/journal_pose.h"
+#include <deal.II/base/numbers.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/grid/manifold.h>
@@ -22,7 +22,10 @@ namespace clearjoint::fe::detail
   class IndenterChart : public ChartManifold<dim, dim, dim>
   {
   public:
-    IndenterChart(const double R, const double H) : R_(R), H_(H) {}
+    IndenterChart(const double R, const double H)
+      : R_(R)
+      , H_(H)
+    {}
     double cap(const double x, const double z) const
     {
       const double p = (x * x + z * z) / (2.0 * R_);
@@ -57,7 +60,9 @@ namespace clearjoint::fe::detail
   public:
     RayChart(const double c_r, const double R_J, const bool journal)
       : ChartManifold<dim, dim, dim>(Tensor<1, dim>({2.0 * numbers::PI, 0.0, 0.0}))
-      , c_r_(c_r), R_J_(R_J), journal_(journal)
+      , c_r_(c_r)
+      , R_J_(R_J)
+      , journal_(journal)
     {}
     double rho(const double phi) const
     {
@@ -93,7 +98,8 @@ namespace clearjoint::fe::detail
   public:
     PlacedChart(const RayChart &aligned, const JournalPose &pose)
       : ChartManifold<dim, dim, dim>(Tensor<1, dim>({2.0 * numbers::PI, 0.0, 0.0}))
-      , aligned_(aligned), pose_(pose)
+      , aligned_(aligned)
+      , pose_(pose)
     {}
     Point<dim> pull_back(const Point<dim> &X) const override
     {
@@ -115,4 +121,4 @@ namespace clearjoint::fe::detail
     RayChart aligned_;
     JournalPose pose_;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -25,8 +25,8 @@ namespace clearjoint::fe::detail
       for (const auto &g : msh.groups)
         if (g.name == name && g.dim == group_dim)
           return g.tag;
-      throw InputError(G.mesh, name, "(missing)", "a physical group of dimension " +
-                                                    std::to_string(group_dim));
+      throw InputError(G.mesh, name, "(missing)",
+                       "a physical group of dimension " + std::to_string(group_dim));
     };
     const int bearing = tag_of("bearing", 3);
     const bool journal = scene_.loading.journal != JournalLoading::rigid;
@@ -129,8 +129,7 @@ namespace clearjoint::fe::detail
     if (journal)
       for (const auto &cell : serial.active_cell_iterators())
         for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() &&
-              cell->face(f)->boundary_id() == bid_journal_surface)
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_journal_surface)
             cell->face(f)->set_all_manifold_ids(1);
     if (n_contact == 0 || n_fixed == 0)
       throw InputError(G.mesh, n_contact == 0 ? "bearing_contact" : "bearing_fixed",
@@ -145,8 +144,8 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log::info("fe_stage: " + G.mesh + ": " + std::to_string(cells.size()) +
                 (journal ? " bearing and journal" : " bearing") + " hexahedra, symmetry planes" +
-                (sym_x ? " x = 0" : "") +
-                (sym_z ? " z = 0" : "") + (sym_x || sym_z ? "" : " none") +
-                " (force factor " + format_value(symmetry_factor_) + ")");
+                (sym_x ? " x = 0" : "") + (sym_z ? " z = 0" : "") +
+                (sym_x || sym_z ? "" : " none") + " (force factor " +
+                format_value(symmetry_factor_) + ")");
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

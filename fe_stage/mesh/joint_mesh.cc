@@ -20,9 +20,9 @@ namespace clearjoint::fe::detail
     const bool full_z = scene_.full_model || plan_.full_length;
     const bool journal = scene_.loading.journal != JournalLoading::rigid;
     const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
-    const unsigned int n_r =
-      M.n_radial > 0 ? M.n_radial :
-                       std::max(1u, static_cast<unsigned int>(std::lround(G.t_B / 2.0e-3)));
+    const unsigned int n_r = M.n_radial > 0 ?
+                               M.n_radial :
+                               std::max(1u, static_cast<unsigned int>(std::lround(G.t_B / 2.0e-3)));
     const double R_o = G.R_B + G.t_B;
     const RayChart bearing_chart(G.c_r, G.R_J(), false), journal_chart(G.c_r, G.R_J(), true);
 
@@ -35,9 +35,7 @@ namespace clearjoint::fe::detail
     // --- bearing: 2D (r, φ) grid, local x along r (outward), local y along φ -------------
     std::vector<Point<2>> vertices;
     std::vector<CellData<2>> cells;
-    auto bid = [&](unsigned int i, unsigned int j) {
-      return (i % n_phi_vertices) * (n_r + 1) + j;
-    };
+    auto bid = [&](unsigned int i, unsigned int j) { return (i % n_phi_vertices) * (n_r + 1) + j; };
     for (unsigned int i = 0; i < n_phi_vertices; ++i)
       for (unsigned int j = 0; j <= n_r; ++j)
         {
@@ -94,8 +92,7 @@ namespace clearjoint::fe::detail
 
     Triangulation<dim> bearing3d;
     GridGenerator::extrude_triangulation(bearing2d, bearing_slices, bearing3d);
-    auto [all_vertices, all_cells, subcells] =
-      GridTools::get_coarse_mesh_description(bearing3d);
+    auto [all_vertices, all_cells, subcells] = GridTools::get_coarse_mesh_description(bearing3d);
     for (auto &c : all_cells)
       {
         c.material_id = 0;
@@ -139,15 +136,22 @@ namespace clearjoint::fe::detail
           if (full)
             {
               // counter-clockwise from the bottom-left corner (φ = −3π/4 ↔ i = n/2)
-              if (b == 0) return int(n / 2 + a);
-              if (a == Nx) return int(n / 2 + Nx + b);
-              if (b == Ny) return int((n / 2 + Nx + Ny + (Nx - a)) % n_phi);
-              if (a == 0) return int((n / 2 + 2 * Nx + Ny + (Ny - b)) % n_phi);
+              if (b == 0)
+                return int(n / 2 + a);
+              if (a == Nx)
+                return int(n / 2 + Nx + b);
+              if (b == Ny)
+                return int((n / 2 + Nx + Ny + (Nx - a)) % n_phi);
+              if (a == 0)
+                return int((n / 2 + 2 * Nx + Ny + (Ny - b)) % n_phi);
               return -1;
             }
-          if (b == 0) return int(a);
-          if (a == Nx) return int(Nx + b);
-          if (b == Ny) return int(Nx + Ny + (Nx - a));
+          if (b == 0)
+            return int(a);
+          if (a == Nx)
+            return int(Nx + b);
+          if (b == Ny)
+            return int(Nx + Ny + (Nx - a));
           return -1;
         };
         const Point<2> centre(0.0, -G.c_r);
@@ -158,7 +162,8 @@ namespace clearjoint::fe::detail
           // half model, a = 0: bottom → centre → top, linear in each half
           const Point<2> bot = ring_point(0, s0), top = ring_point(n, s0);
           const double t = double(b) / Ny;
-          return t <= 0.5 ? bot + (centre - bot) * (2.0 * t) : centre + (top - centre) * (2.0 * t - 1.0);
+          return t <= 0.5 ? bot + (centre - bot) * (2.0 * t) :
+                            centre + (top - centre) * (2.0 * t - 1.0);
         };
         std::vector<int> core_id((Nx + 1) * (Ny + 1), -1);
         for (unsigned int b = 0; b <= Ny; ++b)
@@ -181,8 +186,8 @@ namespace clearjoint::fe::detail
                   const Point<2> P00 = boundary_point(0, 0), P10 = boundary_point(Nx, 0),
                                  P01 = boundary_point(0, Ny), P11 = boundary_point(Nx, Ny);
                   p = Point<2>((1 - v) * B + v * T + (1 - u) * Lp + u * R -
-                               ((1 - u) * (1 - v) * P00 + u * (1 - v) * P10 +
-                                (1 - u) * v * P01 + u * v * P11));
+                               ((1 - u) * (1 - v) * P00 + u * (1 - v) * P10 + (1 - u) * v * P01 +
+                                u * v * P11));
                 }
               core_id[b * (Nx + 1) + a] = jv.size();
               jv.push_back(p);
@@ -222,8 +227,8 @@ namespace clearjoint::fe::detail
             // ring cells: all vertices at s ≥ s0 − tol on the journal chart
             bool ring = true;
             for (const auto v : cell->vertex_indices())
-              ring = ring &&
-                     journal_chart.pull_back(journal_local(cell->vertex(v)))[1] > 0.6 - 1e-6;
+              ring =
+                ring && journal_chart.pull_back(journal_local(cell->vertex(v)))[1] > 0.6 - 1e-6;
             cell->set_all_manifold_ids(ring ? 1 : numbers::flat_manifold_id);
           }
         else
@@ -249,8 +254,7 @@ namespace clearjoint::fe::detail
                 on_outer = on_outer && std::abs(rv - R_o) < tol;
                 on_x0 = on_x0 && std::abs(p[0]) < tol;
                 const Point<dim> l = journal_local(p);  // the journal as meshed
-                on_journal =
-                  on_journal && std::abs(std::hypot(l[0], l[1] + G.c_r) - G.R_J()) < tol;
+                on_journal = on_journal && std::abs(std::hypot(l[0], l[1] + G.c_r) - G.R_J()) < tol;
               }
             types::boundary_id id = bid_free;
             if (cell->material_id() == 1)
@@ -268,8 +272,8 @@ namespace clearjoint::fe::detail
             else if (on_inner)
               id = bid_contact;
             else if (on_outer)
-              id = (c[1] > 0.0 || (plan_.rolling && scene_.rolling.support ==
-                                                      Rolling::Support::outer_surface)) ?
+              id = (c[1] > 0.0 ||
+                    (plan_.rolling && scene_.rolling.support == Rolling::Support::outer_surface)) ?
                      bid_fixed :
                      bid_free;
             else if (!full && on_x0)
@@ -365,9 +369,8 @@ namespace clearjoint::fe::detail
                   for (const auto v : cell->vertex_indices())
                     {
                       const Point<dim> l = journal_local(cell->vertex(v));
-                      at_surface = at_surface ||
-                                   std::hypot(l[0], l[1] + scene_.geometry.c_r) >
-                                     scene_.geometry.R_J() - 0.5 * cell->diameter();
+                      at_surface = at_surface || std::hypot(l[0], l[1] + scene_.geometry.c_r) >
+                                                   scene_.geometry.R_J() - 0.5 * cell->diameter();
                     }
                   if (at_surface && bore_gap_below(cell, 2.0 * scene_.loading.delta_max))
                     cell->set_refine_flag();
@@ -405,4 +408,4 @@ namespace clearjoint::fe::detail
         tria_.execute_coarsening_and_refinement();
       }
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

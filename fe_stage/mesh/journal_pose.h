@@ -42,9 +42,6 @@ namespace clearjoint::fe
       const Vec r = rotate_back({world[0], world[1] - centre_y, world[2] - centre_z});
       return {r[0], r[1] + aligned_centre_y, r[2]};
     }
-    bool identity() const
-    {
-      return tilt == 0.0 && centre_y == aligned_centre_y && centre_z == 0.0;
-    }
+    bool identity() const { return tilt == 0.0 && centre_y == aligned_centre_y && centre_z == 0.0; }
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

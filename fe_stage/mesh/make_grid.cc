@@ -12,4 +12,4 @@ namespace clearjoint::fe::detail
     else
       make_block_grid();
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -115,11 +115,12 @@ namespace clearjoint::fe::detail
     out.add_data_vector(solution_, post);
     std::vector<DataComponentInterpretation::DataComponentInterpretation> sc(
       dim, DataComponentInterpretation::component_is_scalar);
-    out.add_data_vector(cf, std::vector<std::string>{"contact_pressure", "contact_gap",
-                                                     "contact_active"},
+    out.add_data_vector(cf,
+                        std::vector<std::string>{"contact_pressure", "contact_gap",
+                                                 "contact_active"},
                         DataOut<dim>::type_dof_data, sc);
-    out.add_data_vector(ff, std::vector<std::string>{"contact_status", "contact_shear",
-                                                     "contact_slip"},
+    out.add_data_vector(ff,
+                        std::vector<std::string>{"contact_status", "contact_shear", "contact_slip"},
                         DataOut<dim>::type_dof_data, sc);
     Vector<float> subdomain(tria_.n_active_cells());
     for (auto &s : subdomain)
@@ -151,4 +152,4 @@ namespace clearjoint::fe::detail
         field_files_.push_back(dir + "/" + pvtu);
       }
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

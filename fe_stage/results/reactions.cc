@@ -56,79 +56,79 @@ namespace clearjoint::fe::detail
   /// nodes, penetration and pressure range, and the checks that make a wrong answer a failure.
   void ContactModel::record_forces(const double delta, IncrementRecord &rec)
   {
-  // Forces and checks.
-  double f_contact = 0.0, max_pen = 0.0;
-  double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
-  unsigned int n_act = 0, n_slip = 0;
-  // the y-force a node's contact passes on to the bearing: normal only, or with its friction
-  // force (the force on the slave node; on the bearing the opposite when the journal is slave)
-  auto contact_force_y = [&, sign = slave_sign()](const ContactNode &cn) {
-    return sign * (friction_ ? cn.traction[1] : cn.lambda * cn.n[1]);
-  };
-  Point<dim> deepest;
-  for (const auto &cn : nodes_)
-    if (cn.owned)
+    // Forces and checks.
+    double f_contact = 0.0, max_pen = 0.0;
+    double p_min = std::numeric_limits<double>::max(), p_max = -p_min;
+    unsigned int n_act = 0, n_slip = 0;
+    // the y-force a node's contact passes on to the bearing: normal only, or with its friction
+    // force (the force on the slave node; on the bearing the opposite when the journal is slave)
+    auto contact_force_y = [&, sign = slave_sign()](const ContactNode &cn) {
+      return sign * (friction_ ? cn.traction[1] : cn.lambda * cn.n[1]);
+    };
+    Point<dim> deepest;
+    for (const auto &cn : nodes_)
+      if (cn.owned)
+        {
+          if (-cn.gap > max_pen)
+            max_pen = -cn.gap, deepest = cn.X;
+          if (cn.active)
+            {
+              ++n_act;
+              if (friction_ && !cn.stick)
+                ++n_slip;
+              f_contact -= contact_force_y(cn);
+              if (cn.weight > 0.0)
+                {
+                  p_min = std::min(p_min, cn.lambda / cn.weight);
+                  p_max = std::max(p_max, cn.lambda / cn.weight);
+                }
+            }
+        }
+    double f_support = 0.0, f_load = 0.0;
+    for (const auto d : support_y_dofs_)
+      f_support += residual_owned_[d];
+    for (const auto d : loaded_y_dofs_)
+      f_load -= residual_owned_[d];
+    // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
+    // the contact force reaches that DoF through the constraint, not through K u: add it.
+    for (const auto &cn : nodes_)
+      if (cn.active && cn.owned)
+        for (const auto &p : cn.partners)
+          if (p.driven_y)
+            f_load -= p.weight * contact_force_y(cn);
+    rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
+                                 symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
+    rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
+    rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
+    rec.n_active = Utilities::MPI::sum(n_act, comm_);
+    rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
+    rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
+    rec.pressure_min = Utilities::MPI::min(p_min, comm_);
+    rec.pressure_max = Utilities::MPI::max(p_max, comm_);
+    if (friction_)
+      record_coulomb_check(rec);
+    if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
+      throw StepFailure{"non-finite contact force"};
+    // A pushed joint must touch somewhere: no active node means the journal slipped between
+    // the contact nodes (a rim patch smaller than the cells), and F = 0 would be a wrong answer.
+    if (rec.n_active == 0 && plan_.must_touch)
+      throw StepFailure{"no contact node touches the journal at delta = " + format_value(delta) +
+                        " m: the mesh is too coarse where the journal touches (raise "
+                        "mesh.contact_refinements or mesh.global_refinements)"};
+    // Watched (non-candidate) nodes must not penetrate: if one does, the candidate window was
+    // too small and the result would be wrong, so the run stops instead.
+    if (rec.max_penetration > 1e-6 * scene_.loading.delta_max)
       {
-        if (-cn.gap > max_pen)
-          max_pen = -cn.gap, deepest = cn.X;
-        if (cn.active)
-          {
-            ++n_act;
-            if (friction_ && !cn.stick)
-              ++n_slip;
-            f_contact -= contact_force_y(cn);
-            if (cn.weight > 0.0)
-              {
-                p_min = std::min(p_min, cn.lambda / cn.weight);
-                p_max = std::max(p_max, cn.lambda / cn.weight);
-              }
-          }
+        // the deepest node's position, from the rank that holds it
+        const bool mine = max_pen == rec.max_penetration;
+        std::array<double, dim> where{};
+        for (unsigned int c = 0; c < dim; ++c)
+          where[c] = Utilities::MPI::max(mine ? deepest[c] : -1e300, comm_);
+        throw StepFailure{"penetration " + format_value(rec.max_penetration) +
+                          " m at the contact-surface node at (" + format_value(where[0]) + ", " +
+                          format_value(where[1]) + ", " + format_value(where[2]) +
+                          ") m (candidate window too small)"};
       }
-  double f_support = 0.0, f_load = 0.0;
-  for (const auto d : support_y_dofs_)
-    f_support += residual_owned_[d];
-  for (const auto d : loaded_y_dofs_)
-    f_load -= residual_owned_[d];
-  // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
-  // the contact force reaches that DoF through the constraint, not through K u: add it.
-  for (const auto &cn : nodes_)
-    if (cn.active && cn.owned)
-      for (const auto &p : cn.partners)
-        if (p.driven_y)
-          f_load -= p.weight * contact_force_y(cn);
-  rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
-                               symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
-  rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
-  rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
-  rec.n_active = Utilities::MPI::sum(n_act, comm_);
-  rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
-  rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
-  rec.pressure_min = Utilities::MPI::min(p_min, comm_);
-  rec.pressure_max = Utilities::MPI::max(p_max, comm_);
-  if (friction_)
-    record_coulomb_check(rec);
-  if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
-    throw StepFailure{"non-finite contact force"};
-  // A pushed joint must touch somewhere: no active node means the journal slipped between
-  // the contact nodes (a rim patch smaller than the cells), and F = 0 would be a wrong answer.
-  if (rec.n_active == 0 && plan_.must_touch)
-    throw StepFailure{"no contact node touches the journal at delta = " + format_value(delta) +
-                      " m: the mesh is too coarse where the journal touches (raise "
-                      "mesh.contact_refinements or mesh.global_refinements)"};
-  // Watched (non-candidate) nodes must not penetrate: if one does, the candidate window was
-  // too small and the result would be wrong, so the run stops instead.
-  if (rec.max_penetration > 1e-6 * scene_.loading.delta_max)
-    {
-      // the deepest node's position, from the rank that holds it
-      const bool mine = max_pen == rec.max_penetration;
-      std::array<double, dim> where{};
-      for (unsigned int c = 0; c < dim; ++c)
-        where[c] = Utilities::MPI::max(mine ? deepest[c] : -1e300, comm_);
-      throw StepFailure{"penetration " + format_value(rec.max_penetration) +
-                        " m at the contact-surface node at (" + format_value(where[0]) + ", " +
-                        format_value(where[1]) + ", " + format_value(where[2]) +
-                        ") m (candidate window too small)"};
-    }
   }
 
   /// How well the converged state satisfies Coulomb's law at every node (IncrementRecord's
@@ -166,4 +166,4 @@ namespace clearjoint::fe::detail
     rec.friction_slip_law_error = Utilities::MPI::max(slip_law, comm_) / scale;
     rec.friction_direction_error = Utilities::MPI::max(direction, comm_);
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

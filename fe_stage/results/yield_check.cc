@@ -77,23 +77,22 @@ namespace clearjoint::fe::detail
     for (const auto &b : check.bodies)
       {
         const auto &x = b.max_location;
-        const std::string where = "(" + format_value(x[0] * 1e3) + ", " +
-                                  format_value(x[1] * 1e3) + ", " + format_value(x[2] * 1e3) +
-                                  ") mm";
+        const std::string where = "(" + format_value(x[0] * 1e3) + ", " + format_value(x[1] * 1e3) +
+                                  ", " + format_value(x[2] * 1e3) + ") mm";
         if (b.volume_above_yield > 0.0)
-          log::warning("fe_stage: yield check: von Mises reaches " +
-                       format_value(b.max_von_mises * 1e-6) + " MPa in the " + b.name + " at " +
-                       where + ", above the yield stress " +
-                       format_value(check.yield_stress * 1e-6) + " MPa in " +
-                       format_value(b.volume_above_yield * 1e9) + " mm^3 (" +
-                       format_value(100.0 * b.volume_above_yield / b.volume) +
-                       " % of the " + b.name + "): the linear-elastic result is not valid there "
-                       "(field plastic_zone; material.yield_stress sets the limit)");
+          log::warning(
+            "fe_stage: yield check: von Mises reaches " + format_value(b.max_von_mises * 1e-6) +
+            " MPa in the " + b.name + " at " + where + ", above the yield stress " +
+            format_value(check.yield_stress * 1e-6) + " MPa in " +
+            format_value(b.volume_above_yield * 1e9) + " mm^3 (" +
+            format_value(100.0 * b.volume_above_yield / b.volume) + " % of the " + b.name +
+            "): the linear-elastic result is not valid there "
+            "(field plastic_zone; material.yield_stress sets the limit)");
         else
           log::info("fe_stage: yield check: von Mises at most " +
                     format_value(b.max_von_mises * 1e-6) + " MPa in the " + b.name + " (at " +
-                    where + "), below the yield stress " +
-                    format_value(check.yield_stress * 1e-6) + " MPa");
+                    where + "), below the yield stress " + format_value(check.yield_stress * 1e-6) +
+                    " MPa");
       }
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -34,14 +34,12 @@ namespace clearjoint::fe
     for (int i = 0; i < 200 && hi - lo > 1e-12; ++i)  // bisection: 200 halvings bound it
       (ratio(0.5 * (lo + hi)) < r ? lo : hi) = 0.5 * (lo + hi);
     const double q = 0.5 * (lo + hi);
-    const double F_inf =
-      F2 - (F1 - F2) * std::pow(N2, -q) / (std::pow(N1, -q) - std::pow(N2, -q));
+    const double F_inf = F2 - (F1 - F2) * std::pow(N2, -q) / (std::pow(N1, -q) - std::pow(N2, -q));
     e.extrapolated = true;
     e.order = q;
     e.extrapolated_force = F_inf;
     e.error = std::abs(F2 - F_inf) / std::abs(F_inf);
-    e.method = "extrapolation of the last three meshes, F = F_inf + C N^-q, q = " +
-               format_value(q);
+    e.method = "extrapolation of the last three meshes, F = F_inf + C N^-q, q = " + format_value(q);
     return e;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -9,11 +9,11 @@ namespace clearjoint::fe
 {
   struct AdaptiveEstimate
   {
-    double error = -1.0;               // [1] estimated relative error of the last F; < 0: none
-    std::string method;                // how it was obtained (a lower bound, or extrapolated)
-    bool extrapolated = false;         // from F = F_inf + C N^-q through the last three meshes
-    double order = 0.0;                // [1] q (extrapolated only)
-    double extrapolated_force = 0.0;   // [N] F_inf (extrapolated only)
+    double error = -1.0;              // [1] estimated relative error of the last F; < 0: none
+    std::string method;               // how it was obtained (a lower bound, or extrapolated)
+    bool extrapolated = false;        // from F = F_inf + C N^-q through the last three meshes
+    double order = 0.0;               // [1] q (extrapolated only)
+    double extrapolated_force = 0.0;  // [N] F_inf (extrapolated only)
   };
 
   /// With three or more meshes, F_k = F_∞ + C N_k^(−q) through the last three (q by
@@ -43,4 +43,4 @@ namespace clearjoint::fe
   {
     return target > 0.0 && e.extrapolated && e.error >= 0.0 && e.error <= target;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

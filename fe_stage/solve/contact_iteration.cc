@@ -44,8 +44,10 @@ namespace clearjoint::fe::detail
           {
             tangential_scale_ *= 0.3;
             if (log::level() <= log::Level::debug)
-              log::debug("  delta " + format_value(delta) + " m: the stick/slip decisions have "
-                         "not settled in " + std::to_string(it) + " iterations; c_T now " +
+              log::debug("  delta " + format_value(delta) +
+                         " m: the stick/slip decisions have "
+                         "not settled in " +
+                         std::to_string(it) + " iterations; c_T now " +
                          format_value(tangential_scale_) + " c");
           }
         build_contact_constraints(delta);
@@ -72,8 +74,8 @@ namespace clearjoint::fe::detail
                 {
                   const ContactNode &cn = nodes_[i];
                   const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
-                  const Tensor<2, dim> Q = tangent_projection(cn) -
-                                           outer_product(cn.slip_direction, cn.slip_direction);
+                  const Tensor<2, dim> Q =
+                    tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
                   const Tensor<1, dim> F =
                     scene_.contact.mu * cn.lambda * cn.slip_direction +
                     cn.kappa * (Q * (t - tangential_scale_ * c * contact_slip_increment(cn)));
@@ -85,12 +87,13 @@ namespace clearjoint::fe::detail
         const auto change = update_active_set(c, eps_g);
         const bool slip_settled = change.slip_residual <= slip_tolerance * change.force_scale;
         if (log::level() <= log::Level::debug)
-          log::debug("  delta " + format_value(delta) + " m, iteration " +
-                     std::to_string(it + 1) + ": " + std::to_string(change.n_changed) +
+          log::debug("  delta " + format_value(delta) + " m, iteration " + std::to_string(it + 1) +
+                     ": " + std::to_string(change.n_changed) +
                      " nodes changed, slip-law residual " + format_value(change.slip_residual) +
                      " N (largest nodal force " + format_value(change.force_scale) + " N)" +
-                     (change.changed.empty() ? "" : "; rank " + std::to_string(rank_) + ": " +
-                                                      change.changed));
+                     (change.changed.empty() ?
+                        "" :
+                        "; rank " + std::to_string(rank_) + ": " + change.changed));
         if (change.n_changed == 0 && slip_settled && !loose)
           {
             ++it;
@@ -100,16 +103,16 @@ namespace clearjoint::fe::detail
         // last one allowed (a state that settles there must be one of exact solves)
         loose = !solver_.direct() && change.n_changed > 0 && it + 2 < scene_.contact.max_iterations;
         if (it + 1 == scene_.contact.max_iterations)
-          throw StepFailure{"active set did not settle in " + std::to_string(it + 1) +
-                            " iterations (" + std::to_string(change.n_changed) +
-                            " nodes still changing" +
-                            (change.changed.empty() ? "" : ", e.g. " + change.changed) +
-                            (slip_settled ? "" : ", slip-law residual " +
-                                                   format_value(change.slip_residual) + " N") +
-                            ")"};
+          throw StepFailure{
+            "active set did not settle in " + std::to_string(it + 1) + " iterations (" +
+            std::to_string(change.n_changed) + " nodes still changing" +
+            (change.changed.empty() ? "" : ", e.g. " + change.changed) +
+            (slip_settled ? "" :
+                            ", slip-law residual " + format_value(change.slip_residual) + " N") +
+            ")"};
       }
     rec.contact_iterations = it;
     record_forces(delta, rec);
     return rec;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -14,7 +14,7 @@ namespace clearjoint::fe
       throw InputError(file, key_path, format_value(alpha), "[-1/3, 0]",
                        "Hilber-Hughes-Taylor alpha; 0 = trapezoidal rule, no numerical damping");
     alpha_ = alpha;
-    beta_  = 0.25 * (1.0 - alpha) * (1.0 - alpha);
+    beta_ = 0.25 * (1.0 - alpha) * (1.0 - alpha);
     gamma_ = 0.5 - alpha;
   }
 
@@ -28,26 +28,27 @@ namespace clearjoint::fe
   {
     check_dt(dt);
     MatrixCoefficients c;
-    c.mass      = 1.0 / (beta_ * dt * dt);
-    c.damping   = (1.0 + alpha_) * gamma_ / (beta_ * dt);
+    c.mass = 1.0 / (beta_ * dt * dt);
+    c.damping = (1.0 + alpha_) * gamma_ / (beta_ * dt);
     c.stiffness = 1.0 + alpha_;
     return c;
   }
 
   void EnergyLedger::start(const double T0)
   {
-    *this           = EnergyLedger{};
+    *this = EnergyLedger{};
     kinetic_initial = T0;
-    kinetic         = T0;
+    kinetic = T0;
   }
 
-  double EnergyLedger::add_step(const double T_new, const double dW_internal, const double dW_applied)
+  double EnergyLedger::add_step(const double T_new, const double dW_internal,
+                                const double dW_applied)
   {
     const double d = dW_applied - (T_new - kinetic) - dW_internal;
-    kinetic        = T_new;
+    kinetic = T_new;
     work_internal += dW_internal;
     work_applied += dW_applied;
     dissipation += d;
     return d;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

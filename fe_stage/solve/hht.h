@@ -31,9 +31,9 @@ namespace clearjoint::fe
   /// ∂r/∂u_{n+1} = mass·M + damping·C + stiffness·K_t.
   struct MatrixCoefficients
   {
-    double mass      = 0.0; ///< 1/(βΔt²) [1/s²]
-    double damping   = 0.0; ///< (1+α)γ/(βΔt) [1/s]
-    double stiffness = 1.0; ///< 1+α [-]
+    double mass = 0.0;       ///< 1/(βΔt²) [1/s²]
+    double damping = 0.0;    ///< (1+α)γ/(βΔt) [1/s]
+    double stiffness = 1.0;  ///< 1+α [-]
   };
 
   namespace hht_detail
@@ -42,14 +42,16 @@ namespace clearjoint::fe
     struct has_add : std::false_type
     {};
     template <class V>
-    struct has_add<V, std::void_t<decltype(std::declval<V &>().add(1.0, std::declval<const V &>()))>>
+    struct has_add<V,
+                   std::void_t<decltype(std::declval<V &>().add(1.0, std::declval<const V &>()))>>
       : std::true_type
     {};
     template <class V, class = void>
     struct has_dot : std::false_type
     {};
     template <class V>
-    struct has_dot<V, std::void_t<decltype(std::declval<const V &>().dot(std::declval<const V &>()))>>
+    struct has_dot<V,
+                   std::void_t<decltype(std::declval<const V &>().dot(std::declval<const V &>()))>>
       : std::true_type
     {};
 
@@ -71,7 +73,7 @@ namespace clearjoint::fe
       else
         return x * y;
     }
-  } // namespace hht_detail
+  }  // namespace hht_detail
 
   class HhtAlpha
   {
@@ -84,8 +86,8 @@ namespace clearjoint::fe
     /// What the predictor assumes for the new step.
     enum class Predictor
     {
-      same_displacement, ///< u_{n+1} = u_n
-      same_acceleration, ///< a_{n+1} = a_n: u_{n+1} = u_n + Δt v_n + Δt²/2 a_n
+      same_displacement,  ///< u_{n+1} = u_n
+      same_acceleration,  ///< a_{n+1} = a_n: u_{n+1} = u_n + Δt v_n + Δt²/2 a_n
       /// Newmark's ũ = u_n + Δt v_n + Δt²(½ − β) a_n: the part of u_{n+1} known before
       /// a_{n+1} (u_{n+1} = ũ + βΔt² a_{n+1}); the impact study's step starts there and builds
       /// its known load c_m M ũ from it.
@@ -132,12 +134,12 @@ namespace clearjoint::fe
     /// Newmark relations: v_{n+1}, a_{n+1} from u_{n+1} and the converged state n. The output
     /// vectors must be distinct objects from the inputs.
     template <class V>
-    void update_rates(const V &u_new, const V &u_n, const V &v_n, const V &a_n, double dt,
-                      V &v_new, V &a_new) const
+    void update_rates(const V &u_new, const V &u_n, const V &v_n, const V &a_n, double dt, V &v_new,
+                      V &a_new) const
     {
       check_dt(dt);
       const double bdt2 = beta_ * dt * dt;
-      a_new             = u_new;
+      a_new = u_new;
       hht_detail::axpy(a_new, -1.0, u_n);
       a_new *= 1.0 / bdt2;
       hht_detail::axpy(a_new, -1.0 / (beta_ * dt), v_n);
@@ -149,7 +151,7 @@ namespace clearjoint::fe
 
   private:
     static void check_dt(double dt);
-    double      alpha_, beta_, gamma_;
+    double alpha_, beta_, gamma_;
   };
 
   /// Work of a force over one step by the trapezoidal rule, (u_{n+1} − u_n)·(f_n + f_{n+1})/2.
@@ -173,14 +175,14 @@ namespace clearjoint::fe
   /// then closes by construction; its content is D.
   struct EnergyLedger
   {
-    double kinetic_initial = 0.0; ///< T_0 [J]
-    double kinetic         = 0.0; ///< T_{n+1} [J]
-    double work_internal   = 0.0; ///< Σ trapezoidal work of f_int [J]
-    double work_applied    = 0.0; ///< Σ trapezoidal work of loads and contact forces [J]
-    double dissipation     = 0.0; ///< Σ D_step, the numerical dissipation [J]
+    double kinetic_initial = 0.0;  ///< T_0 [J]
+    double kinetic = 0.0;          ///< T_{n+1} [J]
+    double work_internal = 0.0;    ///< Σ trapezoidal work of f_int [J]
+    double work_applied = 0.0;     ///< Σ trapezoidal work of loads and contact forces [J]
+    double dissipation = 0.0;      ///< Σ D_step, the numerical dissipation [J]
 
-    void   start(double T0);
+    void start(double T0);
     /// Adds one converged step; returns its D_step [J].
     double add_step(double T_new, double dW_internal, double dW_applied);
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -101,9 +101,8 @@ namespace clearjoint::fe::detail
             m_.restore_state(saved);
             if (!control_.cut())
               {
-                message = "time step " + std::to_string(rec.step) + " at t = " +
-                          format_value(t_) + " s failed after " +
-                          std::to_string(control_.cuts()) + " cuts" +
+                message = "time step " + std::to_string(rec.step) + " at t = " + format_value(t_) +
+                          " s failed after " + std::to_string(control_.cuts()) + " cuts" +
                           control_.floor_note("s") + ": " + f.reason;
                 return false;
               }
@@ -231,4 +230,4 @@ namespace clearjoint::fe::detail
     rec.numerical_dissipation = ledger_.dissipation;
     rec.n_active = inc.n_active;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -78,4 +78,4 @@ namespace clearjoint::fe::detail
     EnergyLedger ledger_;
     double work_contact_ = 0.0;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -45,7 +45,7 @@ namespace clearjoint::fe::detail
         }
       return 0.0;
     }
-  } // namespace
+  }  // namespace
 
   RunResult ContactModel::run_impact()
   {
@@ -72,8 +72,7 @@ namespace clearjoint::fe::detail
       log::info("fe_stage: impact: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs; " +
                 (plan_.deformable_partner ? "deformable" : "rigid") + " journal " +
-                format_value(m_J) +
-                " kg at " + format_value(I.velocity) + " m/s, setup " +
+                format_value(m_J) + " kg at " + format_value(I.velocity) + " m/s, setup " +
                 log::format_duration(result.setup_time));
 
     // 1. The static probe and the quasi-static reference curve on this mesh.
@@ -100,7 +99,8 @@ namespace clearjoint::fe::detail
                        ">= " + format_value(delta_curve) + " m for this impact",
                        "study impact: the contact candidates and the quasi-static reference "
                        "curve cover penetrations up to loading.delta_max; this impact is "
-                       "expected to reach " + format_value(delta_estimate) + " m");
+                       "expected to reach " +
+                         format_value(delta_estimate) + " m");
     std::vector<double> targets;
     for (unsigned int k = 1; k <= L.n_increments; ++k)
       targets.push_back(delta_curve * k / L.n_increments);
@@ -126,10 +126,10 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log::info("fe_stage: impact: contact stiffness " + format_value(S.contact_stiffness) +
                 " N/m (static curve at the expected delta_max " + format_value(delta_estimate) +
-                " m), period T_c = " + format_value(S.contact_period) + " s, dt = " +
-                format_value(dt_nominal) + " s (T_c/" +
-                format_value(S.contact_period / dt_nominal) +
-                "), end time " + format_value(t_end) + " s");
+                " m), period T_c = " + format_value(S.contact_period) +
+                " s, dt = " + format_value(dt_nominal) + " s (T_c/" +
+                format_value(S.contact_period / dt_nominal) + "), end time " + format_value(t_end) +
+                " s");
 
     // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
     // loaded set (the static curve pushed it at its end faces or axis, as the thickness study).
@@ -203,8 +203,8 @@ namespace clearjoint::fe::detail
             std::snprintf(buf, sizeof(buf),
                           "fe_stage: step %u  t %.4g us  dt %.3g us  delta %.4g um  rate %.4g "
                           "m/s  F %.6g N  journal its %u  contact its %u  active %u  %s%s",
-                          rec.step, t * 1e6, dt * 1e6, d * 1e6, d_rate, F,
-                          rec.journal_iterations, rec.contact_iterations, rec.n_active,
+                          rec.step, t * 1e6, dt * 1e6, d * 1e6, d_rate, F, rec.journal_iterations,
+                          rec.contact_iterations, rec.n_active,
                           log::format_duration(rec.wall_time).c_str(), eta.c_str());
             log::info(buf);
           }
@@ -272,9 +272,9 @@ namespace clearjoint::fe::detail
                       S.peak_force / S.quasi_static_force_at_peak_delta - 1.0 :
                       0.0;
     if (rank_ == 0)
-      log::info("fe_stage: impact: peak force " + format_value(S.peak_force) + " N at t = " +
-                format_value(S.time_of_peak) + " s, delta_max " + format_value(S.delta_max) +
-                " m, " +
+      log::info("fe_stage: impact: peak force " + format_value(S.peak_force) +
+                " N at t = " + format_value(S.time_of_peak) + " s, delta_max " +
+                format_value(S.delta_max) + " m, " +
                 (S.separated ? "contact duration " + format_value(S.contact_duration) +
                                  " s, restitution " + format_value(S.restitution) :
                                std::string("still in contact at the end time")) +
@@ -296,4 +296,4 @@ namespace clearjoint::fe::detail
       result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
     return result;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -31,8 +31,8 @@ namespace clearjoint::fe::detail
     max_iterations_ = max_iterations;
   }
 
-  void SystemSolver::build_amg(const TrilinosWrappers::SparseMatrix &A,
-                               const DoFHandler<dim> &dofs, const Mapping<dim> &mapping)
+  void SystemSolver::build_amg(const TrilinosWrappers::SparseMatrix &A, const DoFHandler<dim> &dofs,
+                               const Mapping<dim> &mapping)
   {
     ScopedTimer timer(t_amg_);
     const auto &fe = dofs.get_fe();
@@ -94,9 +94,9 @@ namespace clearjoint::fe::detail
     amg_reference_iterations_ = 0;
   }
 
-  unsigned int SystemSolver::solve(const TrilinosWrappers::SparseMatrix &A,
-                                   const bool nonsymmetric, const DoFHandler<dim> &dofs,
-                                   const Mapping<dim> &mapping, TrilinosWrappers::MPI::Vector &x,
+  unsigned int SystemSolver::solve(const TrilinosWrappers::SparseMatrix &A, const bool nonsymmetric,
+                                   const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
+                                   TrilinosWrappers::MPI::Vector &x,
                                    const TrilinosWrappers::MPI::Vector &b,
                                    const double relative_tolerance)
   {
@@ -146,9 +146,9 @@ namespace clearjoint::fe::detail
                 amg_.reset();  // the reused preconditioner may be stale: rebuild once
                 continue;
               }
-            throw StepFailure{std::string(nonsymmetric ? "GMRES" : "CG") +
-                              " did not converge in " + std::to_string(e.last_step) +
-                              " iterations (residual " + format_value(e.last_residual) + ")"};
+            throw StepFailure{std::string(nonsymmetric ? "GMRES" : "CG") + " did not converge in " +
+                              std::to_string(e.last_step) + " iterations (residual " +
+                              format_value(e.last_residual) + ")"};
           }
         const unsigned int its = control.last_step();
         // the AMG's effectiveness is judged on the solves to the scene's tolerance only (a
@@ -164,4 +164,4 @@ namespace clearjoint::fe::detail
       }
     throw StepFailure{"linear solver failed"};
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -58,4 +58,4 @@ namespace clearjoint::fe::detail
     unsigned int amg_reference_iterations_ = 0;
     double t_amg_ = 0.0;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -66,16 +66,16 @@ namespace clearjoint::fe::detail
                 restore_state(saved);
                 if (!control.cut())
                   {
-                    message = "increment " + std::to_string(inc) + " to delta = " +
-                              format_value(try_delta) + " m failed after " +
+                    message = "increment " + std::to_string(inc) +
+                              " to delta = " + format_value(try_delta) + " m failed after " +
                               std::to_string(control.cuts()) + " cuts: " + f.reason;
                     if (rank_ == 0)
                       log::error("fe_stage: " + message);
                     return false;
                   }
                 if (rank_ == 0)
-                  log::warning("fe_stage: increment " + std::to_string(inc) + " to delta = " +
-                               format_value(try_delta) + " m failed (" + f.reason +
+                  log::warning("fe_stage: increment " + std::to_string(inc) +
+                               " to delta = " + format_value(try_delta) + " m failed (" + f.reason +
                                "); retrying with step " + format_value(control.size()) + " m");
               }
           }
@@ -115,7 +115,7 @@ namespace clearjoint::fe::detail
         const double change = follow_sliding(u_start);
         if (rank_ == 0)
           log::debug("fe_stage: finite sliding: search " + std::to_string(search) +
-                    ", coupling moved by " + format_value(change));
+                     ", coupling moved by " + format_value(change));
         if (change <= settled)
           break;
         if (search == max_searches)
@@ -177,7 +177,7 @@ namespace clearjoint::fe::detail
         t.push_back(inc == n ? delta_max : inc * (delta_max / n));
       return t;
     }
-  } // namespace
+  }  // namespace
 
   /// Adaptive cycles (mesh.adaptive_cycles; none: the mesh prepared once): marking pushes,
   /// Kelly refinement, and the sequence F_k(N_k) in result.adaptive_cycles; the model is left
@@ -306,10 +306,12 @@ namespace clearjoint::fe::detail
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
       std::filesystem::create_directories(options_.output_dir + "/fields");
-    const unsigned int n_candidates = Utilities::MPI::sum(
-      (unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
-                                  [](const ContactNode &c) { return c.owned && c.candidate; }),
-      comm_);  // collective: outside the rank-0 branch
+    const unsigned int n_candidates =
+      Utilities::MPI::sum((unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
+                                                      [](const ContactNode &c) {
+                                                        return c.owned && c.candidate;
+                                                      }),
+                          comm_);  // collective: outside the rank-0 branch
     if (rank_ == 0)
       log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
@@ -383,9 +385,11 @@ namespace clearjoint::fe::detail
     result.sliding_resolves = n_sliding_resolves_;
     if (rank_ == 0 && finite_sliding())
       log::info("fe_stage: finite sliding: the mortar search was redone after every converged "
-                "increment; " + std::to_string(n_sliding_rebuilds_) +
+                "increment; " +
+                std::to_string(n_sliding_rebuilds_) +
                 " times its partners needed a new sparsity pattern, " +
-                std::to_string(n_sliding_resolves_) + " increments solved again with the new "
+                std::to_string(n_sliding_resolves_) +
+                " increments solved again with the new "
                 "coupling");
     result.yield_check = check_yield(nullptr);
     log_yield_check(result.yield_check);
@@ -400,4 +404,4 @@ namespace clearjoint::fe::detail
       result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
     return result;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -33,7 +33,7 @@ namespace clearjoint::fe::rolling
   double paper_angle(const Vec3 &U, const double R)
   {
     const double u = std::sqrt(U[0] * U[0] + U[1] * U[1]);  // Eq. 4: the x–y components
-    return 2.0 * std::asin(std::min(1.0, 0.5 * u / R));      // Eq. 5 / 6
+    return 2.0 * std::asin(std::min(1.0, 0.5 * u / R));     // Eq. 5 / 6
   }
 
   SlipStages slip_stages(const std::vector<double> &t, const std::vector<double> &v,
@@ -74,4 +74,4 @@ namespace clearjoint::fe::rolling
     return s;
   }
 
-} // namespace clearjoint::fe::rolling
+}  // namespace clearjoint::fe::rolling

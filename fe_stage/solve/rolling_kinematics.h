@@ -23,10 +23,10 @@ namespace clearjoint::fe::rolling
 
   struct Motion
   {
-    double omega_B = 0.0;    // [rad/s]
-    double ramp_time = 0.0;  // [s]
-    double delta_max = 0.0;  // [m]
-    double c_r = 0.0;        // [m] the journal's axis at y = −c_r at first touch
+    double omega_B = 0.0;         // [rad/s]
+    double ramp_time = 0.0;       // [s]
+    double delta_max = 0.0;       // [m]
+    double c_r = 0.0;             // [m] the journal's axis at y = −c_r at first touch
     double R_B = 0.0, R_J = 0.0;  // [m]
 
     double phi(double t) const { return omega_B * t; }  ///< [rad] bearing angle
@@ -68,14 +68,14 @@ namespace clearjoint::fe::rolling
   /// within `settle_band` (of that largest value) of its final value; (iii) the stable rest.
   struct SlipStages
   {
-    bool found = false;       // false: fewer than 3 steps, no slip at all, or the relative
-                              //   speed never fell below the fraction before the end
-    double v_max = 0.0;       // [m/s] largest relative speed
-    double end_of_slip = 0.0; // [s] end of stage (i)
-    double settled = 0.0;     // [s] start of stage (iii)
-    double v_final = 0.0;     // [m/s] relative speed at the end
+    bool found = false;        // false: fewer than 3 steps, no slip at all, or the relative
+                               //   speed never fell below the fraction before the end
+    double v_max = 0.0;        // [m/s] largest relative speed
+    double end_of_slip = 0.0;  // [s] end of stage (i)
+    double settled = 0.0;      // [s] start of stage (iii)
+    double v_final = 0.0;      // [m/s] relative speed at the end
   };
   SlipStages slip_stages(const std::vector<double> &t, const std::vector<double> &v,
                          double fall_fraction = 0.5, double settle_band = 0.05);
 
-} // namespace clearjoint::fe::rolling
+}  // namespace clearjoint::fe::rolling

@@ -37,8 +37,8 @@ namespace clearjoint::fe::detail
         if (log::level() <= log::Level::debug && rank_ == 0)
           log::debug("  material Newton iteration " + std::to_string(k + 1) + ": correction " +
                      format_value(correction) + " m, " + std::to_string(pa.n_plastic_points) +
-                     " quadrature points yielding, contact force " +
-                     format_value(rs.record.force) + " N");
+                     " quadrature points yielding, contact force " + format_value(rs.record.force) +
+                     " N");
         if (!std::isfinite(correction))
           throw StepFailure{"non-finite displacement in the material Newton iteration"};
         if (correction <= tolerance)
@@ -49,7 +49,8 @@ namespace clearjoint::fe::detail
         last_correction = correction;
         if (growths >= 3)
           throw StepFailure{"the material Newton iteration diverges (the correction grew in "
-                            "three iterations running, to " + format_value(correction) + " m)"};
+                            "three iterations running, to " +
+                            format_value(correction) + " m)"};
         if (k + 1 >= max_it)
           throw StepFailure{"the material Newton iteration did not converge in " +
                             std::to_string(max_it) + " iterations (last correction " +
@@ -110,10 +111,10 @@ namespace clearjoint::fe::detail
                                              [](const auto &c) { return c.candidate; })) +
                 " contact candidate nodes (rank 0); omega_B " + format_value(R.omega_B) +
                 " rad/s, delta_max " + format_value(L.delta_max) + " m at " +
-                format_value(R.ramp_time) + " s, " + std::to_string(R.n_steps) +
-                " steps to " + format_value(t_end) + " s, journal spin inertia " +
-                format_value(inertia) + " kg m^2, mu " + format_value(scene_.contact.mu) +
-                ", setup " + log::format_duration(result.setup_time));
+                format_value(R.ramp_time) + " s, " + std::to_string(R.n_steps) + " steps to " +
+                format_value(t_end) + " s, journal spin inertia " + format_value(inertia) +
+                " kg m^2, mu " + format_value(scene_.contact.mu) + ", setup " +
+                log::format_duration(result.setup_time));
 
     start_from_rest();
     // the bore node at the bottom of the mid-plane: it touches the journal at t = 0 (paper
@@ -123,7 +124,8 @@ namespace clearjoint::fe::detail
     std::array<types::global_dof_index, dim> tracked_dofs{};
     for (unsigned int i = 0; i < nodes_.size(); ++i)
       if (nodes_[i].owned && std::abs(nodes_[i].X[0]) < 1e-9 * G.R_B &&
-          std::abs(nodes_[i].X[1] + G.R_B) < 1e-9 * G.R_B && std::abs(nodes_[i].X[2]) < 1e-9 * G.R_B)
+          std::abs(nodes_[i].X[1] + G.R_B) < 1e-9 * G.R_B &&
+          std::abs(nodes_[i].X[2]) < 1e-9 * G.R_B)
         tracked = int(i), tracked_dofs = nodes_[i].dofs;
     // the deformable journal's surface node under it at t = 0 (paper Fig. 9's N_J, the same
     // point as meshed; owned by one rank)
@@ -208,8 +210,8 @@ namespace clearjoint::fe::detail
           force_frame[c] = Utilities::MPI::sum(force_frame[c], comm_);
         fr = symmetry_factor_ * Utilities::MPI::sum(fr, comm_);
         torque_bearing = symmetry_factor_ * Utilities::MPI::sum(torque_bearing, comm_);
-        const auto on_journal = rolling::rotate_z({-force_frame[0], -force_frame[1], 0.0},
-                                                  motion.phi(t1));
+        const auto on_journal =
+          rolling::rotate_z({-force_frame[0], -force_frame[1], 0.0}, motion.phi(t1));
         Vec3 u_tracked{0.0, 0.0, 0.0};
         if (tracked >= 0)
           for (unsigned int c = 0; c < dim; ++c)
@@ -308,13 +310,14 @@ namespace clearjoint::fe::detail
         rec.cuts = solved.cuts;
         // paper Eqs. 4–8: N_B at X0 = (0, −R_B, 0), N_J the journal point under it at t = 0
         const Vec3 X0{0.0, -G.R_B, 0.0};
-        const Vec3 xB = rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0},
-                                          rec.phi);
+        const Vec3 xB =
+          rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0}, rec.phi);
         rec.phi_paper = rolling::paper_angle({xB[0] - X0[0], xB[1] - X0[1], 0.0}, G.R_B);
         const Vec3 c0 = motion.centre_fixed(0.0), c1 = motion.centre_fixed(t1);
         const Vec3 pJ = rolling::rotate_z({u_journal[0], -G.R_J() + u_journal[1], 0.0}, rec.gamma);
-        rec.gamma_paper = rolling::paper_angle(
-          {c1[0] + pJ[0] - c0[0], c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0}, G.R_J());
+        rec.gamma_paper =
+          rolling::paper_angle({c1[0] + pJ[0] - c0[0], c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0},
+                               G.R_J());
         rec.phi_rate_paper = rec.phi_paper / t1;
         rec.gamma_rate_paper = rec.gamma_paper / t1;
         rec.wall_time = elapsed();
@@ -339,9 +342,8 @@ namespace clearjoint::fe::detail
             const double per_second = (elapsed() - wall_steps_start) / t1;
             log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(t1) +
                       " s, delta " + format_value(rec.delta) + " m, F " +
-                      format_value(rec.force_normal) + " N, spin " +
-                      format_value(rec.gamma_rate) + " rad/s (slip " +
-                      format_value(rec.slip_speed) + " m/s), eps_p max " +
+                      format_value(rec.force_normal) + " N, spin " + format_value(rec.gamma_rate) +
+                      " rad/s (slip " + format_value(rec.slip_speed) + " m/s), eps_p max " +
                       format_value(rec.max_plastic_strain) + ", " +
                       std::to_string(rec.spin_iterations) + " spin / " +
                       std::to_string(rec.contact_iterations) + " contact iterations" +
@@ -358,8 +360,8 @@ namespace clearjoint::fe::detail
       }
     const double t = stepper.time();
     if (result.message.empty() && t < t_end * (1.0 - 1e-12))
-      result.message = "the step limit (" + std::to_string(max_steps) + ") was reached at t = " +
-                       format_value(t) + " s";
+      result.message = "the step limit (" + std::to_string(max_steps) +
+                       ") was reached at t = " + format_value(t) + " s";
     // the end state: strains across the contact zone, the slip stages, the balance
     result.strain_profile = strain_profile(0, motion.phi(t), 30.0 * units::deg);
     if (rolling_deformable_journal())
@@ -377,7 +379,8 @@ namespace clearjoint::fe::detail
         S.max_plastic_strain = last.max_plastic_strain;
         S.max_strain = last.max_strain;
         const double work_in = std::abs(last.work_drive) + std::abs(last.work_push);
-        S.energy_balance_error = work_in > 0.0 ? std::abs(last.energy_balance_error) / work_in : 0.0;
+        S.energy_balance_error =
+          work_in > 0.0 ? std::abs(last.energy_balance_error) / work_in : 0.0;
       }
     result.sliding_rebuilds = n_sliding_rebuilds_;
     if (rolling_deformable_journal() && rank_ == 0)
@@ -390,4 +393,4 @@ namespace clearjoint::fe::detail
     result.wall_time = elapsed();
     return result;
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

@@ -30,8 +30,8 @@ namespace clearjoint::fe
     // |g| below which g is taken as 0, once g has been evaluated at the first point
     double absolute_tolerance(const IncreasingRoot &p, const double g_first)
     {
-      return p.g_scale_from_first ? p.g_tolerance * std::max(std::abs(g_first), p.g_scale_floor)
-                                  : p.g_tolerance;
+      return p.g_scale_from_first ? p.g_tolerance * std::max(std::abs(g_first), p.g_scale_floor) :
+                                    p.g_tolerance;
     }
 
     // From two evaluated points a < b: widen to a bracket, then Illinois, to |g| ≤ tol.
@@ -53,8 +53,7 @@ namespace clearjoint::fe
               return;
             }
           const double slope = (gb - ga) / (b - a);
-          const double to_root = slope > 0.0 ? 1.2 * (ga > 0.0 ? ga : -gb) / slope
-                                             : 2.0 * width;
+          const double to_root = slope > 0.0 ? 1.2 * (ga > 0.0 ? ga : -gb) / slope : 2.0 * width;
           width = std::clamp(to_root, 0.5 * width, 10.0 * width);
           if (ga > 0.0)
             {
@@ -111,7 +110,7 @@ namespace clearjoint::fe
                   " evaluations (bracket " + format_value(a) + " .. " + format_value(b) +
                   ", |residual| " + format_value(std::abs(r.g)) + ")";
     }
-  } // namespace
+  }  // namespace
 
   RootResult solve_increasing(const IncreasingRoot &p, double a, double b)
   {
@@ -161,4 +160,4 @@ namespace clearjoint::fe
       bracket_and_refine(p, tol, eval, r, x1, g1, x0, g0);
     return r;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -18,10 +18,10 @@ namespace clearjoint::fe
   struct RootResult
   {
     bool converged = false;
-    double x = 0.0, g = 0.0;    // the last evaluation
-    double slope = 0.0;         // the secant slope of the last two evaluations (0: one only)
+    double x = 0.0, g = 0.0;  // the last evaluation
+    double slope = 0.0;       // the secant slope of the last two evaluations (0: one only)
     unsigned int evaluations = 0;
-    std::string message;        // why it did not converge (names `what`)
+    std::string message;  // why it did not converge (names `what`)
   };
 
   /// What to find: g increasing in x; converged when |g| ≤ g_tolerance or the bracket is
@@ -47,4 +47,4 @@ namespace clearjoint::fe
   /// when g changes little between calls, or a known part of g's slope): the second point is
   /// the Newton step x0 − g(x0)/slope_guess, at least x_tolerance long; then as above.
   RootResult solve_increasing_from(const IncreasingRoot &problem, double x0, double slope_guess);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -6,9 +6,9 @@
 
 namespace clearjoint::fe::detail
 {
-  SpinStepper::SpinStepper(ContactModel &model, const rolling::Motion &motion,
-                           const double t_end, const unsigned int n_steps,
-                           const unsigned int max_cuts, const double inertia)
+  SpinStepper::SpinStepper(ContactModel &model, const rolling::Motion &motion, const double t_end,
+                           const unsigned int n_steps, const unsigned int max_cuts,
+                           const double inertia)
     : m_(model)
     , motion_(motion)
     , t_end_(t_end)
@@ -41,10 +41,10 @@ namespace clearjoint::fe::detail
         // one (so that it is known before the first evaluation), else from the first
         // evaluation's
         double torque_scale =
-          last_force_ > 0.0
-            ? std::max({m_.scene_.contact.mu * last_force_ * m_.scene_.geometry.R_J(),
-                        std::abs(last_torque_), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30})
-            : 0.0;
+          last_force_ > 0.0 ?
+            std::max({m_.scene_.contact.mu * last_force_ * m_.scene_.geometry.R_J(),
+                      std::abs(last_torque_), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30}) :
+            0.0;
         bool predicted_in_time = false;
         unsigned int n_evaluated = 0;
         double rate_last = 0.0, rate_before = 0.0;
@@ -96,8 +96,7 @@ namespace clearjoint::fe::detail
                 }
               if (log::level() <= log::Level::debug && m_.rank_ == 0)
                 log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
-                           " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) +
-                           " s)");
+                           " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) + " s)");
               rs = m_.solve_rolling_state(delta1);
               u_before.swap(u_last);
               u_last = m_.solution_owned_;
@@ -107,10 +106,8 @@ namespace clearjoint::fe::detail
               const double inertial = inertia_ * (rate - gamma_rate_) / dt;
               if (torque_scale == 0.0)
                 torque_scale = std::max(
-                  {m_.scene_.contact.mu * std::abs(rs.record.force) *
-                     m_.scene_.geometry.R_J(),
-                   std::abs(rs.torque_journal), inertia_ * motion_.rolling_rate(t1) / dt,
-                   1e-30});
+                  {m_.scene_.contact.mu * std::abs(rs.record.force) * m_.scene_.geometry.R_J(),
+                   std::abs(rs.torque_journal), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
               return (inertial - rs.torque_journal) / torque_scale;
             };
             // the bracket: spinning up, between the last rate and the rolling rate;
@@ -131,9 +128,9 @@ namespace clearjoint::fe::detail
                                          m_.scene_.rolling.max_spin_iterations,
                                          "the journal's torque balance"};
             const auto root =
-              rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess)
-                ? solve_increasing_from(balance, a, slope_guess)
-                : solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
+              rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess) ?
+                solve_increasing_from(balance, a, slope_guess) :
+                solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
             spin_evaluations = root.evaluations;
             if (!root.converged)
               throw StepFailure{root.message};
@@ -161,9 +158,9 @@ namespace clearjoint::fe::detail
             // shrink without end, t + Δt → t)
             if (!control_.cut())
               {
-                message = "time step to t = " + format_value(t_ + dt) +
-                                 " s failed after " + std::to_string(control_.cuts()) +
-                                 " cuts" + control_.floor_note("s") + ": " + f.reason;
+                message = "time step to t = " + format_value(t_ + dt) + " s failed after " +
+                          std::to_string(control_.cuts()) + " cuts" + control_.floor_note("s") +
+                          ": " + f.reason;
                 if (m_.rank_ == 0)
                   log::error("fe_stage: " + message);
                 return false;
@@ -171,8 +168,8 @@ namespace clearjoint::fe::detail
             dt = control_.size();
             if (m_.rank_ == 0)
               log::warning("fe_stage: time step to t = " + format_value(t_ + 2 * dt) +
-                           " s failed (" + f.reason + "); retrying with dt " +
-                           format_value(dt) + " s");
+                           " s failed (" + f.reason + "); retrying with dt " + format_value(dt) +
+                           " s");
           }
       }
     step.cuts = control_.cuts();
@@ -189,4 +186,4 @@ namespace clearjoint::fe::detail
     have_previous_ = true;
     control_.accept();
   }
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

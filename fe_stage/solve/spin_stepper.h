@@ -64,4 +64,4 @@ namespace clearjoint::fe::detail
     double search_time_ = 0.0;      // [s] the deformable journal's searches and rebuilds
     unsigned int n_searches_ = 0;
   };
-} // namespace clearjoint::fe::detail
+}  // namespace clearjoint::fe::detail

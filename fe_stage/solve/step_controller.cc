@@ -44,8 +44,8 @@ namespace clearjoint::fe
   {
     if (!at_floor())
       return "";
-    return " (a shorter step than the nominal " + format_value(nominal_) + " " + unit +
-           " halved " + std::to_string(max_cuts_) + " times, loading.max_cuts, is not tried)";
+    return " (a shorter step than the nominal " + format_value(nominal_) + " " + unit + " halved " +
+           std::to_string(max_cuts_) + " times, loading.max_cuts, is not tried)";
   }
 
   void StepController::accept()
@@ -61,4 +61,4 @@ namespace clearjoint::fe
         easy_steps_ = 0;
       }
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -48,9 +48,9 @@ namespace clearjoint::fe
   private:
     double nominal_, floor_;
     unsigned int max_cuts_, grow_after_;
-    double carried_;         // the next step's size before `remaining`
-    double size_;            // the attempt's
-    unsigned int cuts_ = 0;  // of the step in progress
+    double carried_;               // the next step's size before `remaining`
+    double size_;                  // the attempt's
+    unsigned int cuts_ = 0;        // of the step in progress
     unsigned int easy_steps_ = 0;  // converged without a cut since the size last changed
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

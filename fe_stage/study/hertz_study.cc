@@ -14,4 +14,4 @@ namespace clearjoint::fe
     p.hertz = true;
     return p;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -15,4 +15,4 @@ namespace clearjoint::fe
     p.must_touch = false;  // the journal leaves the bearing at the end of the impact
     return p;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

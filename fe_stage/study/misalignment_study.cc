@@ -28,4 +28,4 @@ namespace clearjoint::fe
       p.journal_is_slave = true;
     return p;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -10,4 +10,4 @@ namespace clearjoint::fe
     p.obstacle.kind = RigidObstacle::Kind::plane;  // the plane y = −δ
     return p;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

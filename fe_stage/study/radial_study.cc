@@ -21,4 +21,4 @@ namespace clearjoint::fe
       }
     return p;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

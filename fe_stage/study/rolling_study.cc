@@ -20,4 +20,4 @@ namespace clearjoint::fe
     p.must_touch = false;
     return p;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -43,13 +43,19 @@ namespace clearjoint::fe
   {
     switch (scene.study)
       {
-        case Study::radial: return radial_study(scene);
-        case Study::misalignment: return misalignment_study(scene);
-        case Study::hertz: return hertz_study(scene);
-        case Study::patch: return patch_study(scene);
-        case Study::impact: return impact_study(scene);
-        case Study::rolling: return rolling_study(scene);
+        case Study::radial:
+          return radial_study(scene);
+        case Study::misalignment:
+          return misalignment_study(scene);
+        case Study::hertz:
+          return hertz_study(scene);
+        case Study::patch:
+          return patch_study(scene);
+        case Study::impact:
+          return impact_study(scene);
+        case Study::rolling:
+          return rolling_study(scene);
       }
     return radial_study(scene);
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

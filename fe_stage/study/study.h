@@ -18,7 +18,11 @@ namespace clearjoint::fe
     std::string name;
     /// joint: the bearing ring (generated or Gmsh) and the journal; block: the verification
     /// block [0,W]×[−H,0]×[0,W] and its indenter.
-    enum class Mesh { joint, block } mesh = Mesh::joint;
+    enum class Mesh
+    {
+      joint,
+      block
+    } mesh = Mesh::joint;
     unsigned int degree = 2;  // FE_Q degree
     /// The other body (journal or indenter) is meshed and pushed at its loaded set (two-body
     /// contact); otherwise it is `obstacle`.
@@ -26,7 +30,12 @@ namespace clearjoint::fe
     /// The rigid journal, sphere or plane at δ = 0 (first touch) — for a deformable partner,
     /// where its surface lies (the candidate search and the refinement toward the contact).
     RigidObstacle obstacle;
-    enum class Pairing { obstacle, common_rays, mortar } pairing = Pairing::obstacle;
+    enum class Pairing
+    {
+      obstacle,
+      common_rays,
+      mortar
+    } pairing = Pairing::obstacle;
     /// Mortar on the joint: the journal's surface is the slave side (its nodes carry the
     /// constraints) and the bore the master. Needed where the journal bears on the bore with
     /// its rim: a bore face around the rim's trace is only partly covered by the journal, its
@@ -71,4 +80,4 @@ namespace clearjoint::fe
 
   /// The plan of scene.study.
   StudyPlan plan_study(const FeScene &scene);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe
