@@ -17,6 +17,20 @@ namespace clearjoint::pipeline
     : jobs_(jobs)
   {}
 
+  LocalExecutor::~LocalExecutor()
+  {
+    for (const auto &[pid, r] : running_)
+      ::kill(-pid, SIGTERM);
+    for (const auto &[pid, r] : running_)
+    {
+      int status = 0;
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
+      {
+      }
+      end_group(pid);
+    }
+  }
+
   int LocalExecutor::slots_for(const int ranks) const { return std::clamp(ranks, 1, jobs_); }
 
   std::vector<std::string> LocalExecutor::launcher(const int ranks) const

@@ -14,6 +14,9 @@ namespace clearjoint::pipeline
   {
   public:
     explicit LocalExecutor(int jobs);
+    /// Ends every stage still running (SIGTERM to its group, then waits): nothing outlives
+    /// the pipeline, whatever error ended it.
+    ~LocalExecutor() override;
     std::string kind() const override { return "local"; }
     int capacity() const override { return jobs_; }
     int slots_for(int ranks) const override;

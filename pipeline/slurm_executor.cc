@@ -1,6 +1,7 @@
 #include "pipeline/slurm_executor.h"
 
 #include "common/atomic_file.h"
+#include "common/document_reader.h"
 #include "common/error.h"
 #include "common/log.h"
 #include "pipeline/task_runner.h"
@@ -20,11 +21,15 @@ namespace clearjoint::pipeline
 
   namespace
   {
+    /// Our name for a job PENDING with reason "launch failed requeued held".
+    const std::string launch_failed = "LAUNCH_FAILED";
+
     /// Squeue states after which a job does nothing more (Slurm's JOB_STATE_BASE ends). A
     /// PREEMPTED job that the site requeues shows PENDING again, and is waited for.
     const std::set<std::string> final_states = {"COMPLETED", "FAILED",        "CANCELLED",
                                                 "TIMEOUT",   "NODE_FAIL",     "PREEMPTED",
-                                                "BOOT_FAIL", "OUT_OF_MEMORY", "DEADLINE"};
+                                                "BOOT_FAIL", "OUT_OF_MEMORY", "DEADLINE",
+                                                launch_failed};
 
     std::string shell_quote(const std::string &word)
     {
@@ -71,6 +76,9 @@ namespace clearjoint::pipeline
         return " (a node failed; rerun run_pipeline to redo the task)";
       if (state == "PREEMPTED")
         return " (preempted and not requeued; rerun run_pipeline to redo the task)";
+      if (state == launch_failed)
+        return " (the node could not start it, see slurmd's log; it was requeued held and is "
+               "cancelled)";
       if (state == "OUT_OF_MEMORY")
         return " (out of memory: give executor.sbatch_args a larger --mem)";
       return "";
@@ -141,8 +149,43 @@ namespace clearjoint::pipeline
     return std::max(1, int(std::ceil(expected_seconds * settings_.time_margin / 60.0)));
   }
 
+  void SlurmExecutor::cancel_earlier_job(const std::string &work_prefix)
+  {
+    // A job of an earlier run_pipeline that was killed (SIGKILL, a login node rebooted) may
+    // still run and write into this task's .partial folder: end it before a new one starts.
+    const std::string record = work_prefix + ".job.json";
+    std::string id;
+    try
+    {
+      id = nlohmann::json::parse(read_file(record)).at("job_id").get<std::string>();
+    }
+    catch (...)
+    {
+      return;  // none, or unreadable: nothing to cancel
+    }
+    if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+      return;
+    const auto state_of = [&]() {
+      const CommandResult r = run({"squeue", "--noheader", "--states=all", "--format=%T", "--jobs=" + id});
+      return trimmed(r.output.substr(0, r.output.find('\n')));
+    };
+    std::string state = state_of();
+    if (state.empty() || final_states.count(state) || state.find("Invalid") != std::string::npos ||
+        state.find("error") != std::string::npos)
+      return;
+    log::warning("run_pipeline: Slurm job " + id + " of an earlier run is still " + state +
+                 " for this task; cancelling it first");
+    run({"scancel", id});
+    for (int pass = 0; pass < 60 && !final_states.count(state) && !state.empty(); ++pass)
+    {
+      sleep_for(1.0);
+      state = state_of();
+    }
+  }
+
   void SlurmExecutor::start(const Launch &l)
   {
+    cancel_earlier_job(l.work_prefix);
     const std::string script = l.work_prefix + ".sbatch";
     const std::string exit_file = l.work_prefix + ".exit";
     fs::remove(exit_file);
@@ -204,7 +247,7 @@ namespace clearjoint::pipeline
     for (const auto &[id, job] : jobs_running_)
       ids += (ids.empty() ? "" : ",") + id;
     const CommandResult r =
-      run({"squeue", "--noheader", "--states=all", "--format=%i|%T", "--jobs=" + ids});
+      run({"squeue", "--noheader", "--states=all", "--format=%i|%T|%r", "--jobs=" + ids});
     // All the ids unknown (purged): squeue exits 1 with "Invalid job id"; that is an answer.
     if (r.exit_code != 0 && !(r.exit_code == 1 && r.output.find("Invalid job id") != std::string::npos))
     {
@@ -219,13 +262,23 @@ namespace clearjoint::pipeline
     std::map<std::string, std::string> states;
     std::istringstream lines(r.output);
     for (std::string line; std::getline(lines, line);)
-      if (const auto bar = line.find('|'); bar != std::string::npos)
-        states[trimmed(line.substr(0, bar))] = trimmed(line.substr(bar + 1));
+      if (const auto bar = line.find('|'), bar2 = line.find('|', bar + 1);
+          bar != std::string::npos && bar2 != std::string::npos)
+      {
+        std::string state = trimmed(line.substr(bar + 1, bar2 - bar - 1));
+        // A job the node could not start is requeued and held until an administrator
+        // releases it: it would never end. Report it (and cancel it) instead of waiting.
+        if (state == "PENDING" && line.find("launch failed", bar2) != std::string::npos)
+          state = launch_failed;
+        states[trimmed(line.substr(0, bar))] = state;
+      }
     return states;
   }
 
   Ended SlurmExecutor::ended(const std::string &id, const Job &job, const std::string &state)
   {
+    if (state == launch_failed)
+      run({"scancel", id});
     Ended e;
     e.node = job.node;
     e.record = {{"kind", "slurm"}, {"job_id", id}, {"state", state}};

@@ -58,6 +58,9 @@ namespace clearjoint::pipeline
     Ended forgotten(const std::string &id, const Job &job);
     Ended ended(const std::string &id, const Job &job, const std::string &state);
     CommandResult run(const std::vector<std::string> &words) const;
+    /// Cancels (and waits for, at most 60 s) a job that an earlier run_pipeline left running
+    /// for this task (<dir>.job.json), so that two jobs never write into one .partial folder.
+    void cancel_earlier_job(const std::string &work_prefix);
 
     SlurmSettings settings_;
     int jobs_;

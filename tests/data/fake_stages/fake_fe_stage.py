@@ -28,7 +28,9 @@ Environment: CLEARJOINT_FAKE_SLEEP=<s> sleeps before writing (to be interrupted)
 CLEARJOINT_FAKE_TRACE=<file> appends "start|end <output folder name> <pid> <time>" lines (the
 tests of tasks at once see which runs overlapped); CLEARJOINT_FAKE_CHILD=1 starts a child
 (`sleep 600`, like fe_stage's plot.py) before sleeping and appends "child <name> <pid> <time>";
-CLEARJOINT_FAKE_FAIL_MATCH=<text> fails (exit 2) when the output folder's path contains <text>;
+CLEARJOINT_FAKE_FAIL_MATCH=<text> fails (exit 2) when the output folder's path contains <text>.
+Under mpirun (OMPI_COMM_WORLD_RANK set) every rank prints "fake fe_stage: rank r of n" (with
+the Slurm job id and task count when in a job) and only rank 0 goes on;
 scene key fail: true exits 2 with a message (a failing stage).
 CLEARJOINT_FAKE_FIELDS=1 also writes fields/solution.pvd with one VTU (needs python3-vtk9), for
 the report's tests: a quarter of the bearing ring (x >= 0, z >= 0: symmetry factor 4), von Mises
@@ -261,6 +263,12 @@ def write_rolling(out, scene, g):
 
 if check:
     sys.exit(0)
+if "OMPI_COMM_WORLD_RANK" in os.environ:
+    rank, size = os.environ["OMPI_COMM_WORLD_RANK"], os.environ.get("OMPI_COMM_WORLD_SIZE")
+    print(f"fake fe_stage: rank {rank} of {size} (Slurm job {os.environ.get('SLURM_JOB_ID')}, "
+          f"{os.environ.get('SLURM_NTASKS')} tasks)", flush=True)
+    if rank != "0":
+        sys.exit(0)
 
 
 def trace(event, pid=None):

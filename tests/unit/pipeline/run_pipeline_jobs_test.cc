@@ -3,8 +3,6 @@
 // stage and its children, a killed stage's children ended, and bad values of jobs/executor.
 #include "fake_pipeline.h"
 
-#include "common/sha256.h"
-
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -80,26 +78,6 @@ namespace
     return true;
   }
 
-  /// Every result file of a run (relative path → sha256 of its text with the run's own root
-  /// replaced by ROOT), without what records times, machines or commands: manifests, logs,
-  /// command lines, stamps and the summary.
-  std::map<std::string, std::string> result_hashes(const std::string &root)
-  {
-    std::map<std::string, std::string> h;
-    for (const auto &e : fs::recursive_directory_iterator(root))
-    {
-      const std::string name = e.path().filename().string();
-      if (!e.is_regular_file() || name == "manifest.json" || name == "stage.log" ||
-          name == "command.txt" || name == ".task.json" || name == "pipeline_summary.json" ||
-          name.find(".manifest.json") != std::string::npos)
-        continue;
-      std::string text = test_support::read_text(e.path().string());
-      for (std::size_t p; (p = text.find(root)) != std::string::npos;)
-        text.replace(p, root.size(), "ROOT");
-      h[fs::relative(e.path(), root).string()] = sha256_hex(text);
-    }
-    return h;
-  }
 } // namespace
 
 TEST(RunPipelineJobs, TasksAtOnceGiveTheSameFilesAsOneAtATime)
