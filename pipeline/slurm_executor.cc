@@ -379,9 +379,11 @@ namespace clearjoint::pipeline
     for (int pass = 0; pass < 30 && r.exit_code == 0; ++pass)
     {
       const auto states = query_states();
-      bool all_ended = states.has_value();
+      if (!states)
+        break;  // the controller does not answer: waiting longer would not tell us more
+      bool all_ended = true;
       for (const auto &[id, job] : jobs_running_)
-        if (states && states->count(id) && !final_states.count(states->at(id)))
+        if (states->count(id) && !final_states.count(states->at(id)))
           all_ended = false;
       if (all_ended)
         break;
