@@ -23,6 +23,7 @@ int main(int argc, char **argv)
     "\n"
     "  run_pipeline [pipeline.yaml] [--preset fast|standard|accurate] [--force]\n"
     "               [--only fe|fit|mbd|report] [--no-plots] [--output-root DIR] [--check]\n"
+    "               [--jobs N] [--executor local|slurm]\n"
     "\n"
     "Results go to <output_root>/<run>/ (default out/default/): fe/, fit/, mbd/, scenes/,\n"
     "pipeline_summary.json, manifest.json and report.html. A task whose inputs (input files,\n"
@@ -31,6 +32,9 @@ int main(int argc, char **argv)
     "Before the first task (and alone with --check) every generated FE and MBD scene is\n"
     "validated by its stage's own reader; nothing is written under the output root until the\n"
     "whole pipeline is valid.\n"
+    "Tasks whose upstream tasks are done run at once: up to --jobs CPU slots on this machine\n"
+    "(default: its cores; a task on R MPI ranks takes R), or with --executor slurm one Slurm\n"
+    "job per task (up to --jobs queued at once, default 100); see docs/pipeline.md.\n"
     "\n"
     "Exit codes: 0 success, 1 input error (pipeline.yaml or a scene), 2 a stage failed (a\n"
     "failing rolling study does not stop the rest: the report is written, then exit 2),\n"
@@ -46,6 +50,13 @@ int main(int argc, char **argv)
   app.add_flag("--no-plots", [&](std::int64_t) { options.plots = false; }, "no plots, no report");
   app.add_option("--build-dir", build_dir, "where the stages were built (default: ours)");
   std::string output_root;
+  long jobs = 0;
+  std::string executor;
+  app.add_option("--jobs", jobs,
+                 "tasks at once: CPU slots here, or Slurm jobs queued at once; overrides "
+                 "pipeline.yaml 'jobs' (1 to " + std::to_string(pipeline::max_jobs) + ")");
+  app.add_option("--executor", executor, "where tasks run; overrides pipeline.yaml executor.kind")
+    ->check(CLI::IsMember({"local", "slurm"}));
   bool check_only = false;
   app.add_flag("--check", check_only,
                "validate the pipeline file and every scene it generates, then exit (0 valid, "
@@ -66,11 +77,15 @@ int main(int argc, char **argv)
                         : build_dir;
   if (!only.empty())
     options.only = only;
+  if (!executor.empty())
+    options.executor = executor;
   pipeline::install_signal_handlers();
 
   std::unique_ptr<Manifest> manifest;
   try
   {
+    if (app.count("--jobs") > 0)
+      options.jobs = pipeline::checked_jobs(jobs, "", "--jobs");
     auto config = pipeline::read_pipeline_config(pipeline_file);
     if (!preset.empty())
       config.preset = preset;

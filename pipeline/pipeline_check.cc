@@ -5,6 +5,7 @@
 // that produced it (a study value, an override, a preset key, a law) rather than as a stage
 // failure half-way through the run.
 #include "pipeline/pipeline_runner.h"
+#include "pipeline/slurm_executor.h"
 
 #include "common/atomic_file.h"
 #include "common/document_reader.h"
@@ -175,7 +176,7 @@ namespace clearjoint::pipeline
         const std::string key = "fe_studies[" + std::to_string(i) + "]";
         for (std::size_t v = 0; v < study.values.size(); ++v)
         {
-          std::vector<std::string> unused;
+          std::vector<int> unused;
           nlohmann::json scene = runner_.fe_case_scene(study, study.values[v], true, unused);
           // A mesh a mesh task will make does not exist yet: check the rest of the scene (the
           // mesh is checked against the scene when the FE case runs).
@@ -381,6 +382,9 @@ namespace clearjoint::pipeline
   void PipelineRunner::check()
   {
     check_output_root();
+    // The Slurm commands and a controller that answers, before anything is written.
+    if (options_.executor.value_or(config_.executor.kind) == "slurm")
+      SlurmExecutor::check_available(config_.executor.slurm, config_.source);
     check_fe_study_names(config_.source, config_.fe_studies);
     check_mbd_run_names(config_.source, config_.mbd_runs);
     Checker checker(*this);

@@ -255,6 +255,14 @@ namespace clearjoint::pipeline
     c.preset = top.string("preset", preset_names());
     c.mpi_ranks = static_cast<int>(top.integer_or("mpi_ranks", 1, 1, 64));
     c.report = top.boolean_or("report", true);
+    if (top.has("jobs"))
+      c.jobs = static_cast<int>(top.integer("jobs", 1, max_jobs));
+    else
+      top.allow("jobs");
+    if (top.has("executor"))
+      c.executor = read_executor_config(top.object("executor"));
+    else
+      top.allow("executor");
 
     auto presets = top.object("presets");
     for (const std::string &p : preset_names())

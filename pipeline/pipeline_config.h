@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/key_path.h"
+#include "pipeline/executor_config.h"
 
 #include <nlohmann/json.hpp>
 
@@ -105,6 +106,10 @@ namespace clearjoint::pipeline
     std::string output_root;
     std::string preset;                 ///< fast | standard | accurate
     int mpi_ranks = 1;
+    /// Tasks at once (executor_config.h); nullopt: the executor's default (local: the
+    /// machine's cores; slurm: default_slurm_jobs). `run_pipeline --jobs` overrides.
+    std::optional<int> jobs;
+    ExecutorConfig executor;            ///< local (default) or slurm; `--executor` overrides kind
     /// preset → stage ("fe" | "mbd") → key path → value, applied to every generated scene.
     std::map<std::string, std::map<std::string, nlohmann::json>> presets;
     std::map<std::string, PresetMeasured> preset_measured;  ///< preset → measurements

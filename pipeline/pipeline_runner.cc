@@ -5,11 +5,14 @@
 #include "common/error.h"
 #include "common/log.h"
 #include "laws/confidence_band.h"
+#include "pipeline/local_executor.h"
 #include "pipeline/mesh_task.h"
+#include "pipeline/slurm_executor.h"
 #include "pipeline/presets.h"
 #include "pipeline/scene_builder.h"
 #include "pipeline/study_values.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -52,7 +55,7 @@ namespace clearjoint::pipeline
 
   nlohmann::json PipelineRunner::fe_case_scene(const FeStudy &study, const double value,
                                                const bool dry_run,
-                                               std::vector<std::string> &depends_on)
+                                               std::vector<int> &after)
   {
     Overrides overrides = study.overrides;
     overrides.emplace_back(study.key, value);
@@ -84,8 +87,8 @@ namespace clearjoint::pipeline
     {
       auto it = meshes_.find(mesh.output_dir);
       if (it == meshes_.end())  // cases that need the same mesh share one task
-        it = meshes_.emplace(mesh.output_dir, Done{msh, execute(mesh, "fe").identity}).first;
-      depends_on.push_back(it->second.identity);
+        it = meshes_.emplace(mesh.output_dir, Done{msh, add(mesh, "fe", {})}).first;
+      after.push_back(it->second.node);
     }
     set_key_path(scene, "geometry.mesh", msh, config_.source);
     return scene;
@@ -161,55 +164,65 @@ namespace clearjoint::pipeline
             "preset " + config_.preset + ": " + e->second.where};
   }
 
-  TaskResult PipelineRunner::execute(const Task &task, const std::string &group)
+  int PipelineRunner::add(const Task &task, const std::string &group, std::vector<int> after,
+                          const int ranks, const nlohmann::json &scene)
   {
-    TaskResult r;
-    if (eta_)
-      log::info(eta_->describe_next() + ": " + task.name);
-    if (options_.only && *options_.only != group)
-    {
-      // Outside the --only stage a task must already be complete and current.
-      const auto done = find_completed(task);
-      if (!done)
-        throw InputError(config_.source, "--only " + *options_.only, task.name,
-                         "upstream tasks already run and up to date",
-                         "task '" + task.name + "' is missing or out of date: run without --only");
-      r = *done;
-    }
-    else
-      r = run_task(task, options_.force);
-    if (eta_)
-      eta_->finished(task.stage, r.outcome == TaskOutcome::ran, r.wall_time_s);
-    if (r.outcome == TaskOutcome::ran)
-      repoint_stage_log(task.output_dir);
-    summary_["tasks"].push_back({{"name", task.name},
-                                 {"stage", task.stage},
-                                 {"group", group},
-                                 {"outcome", r.outcome == TaskOutcome::ran ? "ran" : "reused"},
-                                 {"wall_time", {{"value", r.wall_time_s}, {"unit", "s"}}},
-                                 {"output_dir", task.output_dir},
-                                 {"identity", r.identity}});
-    return r;
+    GraphNode node;
+    node.task = task;
+    node.group = group;
+    node.after = std::move(after);
+    node.ranks = ranks;
+    if (!scene.is_null())
+      // The files a scene names (a mesh, a fitted law) are inputs; some are written by the
+      // tasks before this one, so they are looked for when it starts.
+      node.prepare = [scene](Task &t) {
+        for (const auto &f : files_named_in(scene))
+          if (std::find(t.input_files.begin(), t.input_files.end(), f) == t.input_files.end())
+            t.input_files.push_back(f);
+      };
+    // The stage's log names files in "<dir>.partial"; after the rename they are in "<dir>".
+    node.on_done.push_back([dir = task.output_dir](TaskGraph &, const TaskResult &r) {
+      if (r.outcome == TaskOutcome::ran)
+        repoint_stage_log(dir);
+    });
+    return graph_.add(std::move(node));
   }
 
-  /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>: under mpirun
-  /// with the pipeline's ranks, the scene and the files it names (a mesh, say) as inputs.
-  Task PipelineRunner::fe_stage_task(const nlohmann::json &scene_json, const std::string &scene,
-                                     const std::string &name, const std::string &stage) const
+  void PipelineRunner::record_tasks(const Scheduler &scheduler)
+  {
+    for (int id = 0; id < graph_.size(); ++id)
+    {
+      const NodeStatus &s = scheduler.status(id);
+      if (s.state != NodeState::done)
+        continue;  // the rolling study that failed: its own summary entry says so
+      const TaskResult &r = s.result;
+      nlohmann::json entry = {{"name", s.task.name},
+                              {"stage", s.task.stage},
+                              {"group", graph_.node(id).group},
+                              {"outcome", r.outcome == TaskOutcome::ran ? "ran" : "reused"},
+                              {"wall_time", {{"value", r.wall_time_s}, {"unit", "s"}}},
+                              {"output_dir", s.task.output_dir},
+                              {"identity", r.identity}};
+      if (!s.record.is_null())
+        entry["executor"] = s.record;
+      summary_["tasks"].push_back(entry);
+    }
+  }
+
+  /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>: on the
+  /// pipeline's ranks (the executor's launcher), the scene and the files it names as inputs.
+  Task PipelineRunner::fe_stage_task(const std::string &scene, const std::string &name,
+                                     const std::string &stage) const
   {
     Task fe;
     fe.name = name;
     fe.stage = stage;
-    if (config_.mpi_ranks > 1)
-      fe.launcher = {"mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
-                     std::to_string(config_.mpi_ranks)};
+    // the MPI launcher (mpirun -np N locally, the job's ranks under Slurm) is the executor's
     fe.executable = stage_executable("fe_stage");
     fe.args = {scene, "--output", "{out}"};
     if (!options_.plots)
       fe.args.push_back("--no-plots");
-    fe.input_files = {scene};
-    for (const auto &f : files_named_in(scene_json))
-      fe.input_files.push_back(f);
+    fe.input_files = {scene};  // and the files the scene names, when it starts (add)
     fe.output_dir = run_dir() + "/" + name;
     return fe;
   }
@@ -224,8 +237,8 @@ namespace clearjoint::pipeline
     const nlohmann::json scene_json = compose_scene(config_, impact.scene, "fe", {});
     const std::string scene = write_scene(scene_json, impact.scene, "fe_impact");
     // its own stage in the ETA: five impacts, not one FE curve
-    const Task fe = fe_stage_task(scene_json, scene, "fe/impact", "fe_impact");
-    const TaskResult fe_result = execute(fe, "fe");
+    const Task fe = fe_stage_task(scene, "fe/impact", "fe_impact");
+    const int fe_node = add(fe, "fe", {}, config_.mpi_ranks, scene_json);
     std::string law;
     if (impact.law.file)
       law = fs::absolute(*impact.law.file).string();
@@ -248,12 +261,11 @@ namespace clearjoint::pipeline
     if (!options_.plots)
       cmp.args.push_back("--no-plots");
     cmp.input_files = {law, sweep};
-    cmp.depends_on = {fe_result.identity};
+    std::vector<int> after = {fe_node};
     if (impact.law.study)
-      cmp.depends_on.push_back(
-        laws.at(*impact.law.study).at(value_label(*impact.law.value)).identity);
+      after.push_back(laws.at(*impact.law.study).at(value_label(*impact.law.value)).node);
     cmp.output_dir = run + "/impact/compare";
-    execute(cmp, "mbd");
+    add(cmp, "mbd", after);
     summary_["impact"]["compare_dir"] = cmp.output_dir;
   }
 
@@ -270,11 +282,14 @@ namespace clearjoint::pipeline
     const nlohmann::json scene_json = rolling_scene();
     const std::string scene = write_scene(scene_json, rolling.scene, "fe_rolling");
     // its own stage in the ETA: a time history, not one FE curve
-    const Task fe = fe_stage_task(scene_json, scene, "fe/rolling", "fe_rolling");
+    const Task fe = fe_stage_task(scene, "fe/rolling", "fe_rolling");
     summary_["rolling"] = {{"scene", scene}, {"fe_dir", fe.output_dir}, {"status", "complete"}};
     // Nothing downstream needs it: outside its stage (--only mbd, say) a missing result is
     // reported, not an error.
-    if (options_.only && *options_.only != "fe" && !find_completed(fe))
+    Task as_run = fe;  // with the files its scene names, as the scheduler will hash it
+    for (const auto &f : files_named_in(scene_json))
+      as_run.input_files.push_back(f);
+    if (options_.only && *options_.only != "fe" && !find_completed(as_run))
     {
       const std::string message = "not run (--only " + *options_.only +
                                   ") and no complete result of an earlier run";
@@ -283,23 +298,57 @@ namespace clearjoint::pipeline
       summary_["rolling"]["message"] = message;
       return;
     }
-    try
-    {
-      execute(fe, "fe");
-    }
-    catch (const NumericalError &e)
-    {
-      if (interrupt_requested())
-        throw;
+    const int node = add(fe, "fe", {}, config_.mpi_ranks, scene_json);
+    graph_.node(node).on_failure = [this, dir = fe.output_dir](const std::string &message) {
       // The stage's own output (its manifest says why, its CSVs hold the steps that converged)
       // stays in <dir>.partial/ and is redone by the next run.
       log::error("FE rolling study failed (the rest of the run goes on; run_pipeline exits 2 "
-                 "after the report): " + std::string(e.what()));
+                 "after the report): " + message);
       summary_["rolling"]["status"] = "failed";
-      summary_["rolling"]["message"] = e.what();
-      summary_["rolling"]["partial_dir"] = fe.output_dir + ".partial";
-      summary_["rolling"]["log"] = fe.output_dir + ".log";
+      summary_["rolling"]["message"] = message;
+      summary_["rolling"]["partial_dir"] = dir + ".partial";
+      summary_["rolling"]["log"] = dir + ".log";
+    };
+  }
+
+  void PipelineRunner::add_band_tasks(const MbdRun &m, const std::size_t index, const Task &mbd,
+                                      const std::string &law_path, const int fit_node)
+  {
+    const std::string run = run_dir();
+    const LawChoice &choice = m.laws.front();
+    for (const auto &variant : laws::confidence_band_laws(laws::read_law_file(law_path), law_path))
+    {
+      const fs::path law_file =
+        fs::path(run) / "scenes" / ("band_" + m.name + "_" + variant.name + ".json");
+      laws::write_law_file(law_file.string(), variant.law);
+      Task band = mbd;
+      band.name = "mbd/" + m.name + "/band/" + variant.name;
+      Overrides band_overrides = m.overrides;
+      band_overrides.emplace_back(choice.key, law_file.string());
+      const nlohmann::json band_json = compose_scene(config_, m.scene, "mbd", band_overrides);
+      const std::string scene_file =
+        write_scene(band_json, m.scene, "mbd_" + m.name + "_" + variant.name);
+      band.args = {scene_file, "--output", "{out}"};
+      if (!options_.plots)
+        band.args.push_back("--no-plots");
+      band.input_files = {scene_file};
+      band.output_dir = run + "/mbd/" + m.name + "_band/" + variant.name;
+      add(band, "mbd", {fit_node}, 1, band_json);
+      summary_["mbd_runs"][index]["band"].push_back(
+        {{"variant", variant.name}, {"source", variant.source}, {"dir", band.output_dir}});
     }
+  }
+
+  std::unique_ptr<Executor> PipelineRunner::make_executor() const
+  {
+    const std::string kind = options_.executor.value_or(config_.executor.kind);
+    const int jobs = options_.jobs   ? *options_.jobs
+                     : config_.jobs  ? *config_.jobs
+                     : kind == "slurm" ? default_slurm_jobs
+                                       : machine_cores();
+    if (kind == "slurm")
+      return std::make_unique<SlurmExecutor>(config_.executor.slurm, jobs);
+    return std::make_unique<LocalExecutor>(jobs);
   }
 
   nlohmann::json PipelineRunner::run()
@@ -319,7 +368,7 @@ namespace clearjoint::pipeline
     for (const auto &study : config_.fe_studies)
       for (const double value : study.values)
       {
-        std::vector<std::string> unused;
+        std::vector<int> unused;
         fe_case_scene(study, value, true, unused);
       }
     fs::create_directories(run);
@@ -348,18 +397,18 @@ namespace clearjoint::pipeline
       // The preset's measured error of F for this study goes into every law fitted here, so
       // the MBD band and the report can set it beside the regression interval.
       const std::vector<std::string> mesh_error_args = discretisation_error_args(study.name);
-      std::vector<std::string> family_inputs, family_deps;
+      std::vector<std::string> family_inputs;
+      std::vector<int> family_deps;
       for (std::size_t i = 0; i < study.values.size(); ++i)
       {
         const double value = study.values[i];
         const std::string label = study.parameter + "=" + value_label(value);
-        std::vector<std::string> mesh_tasks;  // a .geo's mesh task, if any
+        std::vector<int> mesh_tasks;  // a .geo's mesh task, if any
         const nlohmann::json scene_json = fe_case_scene(study, value, false, mesh_tasks);
         const std::string scene =
           write_scene(scene_json, study.scene, "fe_" + study.name + "_" + label);
-        Task fe = fe_stage_task(scene_json, scene, "fe/" + study.name + "/" + label, "fe_stage");
-        fe.depends_on = mesh_tasks;
-        const TaskResult fe_result = execute(fe, "fe");
+        Task fe = fe_stage_task(scene, "fe/" + study.name + "/" + label, "fe_stage");
+        const int fe_node = add(fe, "fe", mesh_tasks, config_.mpi_ranks, scene_json);
         const std::string csv = fe.output_dir + "/force_penetration.csv";
 
         Task fit;
@@ -371,10 +420,9 @@ namespace clearjoint::pipeline
         if (!options_.plots)
           fit.args.push_back("--no-plots");
         fit.input_files = {csv};
-        fit.depends_on = {fe_result.identity};
         fit.output_dir = run + "/fit/" + study.name + "/" + label;
-        const TaskResult fit_result = execute(fit, "fit");
-        laws[study.name][value_label(value)] = {fit.output_dir + "/law.json", fit_result.identity};
+        laws[study.name][value_label(value)] = {fit.output_dir + "/law.json",
+                                                add(fit, "fit", {fe_node})};
         const nlohmann::json *mesh = find_key_path(scene_json, "geometry.mesh");
         s["cases"].push_back({{"value", value},
                               {"keyword", study.keywords[i].empty() ? nlohmann::json()
@@ -386,7 +434,7 @@ namespace clearjoint::pipeline
                               {"law", fit.output_dir + "/law.json"}});
         family_args.push_back(csv + "=" + value_label(to_si(value, study.unit).value));
         family_inputs.push_back(csv);
-        family_deps.push_back(fe_result.identity);
+        family_deps.push_back(fe_node);
       }
       if (study.values.size() >= 2)
       {
@@ -404,10 +452,8 @@ namespace clearjoint::pipeline
         if (!options_.plots)
           fam.args.push_back("--no-plots");
         fam.input_files = family_inputs;
-        fam.depends_on = family_deps;
         fam.output_dir = run + "/fit/" + study.name + "/family";
-        const TaskResult r = execute(fam, "fit");
-        families[study.name] = {fam.output_dir + "/family.json", r.identity};
+        families[study.name] = {fam.output_dir + "/family.json", add(fam, "fit", family_deps)};
         s["family"] = fam.output_dir + "/family.json";
       }
       summary_["studies"].push_back(s);
@@ -420,6 +466,7 @@ namespace clearjoint::pipeline
     {
       Overrides overrides = m.overrides;
       Task mbd;
+      std::vector<int> after;
       for (const auto &choice : m.laws)
       {
         std::string law;
@@ -433,7 +480,7 @@ namespace clearjoint::pipeline
           const Done &f = choice.value ? laws.at(*choice.study).at(value_label(*choice.value))
                                        : families.at(*choice.study);
           law = f.path;
-          mbd.depends_on.push_back(f.identity);
+          after.push_back(f.node);
         }
         overrides.emplace_back(choice.key, law);
       }
@@ -446,42 +493,21 @@ namespace clearjoint::pipeline
       if (!options_.plots)
         mbd.args.push_back("--no-plots");
       mbd.input_files.push_back(scene);
-      for (const auto &f : files_named_in(scene_json))
-        mbd.input_files.push_back(f);
       mbd.output_dir = run + "/mbd/" + m.name;
-      execute(mbd, "mbd");
+      add(mbd, "mbd", after, 1, scene_json);
       nlohmann::json entry = {{"name", m.name}, {"dir", mbd.output_dir}};
       if (m.band)
       {
-        // The same scene with the law's confidence-band variants: one MBD task each.
+        // The same scene with the law's confidence-band variants: one MBD task each, added
+        // once the fitted law exists (their number depends on what the law holds).
         const LawChoice &choice = m.laws.front();
-        const std::string law_path = laws.at(*choice.study).at(value_label(*choice.value)).path;
+        const Done &fit = laws.at(*choice.study).at(value_label(*choice.value));
         entry["band"] = nlohmann::json::array();
-        for (const auto &variant :
-             laws::confidence_band_laws(laws::read_law_file(law_path), law_path))
-        {
-          const fs::path law_file =
-            fs::path(run) / "scenes" / ("band_" + m.name + "_" + variant.name + ".json");
-          laws::write_law_file(law_file.string(), variant.law);
-          Task band = mbd;
-          band.name = "mbd/" + m.name + "/band/" + variant.name;
-          Overrides band_overrides = m.overrides;
-          band_overrides.emplace_back(choice.key, law_file.string());
-          const nlohmann::json band_json = compose_scene(config_, m.scene, "mbd", band_overrides);
-          const std::string scene_file =
-            write_scene(band_json, m.scene, "mbd_" + m.name + "_" + variant.name);
-          band.args = {scene_file, "--output", "{out}"};
-          if (!options_.plots)
-            band.args.push_back("--no-plots");
-          band.input_files = {scene_file};
-          for (const auto &f : files_named_in(band_json))
-            band.input_files.push_back(f);
-          band.depends_on.clear();
-          band.output_dir = run + "/mbd/" + m.name + "_band/" + variant.name;
-          execute(band, "mbd");
-          entry["band"].push_back(
-            {{"variant", variant.name}, {"source", variant.source}, {"dir", band.output_dir}});
-        }
+        graph_.node(fit.node).on_done.push_back(
+          [this, m, index = summary_["mbd_runs"].size(), mbd, law = fit.path,
+           node = fit.node](TaskGraph &, const TaskResult &) {
+            add_band_tasks(m, index, mbd, law, node);
+          });
       }
       summary_["mbd_runs"].push_back(entry);
     }
@@ -490,6 +516,20 @@ namespace clearjoint::pipeline
     if (config_.rolling)
       run_rolling();
 
+    const std::unique_ptr<Executor> executor = make_executor();
+    eta_->set_concurrency(executor->capacity(),
+                          {{"fe_stage", executor->slots_for(config_.mpi_ranks)},
+                           {"fe_impact", executor->slots_for(config_.mpi_ranks)},
+                           {"fe_rolling", executor->slots_for(config_.mpi_ranks)}});
+    log::info("run_pipeline: " + std::to_string(executor->capacity()) +
+              (executor->kind() == "slurm" ? " Slurm jobs at once" : " slots on this machine") +
+              " (--jobs)");
+    Scheduler scheduler(graph_, *executor, {options_.force, options_.only}, eta_.get(),
+                        [this](const std::string &stage) {
+                          return eta_->expected_seconds(stage).value_or(0.0);
+                        });
+    scheduler.run();
+    record_tasks(scheduler);
     write_file_atomically(run + "/pipeline_summary.json", json_text(summary_) + "\n");
     return summary_;
   }

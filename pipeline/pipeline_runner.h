@@ -4,6 +4,8 @@
 
 #include "pipeline/pipeline_config.h"
 #include "pipeline/run_eta.h"
+#include "pipeline/scheduler.h"
+#include "pipeline/task_graph.h"
 #include "pipeline/task_runner.h"
 
 #include <nlohmann/json.hpp>
@@ -22,6 +24,8 @@ namespace clearjoint::pipeline
     bool force = false;                 ///< re-run every task
     std::optional<std::string> only;    ///< fe | fit | mbd | report
     bool plots = true;
+    std::optional<int> jobs;            ///< --jobs: overrides pipeline.yaml `jobs`
+    std::optional<std::string> executor;  ///< --executor local|slurm: overrides executor.kind
   };
 
   class PipelineRunner
@@ -41,16 +45,18 @@ namespace clearjoint::pipeline
   private:
     struct Done
     {
-      std::string path, identity;  ///< the result file and the identity of the task behind it
+      std::string path;  ///< the result file
+      int node;          ///< the task behind it (graph_)
     };
 
     /// The scene of one FE case (base + preset + study overrides + the swept value), with a
     /// .geo in geometry.mesh replaced by the mesh its task writes (dry_run: checked only).
     nlohmann::json fe_case_scene(const FeStudy &study, double value, bool dry_run,
-                                 std::vector<std::string> &depends_on);
-    /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>.
-    Task fe_stage_task(const nlohmann::json &scene_json, const std::string &scene,
-                       const std::string &name, const std::string &stage) const;
+                                 std::vector<int> &after);
+    /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>; the files
+    /// the scene names join its inputs when it starts (add).
+    Task fe_stage_task(const std::string &scene, const std::string &name,
+                       const std::string &stage) const;
     /// The FE impact sweep and its comparison with the MBD law (config_.impact).
     void run_impact(const std::map<std::string, std::map<std::string, Done>> &laws);
     /// The FE rolling study (config_.rolling): one fe_stage task, fe/rolling. It is a first
@@ -62,7 +68,18 @@ namespace clearjoint::pipeline
     /// Writes a composed scene to <run>/scenes/<name>.yaml.
     std::string write_scene(const nlohmann::json &scene, const std::string &base,
                             const std::string &name);
-    TaskResult execute(const Task &task, const std::string &stage_group);
+    /// Adds a task to the graph (run later by the scheduler); returns its id. `scene`: the
+    /// composed scene the task runs, whose named files join its inputs when it starts.
+    int add(const Task &task, const std::string &stage_group, std::vector<int> after,
+            int ranks = 1, const nlohmann::json &scene = nullptr);
+    /// The band variants of MBD run `m` (entry `index` of the summary's mbd_runs), once the
+    /// fitted law at `law_path` exists: one MBD task each, after the fit `fit_node`.
+    void add_band_tasks(const MbdRun &m, std::size_t index, const Task &mbd,
+                        const std::string &law_path, int fit_node);
+    /// The executor pipeline.yaml and the command line ask for (`executor`, `jobs`).
+    std::unique_ptr<Executor> make_executor() const;
+    /// The summary's task list, in the order the tasks were added.
+    void record_tasks(const Scheduler &scheduler);
     /// fit_stage's --discretisation-error arguments from the chosen preset's measured error
     /// of F for this study; none when it is not measured.
     std::vector<std::string> discretisation_error_args(const std::string &study) const;
@@ -78,6 +95,7 @@ namespace clearjoint::pipeline
     PipelineConfig config_;
     RunOptions options_;
     nlohmann::json summary_;
+    TaskGraph graph_;
     std::map<std::string, Done> meshes_;  ///< mesh task output folder → its .msh
     std::set<std::string> planned_meshes_;  ///< mesh task folders found by the dry run
     std::unique_ptr<RunEta> eta_;

@@ -17,6 +17,12 @@ namespace clearjoint::pipeline
       stages_[stage].planned = n;
   }
 
+  void RunEta::set_concurrency(const int slots, std::map<std::string, int> slots_per_task)
+  {
+    slots_ = std::max(1, slots);
+    slots_per_task_ = std::move(slots_per_task);
+  }
+
   void RunEta::finished(const std::string &stage, const bool ran, const double wall_time_s)
   {
     Stage &s = stages_[stage];
@@ -66,6 +72,7 @@ namespace clearjoint::pipeline
   {
     Left left;
     bool any_known = false;
+    double work = 0.0, longest = 0.0;  // [slot·s], [s]
     for (const auto &[name, s] : stages_)
     {
       const int remaining = std::max(0, s.planned - s.ran - s.reused);
@@ -83,18 +90,24 @@ namespace clearjoint::pipeline
       }
       const int done = s.ran + s.reused;
       const double ran_fraction = done > 0 ? double(s.ran) / done : 1.0;
-      left.seconds += remaining * per_task * ran_fraction;
+      const auto slots = slots_per_task_.find(name);
+      const int task_slots =
+        std::min(slots_, slots == slots_per_task_.end() ? 1 : std::max(1, slots->second));
+      work += remaining * per_task * ran_fraction * task_slots;
+      longest = std::max(longest, per_task * ran_fraction);
       any_known = true;
     }
+    left.seconds = std::max(work / slots_, longest);
     if (!any_known && left.lower_bound)
       return std::nullopt;
     return left;
   }
 
-  std::string RunEta::describe_next() const
+  std::string RunEta::describe_next(const int n_running) const
   {
-    std::string out = "task " + std::to_string(std::min(n_done_ + 1, n_total())) + " of " +
-                      std::to_string(n_total());
+    std::string out = "task " + std::to_string(std::min(n_done_ + n_running + 1, n_total())) +
+                      " of " + std::to_string(n_total()) +
+                      (n_running > 0 ? " (" + std::to_string(n_running) + " running)" : "");
     if (const auto left = time_left())
       out += (left->lower_bound ? ", at least " : ", about ") + log::format_duration(left->seconds) +
              " left";

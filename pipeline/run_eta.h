@@ -10,6 +10,12 @@
 // Once tasks of a stage have finished, their mean wall time replaces that guess, and the
 // fraction of them that were reused (cost ~0) scales the stage's remaining tasks: a second run
 // with nothing changed shows a few seconds, not the first run's minutes.
+//
+// Tasks at once (run_pipeline --jobs, issue 33): the remaining work, each task weighted by the
+// slots it takes (an FE case on R ranks takes R), is shared by the slots, but a run cannot end
+// before its longest remaining task: left = max(work / slots, longest task). Dependencies may
+// keep slots idle (the fits wait for their FE cases), so this is a lower estimate when tasks
+// run at once; running tasks count in full until they end.
 #pragma once
 
 #include <map>
@@ -29,6 +35,17 @@ namespace clearjoint::pipeline
            std::optional<double> pipeline_time, std::optional<double> impact_time = std::nullopt,
            std::optional<double> rolling_time = std::nullopt);
 
+    /// Tasks at once: `slots` (run_pipeline --jobs) and the slots one task of a stage takes
+    /// (default 1; an FE case on R MPI ranks takes R). Without a call: one at a time.
+    void set_concurrency(int slots, std::map<std::string, int> slots_per_task = {});
+
+    /// The expected time of one task of `stage` before any has run [s]: the preset's
+    /// measured time (above); nullopt when not measured.
+    std::optional<double> expected_seconds(const std::string &stage) const
+    {
+      return prior_seconds(stage);
+    }
+
     /// Records a finished task; `ran` false for a reused one (its wall_time is then ignored).
     void finished(const std::string &stage, bool ran, double wall_time_s);
 
@@ -42,8 +59,9 @@ namespace clearjoint::pipeline
     };
     /// nullopt when nothing is known (no measured preset times and no task run yet).
     std::optional<Left> time_left() const;
-    /// "task 3 of 35" and, when known, ", about 2 min 10 s left" (or "at least ...").
-    std::string describe_next() const;
+    /// "task 3 of 35" and, when known, ", about 2 min 10 s left" (or "at least ..."); with
+    /// tasks running, "task 5 of 35 (2 running), ...": the next task's number counts them.
+    std::string describe_next(int n_running = 0) const;
 
   private:
     struct Stage
@@ -58,5 +76,7 @@ namespace clearjoint::pipeline
     /// Stages of one task with a measured time of their own: fe_impact, fe_rolling.
     std::map<std::string, std::optional<double>> own_times_;
     int n_done_ = 0;
+    int slots_ = 1;
+    std::map<std::string, int> slots_per_task_;
   };
 } // namespace clearjoint::pipeline

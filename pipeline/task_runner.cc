@@ -6,22 +6,16 @@
 #include "common/interrupt.h"
 #include "common/log.h"
 #include "common/sha256.h"
+#include "pipeline/process_groups.h"
 
 #include <nlohmann/json.hpp>
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <optional>
-
-extern char **environ;
 
 namespace clearjoint::pipeline
 {
@@ -29,14 +23,10 @@ namespace clearjoint::pipeline
 
   namespace
   {
-    std::atomic<pid_t> running_child{0};
-
     void on_signal(const int sig)
     {
       interrupt_requested() = true;
-      const pid_t child = running_child.load();
-      if (child > 0)
-        ::kill(-child, sig);  // the stage runs in its own process group (mpirun and its ranks)
+      signal_groups(sig);  // every running stage's group (mpirun and its ranks, plot.py)
     }
 
     std::string stamp_path(const std::string &dir) { return dir + "/.task.json"; }
@@ -75,38 +65,6 @@ namespace clearjoint::pipeline
       }
     }
 
-    /// Runs argv with stdout+stderr appended to log_path; returns the wait status.
-    int spawn_and_wait(const std::vector<std::string> &words, const std::string &log_path)
-    {
-      posix_spawn_file_actions_t actions;
-      posix_spawn_file_actions_init(&actions);
-      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
-                                       O_WRONLY | O_CREAT | O_APPEND, 0644);
-      posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-      posix_spawnattr_t attr;
-      posix_spawnattr_init(&attr);
-      posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-      posix_spawnattr_setpgroup(&attr, 0);
-      std::vector<char *> argv;
-      for (const auto &w : words)
-        argv.push_back(const_cast<char *>(w.c_str()));
-      argv.push_back(nullptr);
-      pid_t pid = 0;
-      const int rc = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
-      posix_spawn_file_actions_destroy(&actions);
-      posix_spawnattr_destroy(&attr);
-      if (rc != 0)
-        throw NumericalError("cannot start '" + words[0] + "': " + std::strerror(rc));
-      running_child = pid;
-      if (interrupt_requested())
-        ::kill(-pid, SIGTERM);
-      int status = 0;
-      while (::waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR)
-          break;
-      running_child = 0;
-      return status;
-    }
   } // namespace
 
   std::atomic<bool> &interrupt_requested()
@@ -124,7 +82,13 @@ namespace clearjoint::pipeline
 
   int run_process(const std::vector<std::string> &words, const std::string &log_path)
   {
-    return spawn_and_wait(words, log_path);
+    const pid_t pid = spawn_in_own_group(words, log_path);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+      if (errno != EINTR)
+        break;
+    end_group(pid);
+    return status;
   }
 
   std::string compute_identity(const Task &t)
@@ -140,79 +104,77 @@ namespace clearjoint::pipeline
     return sha256_hex(json_text(j, -1));
   }
 
-  std::optional<TaskResult> find_completed(const Task &t)
+  std::optional<TaskResult> find_completed(const Task &t, const std::string &identity)
   {
-    const std::string identity = compute_identity(t);
     if (const auto seconds = stamp_matches(t.output_dir, identity))
       return TaskResult{TaskOutcome::reused, identity, *seconds};
     return std::nullopt;
   }
 
-  TaskResult run_task(const Task &t, const bool force)
+  std::optional<TaskResult> find_completed(const Task &t)
   {
-    const std::string identity = compute_identity(t);
-    if (const auto seconds = stamp_matches(t.output_dir, identity); !force && seconds)
-    {
-      log::info("  reused  " + t.name + "  (inputs unchanged)");
-      return {TaskOutcome::reused, identity, *seconds};
-    }
-    const std::string partial = t.output_dir + ".partial";
-    fs::remove_all(partial);
-    fs::create_directories(partial);
-    std::vector<std::string> words = t.launcher;
-    words.push_back(t.executable);
+    return find_completed(t, compute_identity(t));
+  }
+
+  PreparedRun prepare_run(const Task &t, const std::string &identity)
+  {
+    PreparedRun r;
+    r.identity = identity;
+    r.partial = t.output_dir + ".partial";
+    fs::remove_all(r.partial);
+    fs::create_directories(r.partial);
+    r.words = t.launcher;
+    r.words.push_back(t.executable);
     for (auto a : t.args)
     {
       for (std::size_t p; (p = a.find("{out}")) != std::string::npos;)
-        a.replace(p, 5, partial);
-      words.push_back(a);
+        a.replace(p, 5, r.partial);
+      r.words.push_back(a);
     }
     // The log and the command line sit beside the partial folder while the stage runs (a stage
     // may replace its whole output folder), and move into the result when it succeeds.
-    const std::string log_path = t.output_dir + ".log";
-    const std::string command_path = t.output_dir + ".command.txt";
-    fs::remove(log_path);
+    r.log_path = t.output_dir + ".log";
+    r.command_path = t.output_dir + ".command.txt";
+    fs::remove(r.log_path);
+    AtomicFile cmd(r.command_path);
+    for (const auto &w : r.words)
+      cmd.stream() << w << ' ';
+    cmd.stream() << '\n';
+    cmd.commit();
+    return r;
+  }
+
+  std::string failure_message(const Task &t, const std::string &log_path, const std::string &what)
+  {
+    std::string tail;
+    try
     {
-      AtomicFile cmd(command_path);
-      for (const auto &w : words)
-        cmd.stream() << w << ' ';
-      cmd.stream() << '\n';
-      cmd.commit();
+      const std::string all = read_file(log_path);
+      tail = all.substr(all.size() > 2000 ? all.size() - 2000 : 0);
     }
-    log::info("  running " + t.name + "  (log: " + log_path + ")");
-    const auto start = std::chrono::steady_clock::now();
-    const int status = spawn_and_wait(words, log_path);
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (interrupt_requested())
-      throw NumericalError("interrupted during " + t.name + "; its partial output is in " +
-                           partial + " and will be redone on the next run");
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    catch (...)
     {
-      std::string tail;
-      try
-      {
-        const std::string all = read_file(log_path);
-        tail = all.substr(all.size() > 2000 ? all.size() - 2000 : 0);
-      }
-      catch (...)
-      {
-      }
-      throw NumericalError(t.stage + " failed in task " + t.name + " (exit status " +
-                           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                           "); its log " + log_path + " ends with:\n" + tail);
+      tail = "(no log)";
     }
+    return t.stage + " failed in task " + t.name + " (" + what + "); its log " + log_path +
+           " ends with:\n" + tail;
+  }
+
+  TaskResult complete_run(const Task &t, const PreparedRun &run, const double seconds,
+                          const nlohmann::json &executor)
+  {
     fs::remove_all(t.output_dir);
-    fs::rename(partial, t.output_dir);
-    fs::rename(log_path, t.output_dir + "/stage.log");
-    fs::rename(command_path, t.output_dir + "/command.txt");
-    repoint_manifests(t.output_dir, partial);
-    const nlohmann::json stamp = {{"schema", "clearjoint.task/1"},
-                                  {"task", t.name},
-                                  {"identity", identity},
-                                  {"wall_time", {{"value", seconds}, {"unit", "s"}}}};
+    fs::rename(run.partial, t.output_dir);
+    fs::rename(run.log_path, t.output_dir + "/stage.log");
+    fs::rename(run.command_path, t.output_dir + "/command.txt");
+    repoint_manifests(t.output_dir, run.partial);
+    nlohmann::json stamp = {{"schema", "clearjoint.task/1"},
+                            {"task", t.name},
+                            {"identity", run.identity},
+                            {"wall_time", {{"value", seconds}, {"unit", "s"}}}};
+    if (!executor.is_null())
+      stamp["executor"] = executor;
     write_file_atomically(stamp_path(t.output_dir), json_text(stamp) + "\n");
-    log::info("  done    " + t.name + "  in " + log::format_duration(seconds));
-    return {TaskOutcome::ran, identity, seconds};
+    return {TaskOutcome::ran, run.identity, seconds};
   }
 } // namespace clearjoint::pipeline

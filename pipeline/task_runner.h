@@ -11,6 +11,8 @@
 // A finished task's folder holds stage.log and command.txt (the exact command line).
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <atomic>
 #include <optional>
 #include <string>
@@ -40,23 +42,42 @@ namespace clearjoint::pipeline
     double wall_time_s;    ///< [s] of the run that produced the result (also when reused)
   };
 
-  /// Set by SIGINT/SIGTERM; the running stage is stopped and run_task throws.
+  /// Set by SIGINT/SIGTERM; the scheduler stops every running task and throws.
   std::atomic<bool> &interrupt_requested();
   /// Installs SIGINT/SIGTERM handlers that set interrupt_requested() and forward the signal
-  /// to the running stage's process group.
+  /// to every running stage's process group (process_groups.h).
   void install_signal_handlers();
 
-  /// Runs argv (words) in its own process group with stdout and stderr appended to log_path;
-  /// an interrupt is passed on to it. Returns the wait status.
+  /// Runs argv (words) in its own process group with stdout and stderr appended to log_path
+  /// and waits for it; an interrupt is passed on to it. Returns the wait status.
   int run_process(const std::vector<std::string> &words, const std::string &log_path);
 
   std::string compute_identity(const Task &task);
 
-  /// The task's earlier result if its folder holds a stamp with the task's current identity
-  /// (outcome reused, wall time of the run that made it); nullopt otherwise.
+  /// The task's earlier result if its folder holds a stamp with `identity` (outcome reused,
+  /// wall time of the run that made it); nullopt otherwise.
+  std::optional<TaskResult> find_completed(const Task &task, const std::string &identity);
   std::optional<TaskResult> find_completed(const Task &task);
 
-  /// Runs or reuses the task (force: always run). Throws NumericalError if the stage fails
-  /// (its exit code and log path in the message) or was interrupted.
-  TaskResult run_task(const Task &task, bool force);
+  /// A task about to run: its "<dir>.partial/" emptied, "<dir>.command.txt" written.
+  struct PreparedRun
+  {
+    std::string identity;
+    std::string partial;                 ///< <dir>.partial
+    std::string log_path;                ///< <dir>.log: the stage's stdout and stderr
+    std::string command_path;            ///< <dir>.command.txt
+    std::vector<std::string> words;      ///< launcher, executable, args with {out} replaced
+  };
+  PreparedRun prepare_run(const Task &task, const std::string &identity);
+
+  /// After the stage exited 0: "<dir>.partial" becomes "<dir>" (an earlier "<dir>" replaced),
+  /// the log and command line move in as stage.log and command.txt, the manifests' paths are
+  /// repointed, and the stamp "<dir>/.task.json" is written last (with `executor`, e.g. the
+  /// Slurm job id, when not null).
+  TaskResult complete_run(const Task &task, const PreparedRun &run, double wall_time_s,
+                          const nlohmann::json &executor);
+
+  /// "<stage> failed in task <name> (<what>); its log <log> ends with:\n<last 2000 bytes>".
+  std::string failure_message(const Task &task, const std::string &log_path,
+                              const std::string &what);
 } // namespace clearjoint::pipeline

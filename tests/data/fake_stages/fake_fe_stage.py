@@ -25,6 +25,12 @@ What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - manifest.json carries extra.scene (the fit stage embeds it in the law file), with the
   geometry, loading.journal, contact.mu and material.yield_stress filled in as fe_stage does.
 Environment: CLEARJOINT_FAKE_SLEEP=<s> sleeps before writing (to be interrupted);
+CLEARJOINT_FAKE_TRACE=<file> appends "start|end <output folder name> <pid> <time>" lines (the
+tests of tasks at once see which runs overlapped); CLEARJOINT_FAKE_CHILD=1 starts a child
+(`sleep 600`, like fe_stage's plot.py) before sleeping and appends "child <name> <pid> <time>";
+CLEARJOINT_FAKE_FAIL_MATCH=<text> fails (exit 2) when the output folder's path contains <text>.
+Under mpirun (OMPI_COMM_WORLD_RANK set) every rank prints "fake fe_stage: rank r of n" (with
+the Slurm job id and task count when in a job) and only rank 0 goes on;
 scene key fail: true exits 2 with a message (a failing stage).
 CLEARJOINT_FAKE_FIELDS=1 also writes fields/solution.pvd with one VTU (needs python3-vtk9), for
 the report's tests: a quarter of the bearing ring (x >= 0, z >= 0: symmetry factor 4), von Mises
@@ -257,7 +263,29 @@ def write_rolling(out, scene, g):
 
 if check:
     sys.exit(0)
+if "OMPI_COMM_WORLD_RANK" in os.environ:
+    rank, size = os.environ["OMPI_COMM_WORLD_RANK"], os.environ.get("OMPI_COMM_WORLD_SIZE")
+    print(f"fake fe_stage: rank {rank} of {size} (Slurm job {os.environ.get('SLURM_JOB_ID')}, "
+          f"{os.environ.get('SLURM_NTASKS')} tasks)", flush=True)
+    if rank != "0":
+        sys.exit(0)
+
+
+def trace(event, pid=None):
+    path = os.environ.get("CLEARJOINT_FAKE_TRACE")
+    if path:
+        with open(path, "a") as f:
+            f.write(f"{event} {os.path.basename(out)} {pid or os.getpid()} {time.time()!r}\n")
+
+
+trace("start")
+if os.environ.get("CLEARJOINT_FAKE_CHILD") == "1":
+    import subprocess
+    trace("child", subprocess.Popen(["sleep", "600"]).pid)
 time.sleep(float(os.environ.get("CLEARJOINT_FAKE_SLEEP", "0")))
+if os.environ.get("CLEARJOINT_FAKE_FAIL_MATCH", "\0") in out:
+    print("fake fe_stage: failing as asked (CLEARJOINT_FAKE_FAIL_MATCH)", file=sys.stderr)
+    sys.exit(2)
 os.makedirs(out, exist_ok=True)
 if study == "rolling":
     write_rolling(out, scene, g)
@@ -281,3 +309,4 @@ if os.environ.get("CLEARJOINT_FAKE_FIELDS") == "1":
 with open(os.path.join(out, "manifest.json"), "w") as f:
     json.dump({"status": "complete", "outputs": [os.path.join(out, "force_penetration.csv")],
                "extra": extra}, f)
+trace("end")

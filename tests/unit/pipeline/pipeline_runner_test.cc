@@ -9,6 +9,7 @@
 #include "pipeline/mesh_task.h"
 #include "pipeline/pipeline_config.h"
 #include "test_support.h"
+#include "fake_pipeline.h"
 
 #include <gtest/gtest.h>
 
@@ -23,85 +24,7 @@
 using namespace clearjoint;
 namespace fs = std::filesystem;
 
-namespace
-{
-  /// A build directory whose fe_stage and mbd_stage are the stand-ins.
-  struct FakeBuild
-  {
-    /// real_mbd: the real mbd_stage instead of the stand-in (it needs no FE either).
-    explicit FakeBuild(const test_support::ScratchDir &dir, const bool real_mbd = false)
-      : root(dir.file("build"))
-    {
-      const fs::path fakes = fs::path(CLEARJOINT_TEST_DATA_DIR) / "fake_stages";
-      const std::vector<std::pair<fs::path, fs::path>> links = {
-        {"fe_stage/fe_stage", fakes / "fake_fe_stage.py"},
-        {"mbd_stage/mbd_stage", real_mbd ? fs::path(MBD_STAGE_EXE) : fakes / "fake_mbd_stage.py"},
-        {"fit_stage/fit_stage", FIT_STAGE_EXE},
-        {"geometry/msh_check", MSH_CHECK_EXE}};
-      for (const auto &[link, target] : links)
-      {
-        fs::create_directories((fs::path(root) / link).parent_path());
-        fs::create_symlink(target, fs::path(root) / link);
-      }
-    }
-    std::string root;
-  };
-
-  std::string pipeline_yaml(const std::string &dir, const std::string &values,
-                            const std::string &extra_fe = "")
-  {
-    test_support::write_text(dir + "/fe.yaml",
-                             "{\"geometry\": {\"t_B\": 0.004}" + extra_fe + "}\n");
-    test_support::write_text(dir + "/mbd.yaml",
-                             "{\"joint\": {\"law_file\": \"none\"}, \"extra_file\": \"law.json\"}\n");
-    test_support::write_text(dir + "/law.json", test_support::read_text(
-                                                  std::string(CLEARJOINT_SOURCE_DIR) +
-                                                  "/laws/paper_tB4.json"));
-    return "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir + "/out\npreset: fast\n" +
-           "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
-           "accurate: {fe: null, mbd: null}}\n"
-           "fe_studies:\n  - name: thickness\n    scene: " + dir + "/fe.yaml\n"
-           "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: " + values + "\n"
-           "fit: {weighting: absolute}\n"
-           "mbd_runs:\n"
-           "  - {name: fitted, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness, value: 0.002}], band: true}\n"
-           "  - {name: family, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness}]}\n"
-           "  - {name: paper, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, file: " + dir + "/law.json}]}\n"
-           "report: false\n";
-  }
-
-  struct Outcome
-  {
-    int exit_code;
-    std::string log;
-    std::map<std::string, std::string> tasks;  // name → ran | reused
-  };
-
-  Outcome run(const test_support::ScratchDir &dir, const FakeBuild &build,
-              const std::string &extra_args = "", const std::string &env = "")
-  {
-    const int rc = test_support::run_command(env + " " + RUN_PIPELINE_EXE + " " +
-                                               dir.file("p.yaml") + " --no-plots --build-dir " +
-                                               build.root + " " + extra_args,
-                                             dir.file("log.txt"));
-    Outcome o{rc, test_support::read_text(dir.file("log.txt")), {}};
-    const std::string summary = dir.file("out/r/pipeline_summary.json");
-    const nlohmann::json j = rc == 0 && fs::exists(summary) ? read_json_file(summary) : nlohmann::json();
-    if (j.is_object())
-      for (const auto &t : j["tasks"])
-        o.tasks[t["name"].get<std::string>()] = t["outcome"].get<std::string>();
-    return o;
-  }
-
-  std::set<std::string> with(const Outcome &o, const std::string &what)
-  {
-    std::set<std::string> s;
-    for (const auto &[name, outcome] : o.tasks)
-      if (outcome == what)
-        s.insert(name);
-    return s;
-  }
-} // namespace
+using namespace fake_pipeline;
 
 TEST(RunPipeline, SecondRunReusesEverything)
 {
@@ -510,7 +433,8 @@ TEST(RunPipeline, TheRollingStudyIsOneTaskWithItsOwnTime)
                "rolling: {scene: " + dir.file("rolling.yaml") +
                  ", overrides: {rolling.omega_B: 12.0}}\nreport: false");
   test_support::write_text(dir.file("p.yaml"), yaml);
-  const Outcome first = run(dir, build);
+  // One task at a time: the whole 80 s (two at once: RunEta.TasksAtOnceShareTheWork).
+  const Outcome first = run(dir, build, "--jobs 1");
   ASSERT_EQ(first.exit_code, 0) << first.log;
   EXPECT_EQ(with(first, "ran").size(), 13u) << "12 as before and the rolling task\n" << first.log;
   EXPECT_EQ(with(first, "ran").count("fe/rolling"), 1u) << first.log;

@@ -95,3 +95,22 @@ TEST(RunEta, TheRollingStudyHasItsOwnTime)
   unknown.finished("fe_rolling", true, 7.0);
   EXPECT_FALSE(unknown.time_left()->lower_bound);
 }
+
+TEST(RunEta, TasksAtOnceShareTheWork)
+{
+  // The numbers of RunPipeline.TheRollingStudyIsOneTaskWithItsOwnTime: 2 FE cases of 1 s, the
+  // rolling study 50 s, 10 other tasks sharing (80 − 2 − 50)/10 = 2.8 s each: 80 s of work.
+  const std::map<std::string, int> planned = {
+    {"fe_stage", 2}, {"fe_rolling", 1}, {"fit_stage", 3}, {"mbd_stage", 7}};
+  RunEta eta(planned, 1.0, 80.0, std::nullopt, 50.0);
+  EXPECT_NEAR(eta.time_left()->seconds, 80.0, 1e-9);
+  eta.set_concurrency(4);  // 80 s over 4 slots is 20 s, but the rolling task alone takes 50 s
+  EXPECT_NEAR(eta.time_left()->seconds, 50.0, 1e-9);
+  RunEta no_rolling({{"fe_stage", 4}, {"fit_stage", 4}}, 10.0, 48.0);  // fits: 2 s each
+  no_rolling.set_concurrency(2);
+  EXPECT_NEAR(no_rolling.time_left()->seconds, 48.0 / 2, 1e-9);
+  // An FE case on 2 MPI ranks takes both slots: its 40 s of work do not share.
+  no_rolling.set_concurrency(2, {{"fe_stage", 2}});
+  EXPECT_NEAR(no_rolling.time_left()->seconds, (4 * 10.0 * 2 + 4 * 2.0) / 2, 1e-9);
+  EXPECT_EQ(no_rolling.describe_next(2), "task 3 of 8 (2 running), about 44.0 s left");
+}

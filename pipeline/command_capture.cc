@@ -1,0 +1,121 @@
+#include "pipeline/command_capture.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+
+extern char **environ;
+
+namespace clearjoint::pipeline
+{
+  CommandResult run_capture(const std::vector<std::string> &words, const double timeout_s)
+  {
+    CommandResult result;
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0)
+    {
+      result.start_error = std::string("pipe: ") + std::strerror(errno);
+      return result;
+    }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
+    std::vector<char *> argv;
+    for (const auto &w : words)
+      argv.push_back(const_cast<char *>(w.c_str()));
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attr);
+    ::close(fds[1]);
+    if (rc != 0)
+    {
+      ::close(fds[0]);
+      result.start_error = std::strerror(rc);
+      return result;
+    }
+    using clock = std::chrono::steady_clock;
+    const auto deadline = clock::now() + std::chrono::duration<double>(timeout_s);
+    char buffer[4096];
+    // Bounded by the deadline: every pass either reads, sees the end of the output, or waits
+    // at most until the deadline.
+    for (;;)
+    {
+      const double left = std::chrono::duration<double>(deadline - clock::now()).count();
+      if (left <= 0)
+      {
+        result.timed_out = true;
+        break;
+      }
+      pollfd p = {fds[0], POLLIN, 0};
+      const int ready = ::poll(&p, 1, int(std::min(left, 1.0) * 1000) + 1);
+      if (ready < 0 && errno != EINTR)
+        break;
+      if (ready <= 0)
+        continue;
+      const ssize_t n = ::read(fds[0], buffer, sizeof(buffer));
+      if (n < 0 && errno == EINTR)
+        continue;
+      if (n <= 0)
+        break;  // end of output: the command closed it (exited)
+      if (result.output.size() < (1u << 20))
+        result.output.append(buffer, std::size_t(n));
+    }
+    ::close(fds[0]);
+    // The output has ended; wait for the exit, still no longer than the deadline.
+    int status = 0;
+    bool exited = false;
+    while (!result.timed_out)
+    {
+      const pid_t w = ::waitpid(pid, &status, WNOHANG);
+      if (w == pid || (w < 0 && errno != EINTR))
+      {
+        exited = w == pid;
+        break;
+      }
+      if (clock::now() >= deadline)
+        result.timed_out = true;
+      else
+        ::usleep(10000);
+    }
+    ::kill(-pid, SIGKILL);  // a command past its time, or anything it left in its group
+    if (!exited)
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR)
+      {
+      }
+    if (exited && WIFEXITED(status))
+      result.exit_code = WEXITSTATUS(status);
+    return result;
+  }
+
+  std::optional<std::string> find_on_path(const std::string &name)
+  {
+    const char *path = std::getenv("PATH");
+    std::stringstream dirs(path ? path : "");
+    std::string dir;
+    while (std::getline(dirs, dir, ':'))
+    {
+      const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+      if (::access(candidate.c_str(), X_OK) == 0 && std::filesystem::is_regular_file(candidate))
+        return candidate.string();
+    }
+    return std::nullopt;
+  }
+} // namespace clearjoint::pipeline

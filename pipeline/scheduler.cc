@@ -1,0 +1,224 @@
+#include "pipeline/scheduler.h"
+
+#include "common/error.h"
+#include "common/log.h"
+
+#include <algorithm>
+
+namespace clearjoint::pipeline
+{
+  Scheduler::Scheduler(TaskGraph &graph, Executor &executor, ScheduleOptions options,
+                       RunEta *eta, std::function<double(const std::string &)> expected_seconds)
+    : graph_(graph)
+    , executor_(executor)
+    , options_(std::move(options))
+    , eta_(eta)
+    , expected_seconds_(std::move(expected_seconds))
+  {}
+
+  void Scheduler::fail(std::exception_ptr error)
+  {
+    if (!first_error_)
+      first_error_ = error;
+    if (executor_.n_running() > 0)
+      log::info("run_pipeline: no new tasks; waiting for the " +
+                std::to_string(executor_.n_running()) + " running to end (Ctrl-C stops them)");
+  }
+
+  void Scheduler::done(const int id, const TaskResult &result)
+  {
+    NodeStatus &s = status_.at(id);
+    s.state = NodeState::done;
+    s.result = result;
+    if (eta_)
+      eta_->finished(s.task.stage, result.outcome == TaskOutcome::ran, result.wall_time_s);
+    // Callbacks may add nodes: take a copy, the deque keeps the node itself in place.
+    const auto callbacks = graph_.node(id).on_done;
+    for (const auto &f : callbacks)
+      f(graph_, result);
+  }
+
+  bool Scheduler::start(const int id)
+  {
+    GraphNode &node = graph_.node(id);
+    NodeStatus &s = status_.at(id);
+    if (!s.prepared)
+    {
+      s.task = node.task;
+      s.task.depends_on.clear();
+      for (const int a : node.after)
+        s.task.depends_on.push_back(status_.at(a).result.identity);
+      if (node.prepare)
+        node.prepare(s.task);
+      s.identity = compute_identity(s.task);
+      s.prepared = true;
+      const bool outside_only = options_.only && *options_.only != node.group;
+      const auto earlier = (outside_only || !options_.force) ? find_completed(s.task, s.identity)
+                                                             : std::nullopt;
+      if (outside_only && !earlier)
+        throw InputError("", "--only " + *options_.only, s.task.name,
+                         "upstream tasks already run and up to date",
+                         "task '" + s.task.name + "' is missing or out of date: run without --only");
+      if (earlier)
+      {
+        if (eta_)
+          log::info(eta_->describe_next(executor_.n_running()) + ": " + s.task.name);
+        log::info("  reused  " + s.task.name + "  (inputs unchanged)");
+        done(id, *earlier);
+        return true;
+      }
+    }
+    const int slots = executor_.slots_for(node.ranks);
+    if (used_slots_ + slots > executor_.capacity())
+      return false;
+    s.task.launcher = executor_.launcher(node.ranks);
+    s.run = prepare_run(s.task, s.identity);
+    Launch launch;
+    launch.node = id;
+    launch.name = s.task.name;
+    launch.words = s.run.words;
+    launch.log_path = s.run.log_path;
+    launch.work_prefix = s.task.output_dir;
+    launch.ranks = node.ranks;
+    launch.expected_seconds = expected_seconds_ ? expected_seconds_(s.task.stage) : 0.0;
+    if (eta_)
+      log::info(eta_->describe_next(executor_.n_running()) + ": " + s.task.name);
+    executor_.start(launch);
+    s.slots = slots;
+    used_slots_ += slots;
+    s.start = std::chrono::steady_clock::now();
+    s.state = NodeState::running;
+    log::info("  running " + s.task.name + "  (log: " + s.run.log_path + ")");
+    return true;
+  }
+
+  bool Scheduler::start_ready()
+  {
+    bool any = false;
+    // A reused task can make others ready at once: scan again until nothing changes
+    // (bounded: each pass that goes on has reused or started at least one task).
+    for (bool again = true; again && !first_error_;)
+    {
+      again = false;
+      for (int id = 0; id < graph_.size() && !first_error_; ++id)
+      {
+        status_.resize(graph_.size());
+        if (status_[id].state != NodeState::waiting)
+          continue;
+        bool ready = true, blocked = false;
+        for (const int a : graph_.node(id).after)
+          if (status_[a].state == NodeState::failed || status_[a].state == NodeState::skipped)
+            blocked = true;
+          else if (status_[a].state != NodeState::done)
+            ready = false;
+        if (blocked)
+        {
+          status_[id].state = NodeState::skipped;
+          continue;
+        }
+        if (!ready)
+          continue;
+        try
+        {
+          if (start(id))
+          {
+            any = true;
+            again = again || status_[id].state == NodeState::done;
+          }
+        }
+        catch (...)
+        {
+          status_[id].state = NodeState::failed;
+          fail(std::current_exception());
+        }
+      }
+    }
+    return any;
+  }
+
+  void Scheduler::ended(const Ended &e)
+  {
+    NodeStatus &s = status_.at(e.node);
+    used_slots_ -= s.slots;
+    s.record = e.record;
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - s.start).count();
+    if (interrupt_requested())
+    {
+      s.state = NodeState::failed;  // stopped: the loop reports the interrupt
+      return;
+    }
+    if (e.succeeded)
+    {
+      try
+      {
+        const TaskResult r = complete_run(s.task, s.run, seconds, e.record);
+        log::info("  done    " + s.task.name + "  in " + log::format_duration(seconds));
+        done(e.node, r);
+      }
+      catch (...)
+      {
+        s.state = NodeState::failed;
+        fail(std::current_exception());
+      }
+      return;
+    }
+    s.state = NodeState::failed;
+    const std::string message = failure_message(s.task, s.run.log_path, e.what);
+    if (const auto &tolerated = graph_.node(e.node).on_failure)
+    {
+      tolerated(message);
+      return;
+    }
+    log::error(message);
+    fail(std::make_exception_ptr(NumericalError(message)));
+  }
+
+  void Scheduler::stop_on_interrupt()
+  {
+    std::vector<int> stopped = executor_.stop_all();
+    for (int id = 0; id < int(status_.size()); ++id)
+      if (status_[id].state == NodeState::running)
+      {
+        status_[id].state = NodeState::failed;
+        stopped.push_back(id);
+      }
+    std::string names, partials;
+    std::sort(stopped.begin(), stopped.end());
+    stopped.erase(std::unique(stopped.begin(), stopped.end()), stopped.end());
+    for (const int id : stopped)
+    {
+      names += (names.empty() ? "" : ", ") + status_[id].task.name;
+      partials += (partials.empty() ? "" : ", ") + status_[id].run.partial;
+    }
+    if (stopped.empty())
+      throw NumericalError("interrupted between tasks; the next run goes on from here");
+    throw NumericalError("interrupted during " + names + "; the partial output (" + partials +
+                         ") will be redone on the next run");
+  }
+
+  void Scheduler::run()
+  {
+    for (long pass = 0;; ++pass)
+    {
+      // Each pass starts or reuses a task, or sees one end (or a signal, which ends the loop):
+      // more passes than that mean a bug, not a long run.
+      if (pass > 10L * graph_.size() + 1000)
+        throw std::logic_error("scheduler: no progress after " + std::to_string(pass) + " passes");
+      if (interrupt_requested())
+        stop_on_interrupt();
+      start_ready();
+      if (interrupt_requested())
+        stop_on_interrupt();
+      if (executor_.n_running() == 0)
+        break;  // nothing runs and nothing more could start: done, failed or blocked
+      for (const Ended &e : executor_.wait_any())
+        ended(e);
+    }
+    if (first_error_)
+      std::rethrow_exception(first_error_);
+    for (const auto &s : status_)
+      if (s.state == NodeState::waiting)
+        throw std::logic_error("scheduler: task " + s.task.name + " never became ready");
+  }
+} // namespace clearjoint::pipeline
