@@ -26,8 +26,8 @@
 #include "common/strict_reader.h"
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
-#include "fe_stage/impact_output.h"
-#include "fe_stage/rolling_output.h"
+#include "fe_stage/results/impact_output.h"
+#include "fe_stage/results/rolling_output.h"
 #include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
 

@@ -1,4 +1,4 @@
-#include "fe_stage/impact_output.h"
+#include "fe_stage/results/impact_output.h"
 
 #include "common/error.h"
 

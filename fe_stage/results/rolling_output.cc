@@ -1,4 +1,4 @@
-#include "fe_stage/rolling_output.h"
+#include "fe_stage/results/rolling_output.h"
 
 #include "common/error.h"
 
