@@ -1,8 +1,10 @@
-// What the rolling study writes (no deal.II): the time history's columns and rows, the strain
-// profile's, and the manifest's summary. fe_stage's main() streams them.
+// What the rolling study writes (no deal.II): the time history's and the strain profile's
+// columns (results/record_table.h), and the manifest's summary. results/case_output.cc streams
+// them.
 #pragma once
 
 #include "fe_stage/fe_model.h"
+#include "fe_stage/results/record_table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -11,20 +13,14 @@
 
 namespace clearjoint::fe
 {
-  /// rolling_history.csv: one row per converged time step (and the row at t = 0).
-  struct Table
-  {
-    std::vector<std::string> columns, units;
-  };
-  Table rolling_history_table();
+  /// rolling_history.csv: one row per converged time step (and the row at t = 0, all zero).
+  Columns<RollingStepRecord> rolling_history_columns();
   std::vector<std::string> rolling_history_comments(const FeScene &scene);
-  std::vector<double> rolling_history_row(const RollingStepRecord &r);
-  std::vector<double> rolling_history_start();
 
   /// rolling_strain_profile.csv: the bore's (body 0) and a deformable journal's (body 1) strains
   /// across the contact zone at the end.
-  Table strain_profile_table();
-  std::vector<double> strain_profile_row(const StrainProfilePoint &p);
+  Columns<StrainProfilePoint> strain_profile_columns();
+  std::vector<std::string> strain_profile_comments();
 
   /// The manifest's "rolling" object, every number with its unit.
   nlohmann::json rolling_summary_json(const RollingSummary &s, const RollingStepRecord *last);
