@@ -15,14 +15,16 @@
 // replaced as a whole).
 // Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete),
 // 130/143 interrupted by SIGINT/SIGTERM (after the current increment; DIR.tmp.<pid> removed).
+//
+// The steps: add_options (the command line) → read_scene (apply_preset, validate) →
+// make_work_folder → run_case, or run_sweep over sweep_cases → publish. What a case and a sweep
+// write: results/case_output.h, results/sweep_output.h.
 #include "common/atomic_file.h"
 #include "common/document_reader.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/log.h"
 #include "common/manifest.h"
-#include "common/plot_script.h"
-#include "common/strict_reader.h"
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/presets.h"
@@ -34,10 +36,8 @@
 #include <mpi.h>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include <unistd.h>
 
@@ -183,6 +183,212 @@ namespace
     return result.complete;
   }
 
+  /// The command line: its options, and the folders a run writes.
+  struct CommandLine
+  {
+    std::string scene_path;
+    std::string output_dir;  ///< --output; the work folder once it is made
+    std::string final_dir;   ///< --output once the work folder is made (empty before)
+    bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
+         quiet = false, verbose = false, check = false;
+    fe::PresetUse preset;
+  };
+
+  void add_options(CLI::App &app, CommandLine &cl)
+  {
+    app.add_option("scene", cl.scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
+    app.add_option("--output,-o", cl.output_dir, "output directory");
+    app.add_flag("--print-defaults", cl.print_defaults,
+                 "print the default scene with units and exit");
+    app.add_option("--preset", cl.preset.name,
+                   "the mesh of a pipeline preset, fast | standard | accurate, as run_pipeline "
+                   "uses it (its measured cost and error: docs/benchmarks.md)");
+    app.add_option("--presets-file", cl.preset.file,
+                   "the pipeline file whose presets --preset reads (default: the source tree's "
+                   "pipeline.yaml)");
+    app.add_flag("--full-model", cl.full_model,
+                 "model the full joint instead of the quarter model");
+    app.add_flag("--no-fields", cl.no_fields, "do not write VTU fields");
+    app.add_flag("--no-plots", cl.no_plots, "do not draw the force-penetration plots (PNG)");
+    app.add_flag("--quiet,-q", cl.quiet, "warnings and errors only");
+    app.add_flag("--verbose,-v", cl.verbose,
+                 "debug messages: every active-set iteration's changed nodes and Coulomb "
+                 "slip-law residual");
+    app.add_flag("--check", cl.check,
+                 "read and validate the scene (and its mesh) and exit: 0 valid, 1 input error; "
+                 "writes nothing");
+  }
+
+  /// --preset: the preset's keys set on the scene document as run_pipeline sets them.
+  void apply_preset(nlohmann::json &scene_doc, fe::PresetUse &preset, const bool root)
+  {
+    if (preset.file.empty())
+      preset.file = fe::default_presets_file();
+    preset.overrides = fe::read_fe_preset(preset.file, preset.name);
+    const auto list = [](const fe::PresetOverrides &overrides) {
+      std::string keys;
+      for (const auto &[k, v] : overrides)
+        keys += (keys.empty() ? "" : ", ") + k + " = " + v.dump();
+      return keys.empty() ? std::string("no FE keys") : keys;
+    };
+    std::string keys = list(preset.overrides);
+    // a rolling scene also gets the file's rolling.overrides, as run_pipeline sets them
+    const auto study = scene_doc.find("study");
+    if (study != scene_doc.end() && *study == "rolling")
+      {
+        const fe::PresetOverrides rolling = fe::read_rolling_overrides(preset.file);
+        if (!rolling.empty())
+          keys += "; then rolling.overrides: " + list(rolling);
+        preset.overrides.insert(preset.overrides.end(), rolling.begin(), rolling.end());
+      }
+    fe::apply_preset(scene_doc, preset.overrides, preset.file);
+    if (root)
+      log::info("fe_stage: preset " + preset.name + " (" + preset.file + "): " + keys);
+  }
+
+  /// All input errors before any output: the scene, with the preset's keys set as
+  /// run_pipeline sets them, and the command line's flags.
+  fe::FeScene read_scene(CommandLine &cl, const bool root)
+  {
+    if (cl.scene_path.empty())
+      throw InputError("", "scene", "(none)", "a scene file", "usage: fe_stage SCENE.yaml --output DIR");
+    if (cl.output_dir.empty() && !cl.check)
+      throw InputError("", "--output", "(none)", "a directory", "usage: fe_stage SCENE.yaml --output DIR");
+    nlohmann::json scene_doc = read_structured_file(cl.scene_path);
+    if (!cl.preset.name.empty())
+      apply_preset(scene_doc, cl.preset, root);
+    else if (!cl.preset.file.empty())
+      throw InputError("", "--presets-file", cl.preset.file, "only together with --preset");
+    fe::FeScene scene = fe::scene_from_json(scene_doc, cl.scene_path);
+    if (cl.full_model)
+      scene.full_model = true;
+    if (cl.no_fields)
+      scene.output.fields = false;
+    fe::validate_scene(scene);
+    return scene;
+  }
+
+  /// The work folder, made by rank 0: one that cannot be made (a file in the way, no
+  /// permission) is an input error naming --output on every rank (the others would otherwise
+  /// wait for rank 0 in the next collective call). Returns false (logged) if it failed.
+  bool make_work_folder(CommandLine &cl, const bool root)
+  {
+    check_output_replaceable(cl.output_dir, "fe_stage");
+    cl.final_dir = cl.output_dir;
+    cl.output_dir = work_dir_for(cl.output_dir);
+    work_root = cl.output_dir;
+    final_root = cl.final_dir;
+    std::string work_error;
+    if (root)
+      try
+        {
+          create_work_folder(cl.output_dir, cl.final_dir);
+        }
+      catch (const InputError &e)
+        {
+          work_error = e.what();
+        }
+    int work_ok = work_error.empty() ? 1 : 0;
+    MPI_Bcast(&work_ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!work_ok && root)
+      log::error(work_error);
+    return work_ok;
+  }
+
+  /// One case per swept value (t_B [m], θ [deg] or v [m/s]), each in its own folder.
+  struct Case
+  {
+    fe::FeScene scene;
+    std::string folder;
+    double value;
+  };
+
+  std::vector<Case> sweep_cases(const fe::FeScene &scene, const std::string &output_dir)
+  {
+    std::vector<Case> cases;
+    for (const double t : scene.sweep_t_B)
+      {
+        Case c{scene, output_dir + "/t_B_" + fe::short_number(units::to_mm(t)) + "mm", t};
+        c.scene.geometry.t_B = t;
+        cases.push_back(c);
+      }
+    for (const double th : scene.sweep_theta_deg)
+      {
+        Case c{scene, output_dir + "/theta_" + fe::short_number(th) + "deg", th};
+        c.scene.misalignment.theta_deg = th;
+        cases.push_back(c);
+      }
+    for (const double v : scene.sweep_velocity)
+      {
+        Case c{scene, output_dir + "/v_" + fe::short_number(v) + "mps", v};
+        c.scene.impact.velocity = v;
+        cases.push_back(c);
+      }
+    for (auto &c : cases)
+      {
+        c.scene.sweep_t_B.clear();
+        c.scene.sweep_theta_deg.clear();
+        c.scene.sweep_velocity.clear();
+      }
+    return cases;
+  }
+
+  /// The cases one after the other (stopping at the first that fails), the sweep table and the
+  /// top manifest. Returns true if every case is complete.
+  bool run_sweep(const fe::FeScene &scene, const CommandLine &cl, int argc, char **argv,
+                 const bool root)
+  {
+    std::vector<Case> cases = sweep_cases(scene, cl.output_dir);
+    std::unique_ptr<fe::SweepOutput> output;
+    if (root)
+      output = std::make_unique<fe::SweepOutput>(cl.output_dir, fe::sweep_kind(scene),
+                                                 cl.scene_path, argc, argv);
+    bool complete = true;
+    for (std::size_t k = 0; k < cases.size(); ++k)
+      {
+        const auto &c = cases[k];
+        if (root)
+          log::info("fe_stage: case " + std::to_string(k + 1) + " of " +
+                    std::to_string(cases.size()) + ": " + shown(c.folder));
+        fe::SweepCase result;
+        result.folder = c.folder;
+        result.value = c.value;
+        const bool ok = run_case(c.scene, c.folder, argc, argv, !cl.no_plots, cl.preset,
+                                 result.force_at_delta_max, &result.impact);
+        complete = complete && ok;
+        if (root)
+          output->add_case(result);
+        if (!ok)
+          break;
+      }
+    if (root)
+      output->finish(complete, !cl.no_plots);
+    return complete;
+  }
+
+  /// After the command line: the scene, the work folder, the case or the sweep, and the
+  /// folder published. Returns the exit code.
+  int run(CommandLine &cl, int argc, char **argv, const bool root)
+  {
+    const fe::FeScene scene = read_scene(cl, root);
+    if (cl.check)
+      {
+        log::info("fe_stage: " + cl.scene_path + " is a valid scene");
+        return exit_success;
+      }
+    if (!make_work_folder(cl, root))
+      return exit_input_error;  // nothing was made: no folder to remove
+    bool complete = true;
+    if (scene.sweep_t_B.empty() && scene.sweep_theta_deg.empty() && scene.sweep_velocity.empty())
+      {
+        double f;
+        complete = run_case(scene, cl.output_dir, argc, argv, !cl.no_plots, cl.preset, f);
+      }
+    else
+      complete = run_sweep(scene, cl, argc, argv, root);
+    publish(cl.output_dir, cl.final_dir);
+    return complete ? exit_success : exit_numerical_error;
+  }
 } // namespace
 
 int main(int argc, char **argv)
@@ -200,29 +406,8 @@ int main(int argc, char **argv)
                "turning elastoplastic bearing (study rolling).\n"
                "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted "
                "by SIGINT/SIGTERM."};
-  std::string scene_path, output_dir, final_dir;
-  bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
-       quiet = false, verbose = false, check = false;
-  fe::PresetUse preset;
-  app.add_option("scene", scene_path, "scene file (YAML or JSON, schema clearjoint.fe/1)");
-  app.add_option("--output,-o", output_dir, "output directory");
-  app.add_flag("--print-defaults", print_defaults, "print the default scene with units and exit");
-  app.add_option("--preset", preset.name,
-                 "the mesh of a pipeline preset, fast | standard | accurate, as run_pipeline "
-                 "uses it (its measured cost and error: docs/benchmarks.md)");
-  app.add_option("--presets-file", preset.file,
-                 "the pipeline file whose presets --preset reads (default: the source tree's "
-                 "pipeline.yaml)");
-  app.add_flag("--full-model", full_model, "model the full joint instead of the quarter model");
-  app.add_flag("--no-fields", no_fields, "do not write VTU fields");
-  app.add_flag("--no-plots", no_plots, "do not draw the force-penetration plots (PNG)");
-  app.add_flag("--quiet,-q", quiet, "warnings and errors only");
-  app.add_flag("--verbose,-v", verbose,
-               "debug messages: every active-set iteration's changed nodes and Coulomb "
-               "slip-law residual");
-  app.add_flag("--check", check,
-               "read and validate the scene (and its mesh) and exit: 0 valid, 1 input error; "
-               "writes nothing");
+  CommandLine cl;
+  add_options(app, cl);
   try
     {
       app.parse(argc, argv);
@@ -231,11 +416,11 @@ int main(int argc, char **argv)
     {
       return app.exit(e) == 0 ? exit_success : exit_input_error;
     }
-  if (quiet)
+  if (cl.quiet)
     log::set_level(log::Level::warning);
-  if (verbose && root)
+  if (cl.verbose && root)
     log::set_level(log::Level::debug);
-  if (print_defaults)
+  if (cl.print_defaults)
     {
       if (root)
         std::cout << fe::default_scene_yaml();
@@ -243,148 +428,16 @@ int main(int argc, char **argv)
     }
   try
     {
-      if (scene_path.empty())
-        throw InputError("", "scene", "(none)", "a scene file", "usage: fe_stage SCENE.yaml --output DIR");
-      if (output_dir.empty() && !check)
-        throw InputError("", "--output", "(none)", "a directory", "usage: fe_stage SCENE.yaml --output DIR");
-      // all input errors before any output: the scene, with the preset's keys set as
-      // run_pipeline sets them
-      nlohmann::json scene_doc = read_structured_file(scene_path);
-      if (!preset.name.empty())
-        {
-          if (preset.file.empty())
-            preset.file = fe::default_presets_file();
-          preset.overrides = fe::read_fe_preset(preset.file, preset.name);
-          const auto list = [](const fe::PresetOverrides &overrides) {
-            std::string keys;
-            for (const auto &[k, v] : overrides)
-              keys += (keys.empty() ? "" : ", ") + k + " = " + v.dump();
-            return keys.empty() ? std::string("no FE keys") : keys;
-          };
-          std::string keys = list(preset.overrides);
-          // a rolling scene also gets the file's rolling.overrides, as run_pipeline sets them
-          const auto study = scene_doc.find("study");
-          if (study != scene_doc.end() && *study == "rolling")
-            {
-              const fe::PresetOverrides rolling = fe::read_rolling_overrides(preset.file);
-              if (!rolling.empty())
-                keys += "; then rolling.overrides: " + list(rolling);
-              preset.overrides.insert(preset.overrides.end(), rolling.begin(), rolling.end());
-            }
-          fe::apply_preset(scene_doc, preset.overrides, preset.file);
-          if (root)
-            log::info("fe_stage: preset " + preset.name + " (" + preset.file + "): " + keys);
-        }
-      else if (!preset.file.empty())
-        throw InputError("", "--presets-file", preset.file, "only together with --preset");
-      fe::FeScene scene = fe::scene_from_json(scene_doc, scene_path);
-      if (full_model)
-        scene.full_model = true;
-      if (no_fields)
-        scene.output.fields = false;
-      fe::validate_scene(scene);
-      if (check)
-        {
-          log::info("fe_stage: " + scene_path + " is a valid scene");
-          return exit_success;
-        }
-      check_output_replaceable(output_dir, "fe_stage");
-      final_dir = output_dir;
-      output_dir = work_dir_for(output_dir);
-      work_root = output_dir;
-      final_root = final_dir;
-      // the work folder, made by rank 0: one that cannot be made (a file in the way, no
-      // permission) is an input error naming --output on every rank (the others would
-      // otherwise wait for rank 0 in the next collective call)
-      std::string work_error;
-      if (root)
-        try
-          {
-            create_work_folder(output_dir, final_dir);
-          }
-        catch (const InputError &e)
-          {
-            work_error = e.what();
-          }
-      int work_ok = work_error.empty() ? 1 : 0;
-      MPI_Bcast(&work_ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
-      if (!work_ok)
-        {
-          if (root)
-            log::error(work_error);
-          return exit_input_error;  // nothing was made: no folder to remove
-        }
-
-      bool complete = true;
-      // One case per swept value (t_B [m] or θ [deg]), each in its own folder.
-      struct Case
-      {
-        fe::FeScene scene;
-        std::string folder;
-        double value;
-      };
-      std::vector<Case> cases;
-      for (const double t : scene.sweep_t_B)
-        {
-          Case c{scene, output_dir + "/t_B_" + fe::short_number(units::to_mm(t)) + "mm", t};
-          c.scene.geometry.t_B = t;
-          cases.push_back(c);
-        }
-      for (const double th : scene.sweep_theta_deg)
-        {
-          Case c{scene, output_dir + "/theta_" + fe::short_number(th) + "deg", th};
-          c.scene.misalignment.theta_deg = th;
-          cases.push_back(c);
-        }
-      for (const double v : scene.sweep_velocity)
-        {
-          Case c{scene, output_dir + "/v_" + fe::short_number(v) + "mps", v};
-          c.scene.impact.velocity = v;
-          cases.push_back(c);
-        }
-      if (cases.empty())
-        {
-          double f;
-          complete = run_case(scene, output_dir, argc, argv, !no_plots, preset, f);
-        }
-      else
-        {
-          std::unique_ptr<fe::SweepOutput> sweep;
-          if (root)
-            sweep = std::make_unique<fe::SweepOutput>(output_dir, fe::sweep_kind(scene),
-                                                      scene_path, argc, argv);
-          for (std::size_t k = 0; k < cases.size(); ++k)
-            {
-              auto &c = cases[k];
-              if (root)
-                log::info("fe_stage: case " + std::to_string(k + 1) + " of " +
-                          std::to_string(cases.size()) + ": " + shown(c.folder));
-              c.scene.sweep_t_B.clear();
-              c.scene.sweep_theta_deg.clear();
-              c.scene.sweep_velocity.clear();
-              fe::SweepCase result{.folder = c.folder, .value = c.value};
-              const bool ok = run_case(c.scene, c.folder, argc, argv, !no_plots, preset,
-                                       result.force_at_delta_max, &result.impact);
-              complete = complete && ok;
-              if (root)
-                sweep->add_case(result);
-              if (!ok)
-                break;
-            }
-          if (root)
-            sweep->finish(complete, !no_plots);
-        }
-      publish(output_dir, final_dir);
-      return complete ? exit_success : exit_numerical_error;
+      return run(cl, argc, argv, root);
     }
   catch (const interrupt::Interrupted &e)
     {
       if (root)
         {
           std::error_code ec;
-          std::filesystem::remove_all(output_dir, ec);
-          log::error(std::string(e.what()) + "; " + output_dir + " removed" +
-                     (final_dir.empty() ? "" : ", " + final_dir + " left as it was"));
+          std::filesystem::remove_all(cl.output_dir, ec);
+          log::error(std::string(e.what()) + "; " + cl.output_dir + " removed" +
+                     (cl.final_dir.empty() ? "" : ", " + cl.final_dir + " left as it was"));
         }
       const int code = 128 + (signal_seen != 0 ? signal_seen : interrupt::signal_received());
       if (signal_seen == 0)  // seen by rank 0 alone (while plotting): the others may wait
@@ -395,10 +448,10 @@ int main(int argc, char **argv)
     {
       if (root)
         log::error(e.what());
-      if (root && !final_dir.empty())  // e.g. a mesh rejected while setting up a case
+      if (root && !cl.final_dir.empty())  // e.g. a mesh rejected while setting up a case
         {
           std::error_code ec;
-          std::filesystem::remove_all(output_dir, ec);
+          std::filesystem::remove_all(cl.output_dir, ec);
         }
       return exit_input_error;
     }
