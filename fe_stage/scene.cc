@@ -855,150 +855,227 @@ namespace clearjoint::fe
     return scene_from_json(read_structured_file(path), path);
   }
 
+  namespace
+  {
+    // --- the annotated defaults: one block each, as read above ----------------------------------
+
+    /// the header, study and full_model
+    void write_top_defaults(std::ostream &o)
+    {
+      o << "# fe_stage scene, schema clearjoint.fe/1. SI units everywhere (m, Pa, kg/m^3).\n"
+        << "# Every key is optional except schema; shown here with its default.\n"
+        << "schema: clearjoint.fe/1\n"
+        << "study: radial            # radial | misalignment | impact | rolling | hertz | patch\n"
+        << "                         #   (verification); rolling changes the defaults of\n"
+        << "                         #   material.model (elastoplastic), contact.mu (0.3),\n"
+        << "                         #   loading.delta_max (1.0e-3) and loading.max_cuts (10)\n"
+        << "full_model: false        # false: symmetry planes (radial: x = 0 and z = 0, quarter\n"
+        << "                         #   model; misalignment: x = 0 only, half model)\n";
+    }
+
+    /// geometry:
+    void write_geometry_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "geometry:\n"
+        << "  R_B: " << d.geometry.R_B << "   # [m] bearing inner radius, (0, inf)\n"
+        << "  t_B: " << d.geometry.t_B << "   # [m] bearing thickness, (0, inf)\n"
+        << "  L_B: " << d.geometry.L_B << "   # [m] bearing length, (0, inf)\n"
+        << "  c_r: " << d.geometry.c_r << "  # [m] radial clearance, (0, R_B); R_J = R_B - c_r\n"
+        << "  c_a: " << d.geometry.c_a << "   # [m] axial clearance, (0, L_B/2); L_J = L_B - 2 c_a\n"
+        << "  # mesh: bearing.msh  # optional Gmsh MSH 2.2 mesh with the physical groups of\n"
+        << "                     #   docs/geometry.md (relative to the scene); the numbers above\n"
+        << "                     #   must describe the same joint\n";
+    }
+
+    /// misalignment:
+    void write_misalignment_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "misalignment:          # study misalignment (paper 3.3): journal tilted in the y-z plane\n"
+        << "  theta_deg: " << d.misalignment.theta_deg
+        << "        # [deg] in [0, theta_max] (Eq. 3: 3.2842 deg for the defaults), or theta_max\n";
+    }
+
+    /// material:
+    void write_material_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "material:\n"
+        << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
+        << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
+        << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
+        << "  model: elastic      # elastic | elastoplastic (study rolling only: von Mises,\n"
+        << "                      #   isotropic hardening, radial return)\n"
+        << "  # hardening: [[0, 168.2e6], [0.1, 196.225e6], ...]  # [eps_p, sigma_y Pa] points,\n"
+        << "                      #   linear between, extended beyond the last; default SPEC 2:\n"
+        << "                      #   168.2 + 280.25 eps_p MPa at eps_p = 0, 0.1, ..., 1.0\n"
+        << "  yield_stress: " << d.material.yield_stress
+        << " # [Pa] (0, inf): the yield check reports where von Mises exceeds it\n";
+    }
+
+    /// contact:
+    void write_contact_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "contact:\n"
+        << "  mu: " << d.contact.mu
+        << "          # [1] Coulomb friction coefficient, [0, 10] (0: frictionless)\n"
+        << "  active_set_scale: " << d.contact.active_set_scale
+        << "  # [1] complementarity constant c = scale*E*h; does not change the solution\n"
+        << "  tangential_scale: " << d.contact.tangential_scale
+        << "  # [1] friction's constant c_T = scale*c; does not change the solution\n"
+        << "  max_iterations: " << d.contact.max_iterations
+        << "   # active-set iterations per increment before the increment is cut\n"
+        << "  pairing: automatic  # automatic | node_to_node | mortar: how a deformable journal\n"
+        << "                      #   meets the bore (automatic = mortar; node_to_node: the\n"
+        << "                      #   generated joint's nodes on common rays)\n"
+        << "  mortar_slave: automatic  # automatic | bore | journal: the mortar surface that\n"
+        << "                      #   carries the constraints (journal: loading.journal core\n"
+        << "                      #   only); automatic = journal for the tilted journal of\n"
+        << "                      #   study misalignment, bore otherwise\n"
+        << "  sliding: small      # small | finite: the mortar search once in the reference\n"
+        << "                      #   configuration, or again at the deformed surfaces after\n"
+        << "                      #   every increment (for sliding of a contact cell or more)\n";
+    }
+
+    /// loading:
+    void write_loading_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "loading:\n"
+        << "  journal: end_faces  # end_faces | axis_line (the paper's) | core (the inner core\n"
+        << "                      #   r <= R_J/2 moved rigidly) | rigid (rigid journal)\n"
+        << "                      #   study misalignment: rigid (default) or core\n"
+        << "                      #   study rolling: rigid (default) or core (clamped in the\n"
+        << "                      #   journal's own turning frame, elastoplastic)\n"
+        << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
+        << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
+        << "  max_cuts: " << d.loading.max_cuts << "        # halvings of a failed increment\n"
+        << "  axial_offset: 0     # [m] core journal placed off the axial centre, |.| <= c_a\n"
+        << "  axial_slide: 0      # [m] the core also slides along z over the push (with\n"
+        << "                      #   contact.sliding finite), |offset + slide| <= c_a\n";
+    }
+
+    /// mesh:
+    void write_mesh_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "mesh:\n"
+        << "  degree: " << d.mesh.degree << "            # 1 or 2 (Q1/Q2 hexahedra, curved mapping)\n"
+        << "  n_circumferential: " << d.mesh.n_circumferential
+        << "  # coarse cells over 180 degrees (multiple of 4)\n"
+        << "  n_radial: " << d.mesh.n_radial << "          # coarse cells through t_B; 0: one per 2 mm\n"
+        << "  n_axial: " << d.mesh.n_axial << "           # coarse cells over L_B/2\n"
+        << "  global_refinements: " << d.mesh.global_refinements << "\n"
+        << "  contact_refinements: " << d.mesh.contact_refinements
+        << "  # extra refinements of the cells inside the contact window\n"
+        << "  contact_window_deg: " << d.mesh.contact_window_deg
+        << "  # [deg] half-angle of the refined zone about the bottom\n"
+        << "  adaptive_cycles: " << d.mesh.adaptive_cycles
+        << "   # 0..8 cycles of (curve, Kelly indicator, refine) before the recorded curve\n"
+        << "  adaptive_fraction: " << d.mesh.adaptive_fraction
+        << " # (0, 1) of the cells refined per cycle, those with the largest indicators\n"
+        << "  adaptive_increments: " << d.mesh.adaptive_increments
+        << "  # 1..1000 increments of the push on each marking mesh (the curve: n_increments)\n"
+        << "  adaptive_target_error: " << d.mesh.adaptive_target_error
+        << "  # [0, 0.5) > 0: refine until the estimated error of F(delta_max) is at most this\n";
+    }
+
+    /// solver:
+    void write_solver_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "solver:\n"
+        << "  linear: automatic   # automatic | cg_amg | direct\n"
+        << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
+        << "  max_linear_iterations: " << d.solver.max_linear_iterations << "\n"
+        << "  direct_below_dofs: " << d.solver.direct_below_dofs
+        << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n";
+    }
+
+    /// verification:
+    void write_verification_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "verification:         # study hertz / patch: block [0,W]x[-H,0]x[0,W] (quarter)\n"
+        << "  sphere_radius: " << d.verification.sphere_radius << "  # [m] hertz sphere radius\n"
+        << "  block_width: " << d.verification.block_width << "    # [m] W\n"
+        << "  block_height: " << d.verification.block_height << "   # [m] H\n"
+        << "  n_cells: " << d.verification.n_cells << "            # coarse cells per edge\n"
+        << "  contact_refinements: " << d.verification.contact_refinements << "\n"
+        << "  refine_radius: " << d.verification.refine_radius
+        << "  # [m] hertz: cells within this distance of the contact point are refined\n"
+        << "  indenter: " << (d.verification.deformable_indenter ? "deformable" : "rigid")
+        << "      # rigid | deformable (same material, non-matching mesh, dual mortar)\n"
+        << "  indenter_n_cells: " << d.verification.indenter_n_cells
+        << "    # coarse cells per edge of a deformable indenter\n"
+        << "  indenter_height: " << d.verification.indenter_height
+        << "  # [m] height of a deformable indenter (its top is pushed by delta)\n";
+    }
+
+    /// impact:
+    void write_impact_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "impact:               # study impact (paper 3.2): the journal (mass rho*pi*R_J^2*L_J; rigid\n"
+        << "                      #   unless loading.journal is end_faces, axis_line or core: deformable and\n"
+        << "                      #   free, its quasi-static curve pushed that way) starts at first\n"
+        << "                      #   touch moving toward the bearing (-y)\n"
+        << "  velocity: " << d.impact.velocity << "       # [m/s] speed at first touch, (0, 100)\n"
+        << "  alpha: " << d.impact.alpha << "         # HHT alpha in [-1/3, 0] (0: trapezoidal rule)\n"
+        << "  steps_per_period: " << d.impact.steps_per_period
+        << "  # >= 10: dt = T_c/this, T_c = 2 pi sqrt(m_J/k_c), k_c measured\n"
+        << "  # time_step: 1.0e-6   # [s] > 0: a fixed dt instead\n"
+        << "  # end_time: 1.0e-3    # [s] > 0: run to this time, past the separation (default:\n"
+        << "                      #   stop once the journal has left, at the latest at 4 T_c)\n"
+        << "  # journal_mass: 0.5     # [kg] > 0: the rigid journal's mass instead of rho*pi*R_J^2*L_J\n"
+        << "  max_steps: " << d.impact.max_steps << "      # time steps at most\n"
+        << "  field_stride: " << d.impact.field_stride << "       # VTU fields every this many steps\n"
+        << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | consistent\n";
+    }
+
+    /// rolling:
+    void write_rolling_defaults(std::ostream &o, const FeScene &d)
+    {
+      o << "rolling:              # study rolling (paper 3.4): the bearing turns, the journal (rigid;\n"
+        << "                      #   loading.journal core: deformable, its core clamped in its own\n"
+        << "                      #   turning frame) is pushed to loading.delta_max and spun by\n"
+        << "                      #   friction alone\n"
+        << "  omega_B: " << d.rolling.omega_B << "       # [rad/s] the bearing's spin, (0, 1e4)\n"
+        << "  ramp_time: " << d.rolling.ramp_time << "      # [s] the push reaches delta_max at this time\n"
+        << "  # end_time: 0.3       # [s] >= ramp_time: hold delta_max until then (default ramp_time)\n"
+        << "  n_steps: " << d.rolling.n_steps << "          # time steps over the run, >= 4\n"
+        << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
+        << "                      #   radial study's support, turning with the bearing)\n"
+        << "  # journal_inertia: 1.8e-6  # [kg m^2] > 0: instead of 1/2 m R_J^2 of the journal\n"
+        << "  max_spin_iterations: " << d.rolling.max_spin_iterations
+        << "   # torque-balance evaluations per step at most\n"
+        << "  max_newton_iterations: " << d.rolling.max_newton_iterations
+        << " # material Newton iterations per evaluation at most\n"
+        << "  field_stride: " << d.rolling.field_stride << "     # VTU fields every this many steps\n";
+    }
+
+    /// output, and the optional sweep block (commented out)
+    void write_output_defaults(std::ostream &o)
+    {
+      o << "output:\n"
+        << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
+        << "# sweep:              # optional: one run (and output folder) per value\n"
+        << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n"
+        << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n"
+        << "#   velocity: [0.05, 0.08, 0.10, 0.15, 0.20]         # [m/s] (study impact)\n";
+    }
+  } // namespace
+
   std::string default_scene_yaml()
   {
     const FeScene d;
     std::ostringstream o;
     o.precision(10);
-    o << "# fe_stage scene, schema clearjoint.fe/1. SI units everywhere (m, Pa, kg/m^3).\n"
-      << "# Every key is optional except schema; shown here with its default.\n"
-      << "schema: clearjoint.fe/1\n"
-      << "study: radial            # radial | misalignment | impact | rolling | hertz | patch\n"
-      << "                         #   (verification); rolling changes the defaults of\n"
-      << "                         #   material.model (elastoplastic), contact.mu (0.3),\n"
-      << "                         #   loading.delta_max (1.0e-3) and loading.max_cuts (10)\n"
-      << "full_model: false        # false: symmetry planes (radial: x = 0 and z = 0, quarter\n"
-      << "                         #   model; misalignment: x = 0 only, half model)\n"
-      << "geometry:\n"
-      << "  R_B: " << d.geometry.R_B << "   # [m] bearing inner radius, (0, inf)\n"
-      << "  t_B: " << d.geometry.t_B << "   # [m] bearing thickness, (0, inf)\n"
-      << "  L_B: " << d.geometry.L_B << "   # [m] bearing length, (0, inf)\n"
-      << "  c_r: " << d.geometry.c_r << "  # [m] radial clearance, (0, R_B); R_J = R_B - c_r\n"
-      << "  c_a: " << d.geometry.c_a << "   # [m] axial clearance, (0, L_B/2); L_J = L_B - 2 c_a\n"
-      << "  # mesh: bearing.msh  # optional Gmsh MSH 2.2 mesh with the physical groups of\n"
-      << "                     #   docs/geometry.md (relative to the scene); the numbers above\n"
-      << "                     #   must describe the same joint\n"
-      << "misalignment:          # study misalignment (paper 3.3): journal tilted in the y-z plane\n"
-      << "  theta_deg: " << d.misalignment.theta_deg
-      << "        # [deg] in [0, theta_max] (Eq. 3: 3.2842 deg for the defaults), or theta_max\n"
-      << "material:\n"
-      << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
-      << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
-      << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
-      << "  model: elastic      # elastic | elastoplastic (study rolling only: von Mises,\n"
-      << "                      #   isotropic hardening, radial return)\n"
-      << "  # hardening: [[0, 168.2e6], [0.1, 196.225e6], ...]  # [eps_p, sigma_y Pa] points,\n"
-      << "                      #   linear between, extended beyond the last; default SPEC 2:\n"
-      << "                      #   168.2 + 280.25 eps_p MPa at eps_p = 0, 0.1, ..., 1.0\n"
-      << "  yield_stress: " << d.material.yield_stress
-      << " # [Pa] (0, inf): the yield check reports where von Mises exceeds it\n"
-      << "contact:\n"
-      << "  mu: " << d.contact.mu
-      << "          # [1] Coulomb friction coefficient, [0, 10] (0: frictionless)\n"
-      << "  active_set_scale: " << d.contact.active_set_scale
-      << "  # [1] complementarity constant c = scale*E*h; does not change the solution\n"
-      << "  tangential_scale: " << d.contact.tangential_scale
-      << "  # [1] friction's constant c_T = scale*c; does not change the solution\n"
-      << "  max_iterations: " << d.contact.max_iterations
-      << "   # active-set iterations per increment before the increment is cut\n"
-      << "  pairing: automatic  # automatic | node_to_node | mortar: how a deformable journal\n"
-      << "                      #   meets the bore (automatic = mortar; node_to_node: the\n"
-      << "                      #   generated joint's nodes on common rays)\n"
-      << "  mortar_slave: automatic  # automatic | bore | journal: the mortar surface that\n"
-      << "                      #   carries the constraints (journal: loading.journal core\n"
-      << "                      #   only); automatic = journal for the tilted journal of\n"
-      << "                      #   study misalignment, bore otherwise\n"
-      << "  sliding: small      # small | finite: the mortar search once in the reference\n"
-      << "                      #   configuration, or again at the deformed surfaces after\n"
-      << "                      #   every increment (for sliding of a contact cell or more)\n"
-      << "loading:\n"
-      << "  journal: end_faces  # end_faces | axis_line (the paper's) | core (the inner core\n"
-      << "                      #   r <= R_J/2 moved rigidly) | rigid (rigid journal)\n"
-      << "                      #   study misalignment: rigid (default) or core\n"
-      << "                      #   study rolling: rigid (default) or core (clamped in the\n"
-      << "                      #   journal's own turning frame, elastoplastic)\n"
-      << "  delta_max: " << d.loading.delta_max << "  # [m] push beyond first touch, (0, R_J)\n"
-      << "  n_increments: " << d.loading.n_increments << "   # equal increments of delta\n"
-      << "  max_cuts: " << d.loading.max_cuts << "        # halvings of a failed increment\n"
-      << "  axial_offset: 0     # [m] core journal placed off the axial centre, |.| <= c_a\n"
-      << "  axial_slide: 0      # [m] the core also slides along z over the push (with\n"
-      << "                      #   contact.sliding finite), |offset + slide| <= c_a\n"
-      << "mesh:\n"
-      << "  degree: " << d.mesh.degree << "            # 1 or 2 (Q1/Q2 hexahedra, curved mapping)\n"
-      << "  n_circumferential: " << d.mesh.n_circumferential
-      << "  # coarse cells over 180 degrees (multiple of 4)\n"
-      << "  n_radial: " << d.mesh.n_radial << "          # coarse cells through t_B; 0: one per 2 mm\n"
-      << "  n_axial: " << d.mesh.n_axial << "           # coarse cells over L_B/2\n"
-      << "  global_refinements: " << d.mesh.global_refinements << "\n"
-      << "  contact_refinements: " << d.mesh.contact_refinements
-      << "  # extra refinements of the cells inside the contact window\n"
-      << "  contact_window_deg: " << d.mesh.contact_window_deg
-      << "  # [deg] half-angle of the refined zone about the bottom\n"
-      << "  adaptive_cycles: " << d.mesh.adaptive_cycles
-      << "   # 0..8 cycles of (curve, Kelly indicator, refine) before the recorded curve\n"
-      << "  adaptive_fraction: " << d.mesh.adaptive_fraction
-      << " # (0, 1) of the cells refined per cycle, those with the largest indicators\n"
-      << "  adaptive_increments: " << d.mesh.adaptive_increments
-      << "  # 1..1000 increments of the push on each marking mesh (the curve: n_increments)\n"
-      << "  adaptive_target_error: " << d.mesh.adaptive_target_error
-      << "  # [0, 0.5) > 0: refine until the estimated error of F(delta_max) is at most this\n"
-      << "solver:\n"
-      << "  linear: automatic   # automatic | cg_amg | direct\n"
-      << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
-      << "  max_linear_iterations: " << d.solver.max_linear_iterations << "\n"
-      << "  direct_below_dofs: " << d.solver.direct_below_dofs
-      << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n"
-      << "verification:         # study hertz / patch: block [0,W]x[-H,0]x[0,W] (quarter)\n"
-      << "  sphere_radius: " << d.verification.sphere_radius << "  # [m] hertz sphere radius\n"
-      << "  block_width: " << d.verification.block_width << "    # [m] W\n"
-      << "  block_height: " << d.verification.block_height << "   # [m] H\n"
-      << "  n_cells: " << d.verification.n_cells << "            # coarse cells per edge\n"
-      << "  contact_refinements: " << d.verification.contact_refinements << "\n"
-      << "  refine_radius: " << d.verification.refine_radius
-      << "  # [m] hertz: cells within this distance of the contact point are refined\n"
-      << "  indenter: " << (d.verification.deformable_indenter ? "deformable" : "rigid")
-      << "      # rigid | deformable (same material, non-matching mesh, dual mortar)\n"
-      << "  indenter_n_cells: " << d.verification.indenter_n_cells
-      << "    # coarse cells per edge of a deformable indenter\n"
-      << "  indenter_height: " << d.verification.indenter_height
-      << "  # [m] height of a deformable indenter (its top is pushed by delta)\n"
-      << "impact:               # study impact (paper 3.2): the journal (mass rho*pi*R_J^2*L_J; rigid\n"
-      << "                      #   unless loading.journal is end_faces, axis_line or core: deformable and\n"
-      << "                      #   free, its quasi-static curve pushed that way) starts at first\n"
-      << "                      #   touch moving toward the bearing (-y)\n"
-      << "  velocity: " << d.impact.velocity << "       # [m/s] speed at first touch, (0, 100)\n"
-      << "  alpha: " << d.impact.alpha << "         # HHT alpha in [-1/3, 0] (0: trapezoidal rule)\n"
-      << "  steps_per_period: " << d.impact.steps_per_period
-      << "  # >= 10: dt = T_c/this, T_c = 2 pi sqrt(m_J/k_c), k_c measured\n"
-      << "  # time_step: 1.0e-6   # [s] > 0: a fixed dt instead\n"
-      << "  # end_time: 1.0e-3    # [s] > 0: run to this time, past the separation (default:\n"
-      << "                      #   stop once the journal has left, at the latest at 4 T_c)\n"
-      << "  # journal_mass: 0.5     # [kg] > 0: the rigid journal's mass instead of rho*pi*R_J^2*L_J\n"
-      << "  max_steps: " << d.impact.max_steps << "      # time steps at most\n"
-      << "  field_stride: " << d.impact.field_stride << "       # VTU fields every this many steps\n"
-      << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | consistent\n"
-      << "rolling:              # study rolling (paper 3.4): the bearing turns, the journal (rigid;\n"
-      << "                      #   loading.journal core: deformable, its core clamped in its own\n"
-      << "                      #   turning frame) is pushed to loading.delta_max and spun by\n"
-      << "                      #   friction alone\n"
-      << "  omega_B: " << d.rolling.omega_B << "       # [rad/s] the bearing's spin, (0, 1e4)\n"
-      << "  ramp_time: " << d.rolling.ramp_time << "      # [s] the push reaches delta_max at this time\n"
-      << "  # end_time: 0.3       # [s] >= ramp_time: hold delta_max until then (default ramp_time)\n"
-      << "  n_steps: " << d.rolling.n_steps << "          # time steps over the run, >= 4\n"
-      << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
-      << "                      #   radial study's support, turning with the bearing)\n"
-      << "  # journal_inertia: 1.8e-6  # [kg m^2] > 0: instead of 1/2 m R_J^2 of the journal\n"
-      << "  max_spin_iterations: " << d.rolling.max_spin_iterations
-      << "   # torque-balance evaluations per step at most\n"
-      << "  max_newton_iterations: " << d.rolling.max_newton_iterations
-      << " # material Newton iterations per evaluation at most\n"
-      << "  field_stride: " << d.rolling.field_stride << "     # VTU fields every this many steps\n"
-      << "output:\n"
-      << "  fields: true        # VTU/PVTU + PVD fields in DIR/fields\n"
-      << "# sweep:              # optional: one run (and output folder) per value\n"
-      << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n"
-      << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n"
-      << "#   velocity: [0.05, 0.08, 0.10, 0.15, 0.20]         # [m/s] (study impact)\n";
+    write_top_defaults(o);
+    write_geometry_defaults(o, d);
+    write_misalignment_defaults(o, d);
+    write_material_defaults(o, d);
+    write_contact_defaults(o, d);
+    write_loading_defaults(o, d);
+    write_mesh_defaults(o, d);
+    write_solver_defaults(o, d);
+    write_verification_defaults(o, d);
+    write_impact_defaults(o, d);
+    write_rolling_defaults(o, d);
+    write_output_defaults(o);
     return o.str();
   }
 
