@@ -1,23 +1,47 @@
-#include "fe_stage/rolling_output.h"
+#include "fe_stage/results/rolling_output.h"
 
 #include "common/error.h"
 
 namespace clearjoint::fe
 {
-  Table rolling_history_table()
+  Columns<RollingStepRecord> rolling_history_columns()
   {
-    return {{"time", "delta", "force_normal", "force_tangential", "phi", "gamma", "phi_rate",
-             "gamma_rate", "slip_speed", "torque_drive", "torque_journal", "work_drive",
-             "work_push", "elastic_energy", "plastic_dissipation", "friction_dissipation",
-             "kinetic_energy", "energy_balance_error", "work_frame", "frame_balance_error",
-             "max_plastic_strain", "max_strain",
-             "plastic_volume", "active_contact_points", "slipping_contact_points",
-             "spin_iterations", "newton_iterations", "contact_iterations", "linear_iterations",
-             "cuts", "phi_paper", "gamma_paper", "phi_rate_paper", "gamma_rate_paper",
-             "wall_time"},
-            {"s", "m", "N", "N", "rad", "rad", "rad/s", "rad/s", "m/s", "N m", "N m", "J", "J",
-             "J", "J", "J", "J", "J", "J", "J", "1", "1", "m^3", "1", "1", "1", "1", "1", "1", "1", "rad",
-             "rad", "rad/s", "rad/s", "s"}};
+    using R = RollingStepRecord;
+    return {{"time", "s", [](const R &r) { return r.time; }},
+            {"delta", "m", [](const R &r) { return r.delta; }},
+            {"force_normal", "N", [](const R &r) { return r.force_normal; }},
+            {"force_tangential", "N", [](const R &r) { return r.force_tangential; }},
+            {"phi", "rad", [](const R &r) { return r.phi; }},
+            {"gamma", "rad", [](const R &r) { return r.gamma; }},
+            {"phi_rate", "rad/s", [](const R &r) { return r.phi_rate; }},
+            {"gamma_rate", "rad/s", [](const R &r) { return r.gamma_rate; }},
+            {"slip_speed", "m/s", [](const R &r) { return r.slip_speed; }},
+            {"torque_drive", "N m", [](const R &r) { return r.torque_drive; }},
+            {"torque_journal", "N m", [](const R &r) { return r.torque_journal; }},
+            {"work_drive", "J", [](const R &r) { return r.work_drive; }},
+            {"work_push", "J", [](const R &r) { return r.work_push; }},
+            {"elastic_energy", "J", [](const R &r) { return r.elastic_energy; }},
+            {"plastic_dissipation", "J", [](const R &r) { return r.plastic_dissipation; }},
+            {"friction_dissipation", "J", [](const R &r) { return r.friction_dissipation; }},
+            {"kinetic_energy", "J", [](const R &r) { return r.kinetic_energy; }},
+            {"energy_balance_error", "J", [](const R &r) { return r.energy_balance_error; }},
+            {"work_frame", "J", [](const R &r) { return r.work_frame; }},
+            {"frame_balance_error", "J", [](const R &r) { return r.frame_balance_error; }},
+            {"max_plastic_strain", "1", [](const R &r) { return r.max_plastic_strain; }},
+            {"max_strain", "1", [](const R &r) { return r.max_strain; }},
+            {"plastic_volume", "m^3", [](const R &r) { return r.plastic_volume; }},
+            {"active_contact_points", "1", [](const R &r) { return double(r.n_active); }},
+            {"slipping_contact_points", "1", [](const R &r) { return double(r.n_slip); }},
+            {"spin_iterations", "1", [](const R &r) { return double(r.spin_iterations); }},
+            {"newton_iterations", "1", [](const R &r) { return double(r.newton_iterations); }},
+            {"contact_iterations", "1", [](const R &r) { return double(r.contact_iterations); }},
+            {"linear_iterations", "1", [](const R &r) { return double(r.linear_iterations); }},
+            {"cuts", "1", [](const R &r) { return double(r.cuts); }},
+            {"phi_paper", "rad", [](const R &r) { return r.phi_paper; }},
+            {"gamma_paper", "rad", [](const R &r) { return r.gamma_paper; }},
+            {"phi_rate_paper", "rad/s", [](const R &r) { return r.phi_rate_paper; }},
+            {"gamma_rate_paper", "rad/s", [](const R &r) { return r.gamma_rate_paper; }},
+            {"wall_time", "s", [](const R &r) { return r.wall_time; }}};
   }
 
   std::vector<std::string> rolling_history_comments(const FeScene &scene)
@@ -50,35 +74,28 @@ namespace clearjoint::fe
       "*_rate_paper = Eqs. 7-8 (angle / t); phi, gamma = the exact angles"};
   }
 
-  std::vector<double> rolling_history_row(const RollingStepRecord &r)
+  Columns<StrainProfilePoint> strain_profile_columns()
   {
-    return {r.time, r.delta, r.force_normal, r.force_tangential, r.phi, r.gamma, r.phi_rate,
-            r.gamma_rate, r.slip_speed, r.torque_drive, r.torque_journal, r.work_drive,
-            r.work_push, r.elastic_energy, r.plastic_dissipation, r.friction_dissipation,
-            r.kinetic_energy, r.energy_balance_error, r.work_frame, r.frame_balance_error,
-            r.max_plastic_strain, r.max_strain,
-            r.plastic_volume, double(r.n_active), double(r.n_slip), double(r.spin_iterations),
-            double(r.newton_iterations), double(r.contact_iterations),
-            double(r.linear_iterations), double(r.cuts), r.phi_paper, r.gamma_paper,
-            r.phi_rate_paper, r.gamma_rate_paper, r.wall_time};
+    using P = StrainProfilePoint;
+    return {{"angle", "rad", [](const P &p) { return p.angle; }},
+            {"arc", "m", [](const P &p) { return p.arc; }},
+            {"strain_radial", "1", [](const P &p) { return p.strain_radial; }},
+            {"strain_tangential", "1", [](const P &p) { return p.strain_tangential; }},
+            {"strain_axial", "1", [](const P &p) { return p.strain_axial; }},
+            {"plastic_strain", "1", [](const P &p) { return p.plastic_strain; }},
+            {"von_mises", "Pa", [](const P &p) { return p.von_mises; }},
+            {"body", "1", [](const P &p) { return double(p.body); }}};
   }
 
-  std::vector<double> rolling_history_start()
+  std::vector<std::string> strain_profile_comments()
   {
-    return std::vector<double>(rolling_history_table().columns.size(), 0.0);
-  }
-
-  Table strain_profile_table()
-  {
-    return {{"angle", "arc", "strain_radial", "strain_tangential", "strain_axial",
-             "plastic_strain", "von_mises", "body"},
-            {"rad", "m", "1", "1", "1", "1", "Pa", "1"}};
-  }
-
-  std::vector<double> strain_profile_row(const StrainProfilePoint &p)
-  {
-    return {p.angle, p.arc, p.strain_radial, p.strain_tangential, p.strain_axial,
-            p.plastic_strain, p.von_mises, double(p.body)};
+    return {"clearjoint fe_stage: the bore's (body 0) and a deformable "
+            "journal's (body 1) strains across the contact zone at the end "
+            "of the rolling study (paper Fig. 12), axial mid-plane, angle "
+            "from the contact point about the body's own axis "
+            "(counter-clockwise, fixed frame), arc = R_B or R_J times it; "
+            "strains are total, von_mises from the cell's mean plastic "
+            "strain"};
   }
 
   nlohmann::json rolling_summary_json(const RollingSummary &s, const RollingStepRecord *last)

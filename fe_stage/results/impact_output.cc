@@ -1,22 +1,30 @@
-#include "fe_stage/impact_output.h"
+#include "fe_stage/results/impact_output.h"
 
 #include "common/error.h"
 
 namespace clearjoint::fe
 {
-  std::vector<std::string> impact_history_columns()
+  Columns<DynamicStepRecord> impact_history_columns()
   {
-    return {"time", "time_step", "delta", "delta_rate", "force", "force_support",
-            "kinetic_journal", "kinetic_bearing", "strain_bearing", "strain_journal",
-            "work_contact",
-            "numerical_dissipation", "journal_iterations", "contact_iterations",
-            "linear_iterations", "active_contact_points", "cuts", "wall_time"};
-  }
-
-  std::vector<std::string> impact_history_units()
-  {
-    return {"s", "s", "m", "m/s", "N", "N", "J", "J", "J", "J", "J", "J", "1", "1", "1", "1", "1",
-            "s"};
+    using R = DynamicStepRecord;
+    return {{"time", "s", [](const R &r) { return r.time; }},
+            {"time_step", "s", [](const R &r) { return r.time_step; }},
+            {"delta", "m", [](const R &r) { return r.delta; }},
+            {"delta_rate", "m/s", [](const R &r) { return r.delta_rate; }},
+            {"force", "N", [](const R &r) { return r.force; }},
+            {"force_support", "N", [](const R &r) { return r.force_support; }},
+            {"kinetic_journal", "J", [](const R &r) { return r.kinetic_journal; }},
+            {"kinetic_bearing", "J", [](const R &r) { return r.kinetic_bearing; }},
+            {"strain_bearing", "J", [](const R &r) { return r.strain_bearing; }},
+            {"strain_journal", "J", [](const R &r) { return r.strain_journal; }},
+            {"work_contact", "J", [](const R &r) { return r.work_contact; }},
+            {"numerical_dissipation", "J", [](const R &r) { return r.numerical_dissipation; }},
+            {"journal_iterations", "1", [](const R &r) { return double(r.journal_iterations); }},
+            {"contact_iterations", "1", [](const R &r) { return double(r.contact_iterations); }},
+            {"linear_iterations", "1", [](const R &r) { return double(r.linear_iterations); }},
+            {"active_contact_points", "1", [](const R &r) { return double(r.n_active); }},
+            {"cuts", "1", [](const R &r) { return double(r.cuts); }},
+            {"wall_time", "s", [](const R &r) { return r.wall_time; }}};
   }
 
   std::vector<std::string> impact_history_comments(const FeScene &scene)
@@ -43,75 +51,50 @@ namespace clearjoint::fe
                                std::string("frictionless contact (mu = 0)")};
   }
 
-  std::vector<double> impact_history_row(const DynamicStepRecord &r)
-  {
-    return {r.time,
-            r.time_step,
-            r.delta,
-            r.delta_rate,
-            r.force,
-            r.force_support,
-            r.kinetic_journal,
-            r.kinetic_bearing,
-            r.strain_bearing,
-            r.strain_journal,
-            r.work_contact,
-            r.numerical_dissipation,
-            double(r.journal_iterations),
-            double(r.contact_iterations),
-            double(r.linear_iterations),
-            double(r.n_active),
-            double(r.cuts),
-            r.wall_time};
-  }
-
-  std::vector<double> impact_history_start(const FeScene &scene)
+  DynamicStepRecord impact_history_start(const FeScene &scene)
   {
     const double m_J = rigid_journal_mass(scene);
     const double v = scene.impact.velocity;
-    std::vector<double> row(impact_history_columns().size(), 0.0);
-    row[3] = v;
-    row[6] = 0.5 * m_J * v * v;
-    return row;
+    DynamicStepRecord start;
+    start.delta_rate = v;
+    start.kinetic_journal = 0.5 * m_J * v * v;
+    return start;
   }
 
   // The columns impact_compare (mbd_stage) reads: v_in_m_per_s, peak_force_N, delta_max_m,
   // contact_duration_s, restitution, journal_mass_kg.
-  std::vector<std::string> impact_sweep_columns()
+  Columns<ImpactSummary> impact_sweep_columns()
   {
-    return {"v_in_m_per_s", "peak_force_N", "delta_max_m", "contact_duration_s", "restitution",
-            "journal_mass_kg", "time_of_peak_s", "delta_at_peak_m",
-            "quasi_static_force_at_peak_delta_N", "dynamic_gap", "bearing_energy_left_J",
-            "kinetic_initial_J", "numerical_dissipation_J", "work_contact_J", "time_step_s",
-            "contact_period_s", "separated", "n_steps"};
+    using S = ImpactSummary;
+    return {{"v_in_m_per_s", "m/s", [](const S &s) { return s.velocity_in; }},
+            {"peak_force_N", "N", [](const S &s) { return s.peak_force; }},
+            {"delta_max_m", "m", [](const S &s) { return s.delta_max; }},
+            {"contact_duration_s", "s", [](const S &s) { return s.contact_duration; }},
+            {"restitution", "1", [](const S &s) { return s.restitution; }},
+            {"journal_mass_kg", "kg", [](const S &s) { return s.journal_mass; }},
+            {"time_of_peak_s", "s", [](const S &s) { return s.time_of_peak; }},
+            {"delta_at_peak_m", "m", [](const S &s) { return s.delta_at_peak; }},
+            {"quasi_static_force_at_peak_delta_N", "N",
+             [](const S &s) { return s.quasi_static_force_at_peak_delta; }},
+            {"dynamic_gap", "1", [](const S &s) { return s.dynamic_gap; }},
+            {"bearing_energy_left_J", "J", [](const S &s) { return s.bearing_energy_left; }},
+            {"kinetic_initial_J", "J", [](const S &s) { return s.kinetic_initial; }},
+            {"numerical_dissipation_J", "J", [](const S &s) { return s.numerical_dissipation; }},
+            {"work_contact_J", "J", [](const S &s) { return s.work_contact; }},
+            {"time_step_s", "s", [](const S &s) { return s.time_step; }},
+            {"contact_period_s", "s", [](const S &s) { return s.contact_period; }},
+            {"separated", "1", [](const S &s) { return s.separated ? 1.0 : 0.0; }},
+            {"n_steps", "1", [](const S &s) { return double(s.n_steps); }}};
   }
 
-  std::vector<std::string> impact_sweep_units()
+  std::vector<std::string> impact_sweep_comments()
   {
-    return {"m/s", "N", "m", "s", "1", "kg", "s", "m", "N", "1", "J", "J", "J", "J", "s", "s",
-            "1", "1"};
-  }
-
-  std::vector<double> impact_sweep_row(const ImpactSummary &s)
-  {
-    return {s.velocity_in,
-            s.peak_force,
-            s.delta_max,
-            s.contact_duration,
-            s.restitution,
-            s.journal_mass,
-            s.time_of_peak,
-            s.delta_at_peak,
-            s.quasi_static_force_at_peak_delta,
-            s.dynamic_gap,
-            s.bearing_energy_left,
-            s.kinetic_initial,
-            s.numerical_dissipation,
-            s.work_contact,
-            s.time_step,
-            s.contact_period,
-            s.separated ? 1.0 : 0.0,
-            double(s.n_steps)};
+    return {"fe_stage impact sweep (paper 3.2); one folder per velocity",
+            "dynamic_gap = peak force / quasi-static force at the same delta - 1; "
+            "restitution = journal speed away / speed in (0 if it had not left the "
+            "bearing: separated = 0)",
+            "bearing_energy_left = kinetic + strain energy of the bearing's vibration "
+            "when the journal left"};
   }
 
   nlohmann::json impact_summary_json(const ImpactSummary &s)
