@@ -251,9 +251,11 @@ namespace
   fe::FeScene read_scene(CommandLine &cl, const bool root)
   {
     if (cl.scene_path.empty())
-      throw InputError("", "scene", "(none)", "a scene file", "usage: fe_stage SCENE.yaml --output DIR");
+      throw InputError("", "scene", "(none)", "a scene file",
+                       "usage: fe_stage SCENE.yaml --output DIR");
     if (cl.output_dir.empty() && !cl.check)
-      throw InputError("", "--output", "(none)", "a directory", "usage: fe_stage SCENE.yaml --output DIR");
+      throw InputError("", "--output", "(none)", "a directory",
+                       "usage: fe_stage SCENE.yaml --output DIR");
     nlohmann::json scene_doc = read_structured_file(cl.scene_path);
     if (!cl.preset.name.empty())
       apply_preset(scene_doc, cl.preset, root);
@@ -389,7 +391,7 @@ namespace
     publish(cl.output_dir, cl.final_dir);
     return complete ? exit_success : exit_numerical_error;
   }
-} // namespace
+}  // namespace
 
 int main(int argc, char **argv)
 {

@@ -6,7 +6,10 @@
 
 namespace clearjoint::fe
 {
-  std::string default_presets_file() { return std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml"; }
+  std::string default_presets_file()
+  {
+    return std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml";
+  }
 
   PresetOverrides read_fe_preset(const std::string &pipeline_file, const std::string &name)
   {
@@ -55,4 +58,4 @@ namespace clearjoint::fe
     for (const auto &[key, value] : overrides)
       set_key_path(scene, key, value, pipeline_file);
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

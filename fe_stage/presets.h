@@ -28,4 +28,4 @@ namespace clearjoint::fe
   /// Applies the overrides to a scene document (before it is read and validated).
   void apply_preset(nlohmann::json &scene, const PresetOverrides &overrides,
                     const std::string &pipeline_file);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

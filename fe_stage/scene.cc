@@ -17,12 +17,18 @@ namespace clearjoint::fe
   {
     switch (s)
       {
-        case Study::radial: return "radial";
-        case Study::misalignment: return "misalignment";
-        case Study::hertz: return "hertz";
-        case Study::patch: return "patch";
-        case Study::impact: return "impact";
-        case Study::rolling: return "rolling";
+        case Study::radial:
+          return "radial";
+        case Study::misalignment:
+          return "misalignment";
+        case Study::hertz:
+          return "hertz";
+        case Study::patch:
+          return "patch";
+        case Study::impact:
+          return "impact";
+        case Study::rolling:
+          return "rolling";
       }
     return "?";
   }
@@ -31,10 +37,14 @@ namespace clearjoint::fe
   {
     switch (l)
       {
-        case JournalLoading::end_faces: return "end_faces";
-        case JournalLoading::axis_line: return "axis_line";
-        case JournalLoading::core: return "core";
-        case JournalLoading::rigid: return "rigid";
+        case JournalLoading::end_faces:
+          return "end_faces";
+        case JournalLoading::axis_line:
+          return "axis_line";
+        case JournalLoading::core:
+          return "core";
+        case JournalLoading::rigid:
+          return "rigid";
       }
     return "?";
   }
@@ -43,9 +53,12 @@ namespace clearjoint::fe
   {
     switch (p)
       {
-        case Contact::Pairing::automatic: return "automatic";
-        case Contact::Pairing::node_to_node: return "node_to_node";
-        case Contact::Pairing::mortar: return "mortar";
+        case Contact::Pairing::automatic:
+          return "automatic";
+        case Contact::Pairing::node_to_node:
+          return "node_to_node";
+        case Contact::Pairing::mortar:
+          return "mortar";
       }
     return "?";
   }
@@ -59,9 +72,12 @@ namespace clearjoint::fe
   {
     switch (s)
       {
-        case Contact::MortarSlave::automatic: return "automatic";
-        case Contact::MortarSlave::bore: return "bore";
-        case Contact::MortarSlave::journal: return "journal";
+        case Contact::MortarSlave::automatic:
+          return "automatic";
+        case Contact::MortarSlave::bore:
+          return "bore";
+        case Contact::MortarSlave::journal:
+          return "journal";
       }
     return "?";
   }
@@ -183,10 +199,10 @@ namespace clearjoint::fe
     void read_contact(StrictObject c, Contact &C)
     {
       C.mu = c.number_or("mu", C.mu, Range::closed(0.0, 10.0, ""));
-      C.active_set_scale = c.number_or("active_set_scale", C.active_set_scale,
-                                       Range::open(0.0, 1.0e12, ""));
-      C.tangential_scale = c.number_or("tangential_scale", C.tangential_scale,
-                                       Range::open(0.0, 1.0e12, ""));
+      C.active_set_scale =
+        c.number_or("active_set_scale", C.active_set_scale, Range::open(0.0, 1.0e12, ""));
+      C.tangential_scale =
+        c.number_or("tangential_scale", C.tangential_scale, Range::open(0.0, 1.0e12, ""));
       C.max_iterations = uint_or(c, "max_iterations", C.max_iterations, 1, 10000);
       const std::string pairing =
         c.string_or("pairing", "automatic", {"automatic", "node_to_node", "mortar"});
@@ -273,8 +289,7 @@ namespace clearjoint::fe
         v.string_or("indenter", V.deformable_indenter ? "deformable" : "rigid",
                     {"rigid", "deformable"}) == "deformable";
       V.indenter_n_cells = uint_or(v, "indenter_n_cells", V.indenter_n_cells, 1, 256);
-      V.indenter_height =
-        v.number_or("indenter_height", V.indenter_height, Range::positive("m"));
+      V.indenter_height = v.number_or("indenter_height", V.indenter_height, Range::positive("m"));
       v.finish();
     }
 
@@ -328,10 +343,10 @@ namespace clearjoint::fe
       if (o.has("end_time"))
         R.end_time = o.number("end_time", Range::open(0.0, 1.0e6, "s"));
       R.n_steps = uint_or(o, "n_steps", R.n_steps, 4, 1000000);
-      R.support = o.string_or("support", "outer_surface", {"outer_surface", "upper_half"}) ==
-                      "upper_half" ?
-                    Rolling::Support::upper_half :
-                    Rolling::Support::outer_surface;
+      R.support =
+        o.string_or("support", "outer_surface", {"outer_surface", "upper_half"}) == "upper_half" ?
+          Rolling::Support::upper_half :
+          Rolling::Support::outer_surface;
       if (o.has("journal_inertia"))
         R.journal_inertia = o.number("journal_inertia", Range::open(0.0, 1.0e6, "kg m^2"));
       R.max_spin_iterations = uint_or(o, "max_spin_iterations", R.max_spin_iterations, 1, 10000);
@@ -373,7 +388,8 @@ namespace clearjoint::fe
       if (s.sweep_t_B.empty() && s.sweep_theta_deg.empty() && s.sweep_velocity.empty())
         w.fail("t_B", "(none)", "sweep needs t_B [m], theta_deg [deg] or velocity [m/s]");
       if (int(!s.sweep_t_B.empty()) + int(!s.sweep_theta_deg.empty()) +
-            int(!s.sweep_velocity.empty()) > 1)
+            int(!s.sweep_velocity.empty()) >
+          1)
         w.fail(s.sweep_velocity.empty() ? "theta_deg" : "velocity", "(given with another)",
                "one swept parameter per scene");
       if (!s.sweep_velocity.empty() && s.study != Study::impact)
@@ -382,7 +398,7 @@ namespace clearjoint::fe
         w.fail("theta_deg", "(list)", "study misalignment only");
       w.finish();
     }
-  } // namespace
+  }  // namespace
 
   FeScene scene_from_json(const nlohmann::json &j, const std::string &source)
   {
@@ -454,8 +470,7 @@ namespace clearjoint::fe
 
     void validate_mesh(const FeScene &s)
     {
-      if (is_joint_study(s.study) && s.full_model &&
-          s.mesh.n_circumferential < 8)
+      if (is_joint_study(s.study) && s.full_model && s.mesh.n_circumferential < 8)
         throw InputError(s.source_file, "mesh.n_circumferential",
                          std::to_string(s.mesh.n_circumferential), ">= 8 for the full model");
     }
@@ -486,8 +501,8 @@ namespace clearjoint::fe
                          "Hilber-Hughes-Taylor alpha; 0 = trapezoidal rule, no numerical "
                          "damping");
       if (I.steps_per_period < 10)
-        throw InputError(f, "impact.steps_per_period", std::to_string(I.steps_per_period),
-                         ">= 10", "the time step must resolve the contact period (dt/T <= 1/10)");
+        throw InputError(f, "impact.steps_per_period", std::to_string(I.steps_per_period), ">= 10",
+                         "the time step must resolve the contact period (dt/T <= 1/10)");
       if (!(I.time_step >= 0.0))
         throw InputError(f, "impact.time_step", format_value(I.time_step), "(0, inf) s");
       if (!(I.end_time >= 0.0))
@@ -516,8 +531,7 @@ namespace clearjoint::fe
         throw InputError(f, "rolling.end_time", format_value(R.end_time),
                          "[ramp_time, inf) s = [" + format_value(R.ramp_time) + ", inf) s",
                          "the run holds delta_max after the ramp; it cannot stop inside it");
-      if (s.loading.journal != JournalLoading::rigid &&
-          s.loading.journal != JournalLoading::core)
+      if (s.loading.journal != JournalLoading::rigid && s.loading.journal != JournalLoading::core)
         throw InputError(f, "loading.journal", to_string(s.loading.journal),
                          "rigid or core for study rolling",
                          "the deformable journal is computed in its own frame, which carries "
@@ -642,13 +656,11 @@ namespace clearjoint::fe
       const std::string &f = s.source_file;
       if (s.loading.axial_offset == 0.0 && s.loading.axial_slide == 0.0)
         return;
-      const char *key = s.loading.axial_offset != 0.0 ? "loading.axial_offset" :
-                                                         "loading.axial_slide";
-      const std::string value = format_value(s.loading.axial_offset != 0.0 ?
-                                               s.loading.axial_offset :
-                                               s.loading.axial_slide);
-      if (s.study != Study::radial || s.loading.journal != JournalLoading::core ||
-          !G.mesh.empty())
+      const char *key =
+        s.loading.axial_offset != 0.0 ? "loading.axial_offset" : "loading.axial_slide";
+      const std::string value = format_value(
+        s.loading.axial_offset != 0.0 ? s.loading.axial_offset : s.loading.axial_slide);
+      if (s.study != Study::radial || s.loading.journal != JournalLoading::core || !G.mesh.empty())
         throw InputError(f, key, value, "0 unless study radial with loading.journal core",
                          "the journal is moved axially at its core; a generated mesh only");
       if (s.contact.mortar_slave == Contact::MortarSlave::bore ||
@@ -659,8 +671,8 @@ namespace clearjoint::fe
       const double c_a = G.c_a * (1.0 + 1e-12);
       if (std::abs(s.loading.axial_offset) > c_a)
         throw InputError(f, "loading.axial_offset", format_value(s.loading.axial_offset),
-                         "[-c_a, c_a] = [-" + format_value(G.c_a) + ", " +
-                           format_value(G.c_a) + "] m",
+                         "[-c_a, c_a] = [-" + format_value(G.c_a) + ", " + format_value(G.c_a) +
+                           "] m",
                          "the journal must stay within the bore");
       if (std::abs(s.loading.axial_offset + s.loading.axial_slide) > c_a)
         throw InputError(f, "loading.axial_slide", format_value(s.loading.axial_slide),
@@ -698,8 +710,7 @@ namespace clearjoint::fe
       if (s.contact.mortar_slave == Contact::MortarSlave::journal &&
           s.loading.journal != JournalLoading::core)
         throw InputError(f, "contact.mortar_slave", "journal",
-                         "bore or automatic with loading.journal " +
-                           to_string(s.loading.journal),
+                         "bore or automatic with loading.journal " + to_string(s.loading.journal),
                          "the slave's nodes carry the contact constraints, and the journal's "
                          "surface nodes are driven by that loading: use loading.journal core");
     }
@@ -711,7 +722,7 @@ namespace clearjoint::fe
         throw InputError(s.source_file, "loading.delta_max", format_value(s.loading.delta_max),
                          "(0, R_J) m", "the push must be smaller than the journal radius");
     }
-  } // namespace
+  }  // namespace
 
   void validate_scene(const FeScene &s)
   {
@@ -829,8 +840,9 @@ namespace clearjoint::fe
                            "the mesh's journal: its journal_contact nodes lie " +
                              format_value(d_lo) + " .. " + format_value(d_hi) +
                              " m from (0, -c_r), not at R_J = R_B - c_r",
-                           "a deformable journal from " + G.mesh + " must be meshed at first "
-                           "touch (journal_offset = c_r in the .geo) with the scene's radius");
+                           "a deformable journal from " + G.mesh +
+                             " must be meshed at first "
+                             "touch (journal_offset = c_r in the .geo) with the scene's radius");
       }
     // The tilted journal breaks the z = 0 symmetry: the bearing must reach z < 0.
     double z_lo = std::numeric_limits<double>::max();
@@ -881,7 +893,8 @@ namespace clearjoint::fe
         << "  t_B: " << d.geometry.t_B << "   # [m] bearing thickness, (0, inf)\n"
         << "  L_B: " << d.geometry.L_B << "   # [m] bearing length, (0, inf)\n"
         << "  c_r: " << d.geometry.c_r << "  # [m] radial clearance, (0, R_B); R_J = R_B - c_r\n"
-        << "  c_a: " << d.geometry.c_a << "   # [m] axial clearance, (0, L_B/2); L_J = L_B - 2 c_a\n"
+        << "  c_a: " << d.geometry.c_a
+        << "   # [m] axial clearance, (0, L_B/2); L_J = L_B - 2 c_a\n"
         << "  # mesh: bearing.msh  # optional Gmsh MSH 2.2 mesh with the physical groups of\n"
         << "                     #   docs/geometry.md (relative to the scene); the numbers above\n"
         << "                     #   must describe the same joint\n";
@@ -890,7 +903,8 @@ namespace clearjoint::fe
     /// misalignment:
     void write_misalignment_defaults(std::ostream &o, const FeScene &d)
     {
-      o << "misalignment:          # study misalignment (paper 3.3): journal tilted in the y-z plane\n"
+      o << "misalignment:          # study misalignment (paper 3.3): journal tilted in the y-z "
+           "plane\n"
         << "  theta_deg: " << d.misalignment.theta_deg
         << "        # [deg] in [0, theta_max] (Eq. 3: 3.2842 deg for the defaults), or theta_max\n";
     }
@@ -956,10 +970,12 @@ namespace clearjoint::fe
     void write_mesh_defaults(std::ostream &o, const FeScene &d)
     {
       o << "mesh:\n"
-        << "  degree: " << d.mesh.degree << "            # 1 or 2 (Q1/Q2 hexahedra, curved mapping)\n"
+        << "  degree: " << d.mesh.degree
+        << "            # 1 or 2 (Q1/Q2 hexahedra, curved mapping)\n"
         << "  n_circumferential: " << d.mesh.n_circumferential
         << "  # coarse cells over 180 degrees (multiple of 4)\n"
-        << "  n_radial: " << d.mesh.n_radial << "          # coarse cells through t_B; 0: one per 2 mm\n"
+        << "  n_radial: " << d.mesh.n_radial
+        << "          # coarse cells through t_B; 0: one per 2 mm\n"
         << "  n_axial: " << d.mesh.n_axial << "           # coarse cells over L_B/2\n"
         << "  global_refinements: " << d.mesh.global_refinements << "\n"
         << "  contact_refinements: " << d.mesh.contact_refinements
@@ -1009,33 +1025,44 @@ namespace clearjoint::fe
     /// impact:
     void write_impact_defaults(std::ostream &o, const FeScene &d)
     {
-      o << "impact:               # study impact (paper 3.2): the journal (mass rho*pi*R_J^2*L_J; rigid\n"
-        << "                      #   unless loading.journal is end_faces, axis_line or core: deformable and\n"
-        << "                      #   free, its quasi-static curve pushed that way) starts at first\n"
+      o << "impact:               # study impact (paper 3.2): the journal (mass rho*pi*R_J^2*L_J; "
+           "rigid\n"
+        << "                      #   unless loading.journal is end_faces, axis_line or core: "
+           "deformable and\n"
+        << "                      #   free, its quasi-static curve pushed that way) starts at "
+           "first\n"
         << "                      #   touch moving toward the bearing (-y)\n"
         << "  velocity: " << d.impact.velocity << "       # [m/s] speed at first touch, (0, 100)\n"
-        << "  alpha: " << d.impact.alpha << "         # HHT alpha in [-1/3, 0] (0: trapezoidal rule)\n"
+        << "  alpha: " << d.impact.alpha
+        << "         # HHT alpha in [-1/3, 0] (0: trapezoidal rule)\n"
         << "  steps_per_period: " << d.impact.steps_per_period
         << "  # >= 10: dt = T_c/this, T_c = 2 pi sqrt(m_J/k_c), k_c measured\n"
         << "  # time_step: 1.0e-6   # [s] > 0: a fixed dt instead\n"
         << "  # end_time: 1.0e-3    # [s] > 0: run to this time, past the separation (default:\n"
         << "                      #   stop once the journal has left, at the latest at 4 T_c)\n"
-        << "  # journal_mass: 0.5     # [kg] > 0: the rigid journal's mass instead of rho*pi*R_J^2*L_J\n"
+        << "  # journal_mass: 0.5     # [kg] > 0: the rigid journal's mass instead of "
+           "rho*pi*R_J^2*L_J\n"
         << "  max_steps: " << d.impact.max_steps << "      # time steps at most\n"
-        << "  field_stride: " << d.impact.field_stride << "       # VTU fields every this many steps\n"
-        << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | consistent\n";
+        << "  field_stride: " << d.impact.field_stride
+        << "       # VTU fields every this many steps\n"
+        << "  mass: redistributed   # redistributed (contact nodes massless) | lumped | "
+           "consistent\n";
     }
 
     /// rolling:
     void write_rolling_defaults(std::ostream &o, const FeScene &d)
     {
-      o << "rolling:              # study rolling (paper 3.4): the bearing turns, the journal (rigid;\n"
-        << "                      #   loading.journal core: deformable, its core clamped in its own\n"
+      o << "rolling:              # study rolling (paper 3.4): the bearing turns, the journal "
+           "(rigid;\n"
+        << "                      #   loading.journal core: deformable, its core clamped in its "
+           "own\n"
         << "                      #   turning frame) is pushed to loading.delta_max and spun by\n"
         << "                      #   friction alone\n"
         << "  omega_B: " << d.rolling.omega_B << "       # [rad/s] the bearing's spin, (0, 1e4)\n"
-        << "  ramp_time: " << d.rolling.ramp_time << "      # [s] the push reaches delta_max at this time\n"
-        << "  # end_time: 0.3       # [s] >= ramp_time: hold delta_max until then (default ramp_time)\n"
+        << "  ramp_time: " << d.rolling.ramp_time
+        << "      # [s] the push reaches delta_max at this time\n"
+        << "  # end_time: 0.3       # [s] >= ramp_time: hold delta_max until then (default "
+           "ramp_time)\n"
         << "  n_steps: " << d.rolling.n_steps << "          # time steps over the run, >= 4\n"
         << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
         << "                      #   radial study's support, turning with the bearing)\n"
@@ -1044,7 +1071,8 @@ namespace clearjoint::fe
         << "   # torque-balance evaluations per step at most\n"
         << "  max_newton_iterations: " << d.rolling.max_newton_iterations
         << " # material Newton iterations per evaluation at most\n"
-        << "  field_stride: " << d.rolling.field_stride << "     # VTU fields every this many steps\n";
+        << "  field_stride: " << d.rolling.field_stride
+        << "     # VTU fields every this many steps\n";
     }
 
     /// output, and the optional sweep block (commented out)
@@ -1057,7 +1085,7 @@ namespace clearjoint::fe
         << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n"
         << "#   velocity: [0.05, 0.08, 0.10, 0.15, 0.20]         # [m/s] (study impact)\n";
     }
-  } // namespace
+  }  // namespace
 
   std::string default_scene_yaml()
   {
@@ -1085,16 +1113,22 @@ namespace clearjoint::fe
     j["schema"] = "clearjoint.fe/1";
     j["study"] = to_string(s.study);
     j["full_model"] = s.full_model;
-    j["geometry"] = {{"R_B", s.geometry.R_B}, {"t_B", s.geometry.t_B}, {"L_B", s.geometry.L_B},
-                     {"c_r", s.geometry.c_r}, {"c_a", s.geometry.c_a}};
+    j["geometry"] = {{"R_B", s.geometry.R_B},
+                     {"t_B", s.geometry.t_B},
+                     {"L_B", s.geometry.L_B},
+                     {"c_r", s.geometry.c_r},
+                     {"c_a", s.geometry.c_a}};
     if (!s.geometry.mesh.empty())
       j["geometry"]["mesh"] = s.geometry.mesh;
     if (s.study == Study::misalignment)
       j["misalignment"] = {{"theta_deg", s.misalignment.theta_deg}};
-    j["material"] = {{"E", s.material.E}, {"nu", s.material.nu}, {"rho", s.material.rho},
+    j["material"] = {{"E", s.material.E},
+                     {"nu", s.material.nu},
+                     {"rho", s.material.rho},
                      {"yield_stress", s.material.yield_stress},
                      {"model", s.material.model == Material::Model::elastoplastic ?
-                                 "elastoplastic" : "elastic"}};
+                                 "elastoplastic" :
+                                 "elastic"}};
     if (s.material.model == Material::Model::elastoplastic)
       {
         nlohmann::json h = nlohmann::json::array();
@@ -1109,12 +1143,14 @@ namespace clearjoint::fe
                       {"end_time", rolling_end_time(s)},
                       {"n_steps", s.rolling.n_steps},
                       {"support", s.rolling.support == Rolling::Support::upper_half ?
-                                    "upper_half" : "outer_surface"},
+                                    "upper_half" :
+                                    "outer_surface"},
                       {"journal_inertia", rolling_journal_inertia(s)},
                       {"max_spin_iterations", s.rolling.max_spin_iterations},
                       {"max_newton_iterations", s.rolling.max_newton_iterations},
                       {"field_stride", s.rolling.field_stride}};
-    j["contact"] = {{"mu", s.contact.mu}, {"active_set_scale", s.contact.active_set_scale},
+    j["contact"] = {{"mu", s.contact.mu},
+                    {"active_set_scale", s.contact.active_set_scale},
                     {"max_iterations", s.contact.max_iterations},
                     {"tangential_scale", s.contact.tangential_scale},
                     {"pairing", to_string(s.contact.pairing)},
@@ -1173,4 +1209,4 @@ namespace clearjoint::fe
       }
     return j;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -24,7 +24,15 @@ namespace clearjoint::fe
   /// dynamics (Hilber–Hughes–Taylor α).
   /// `rolling` is its §3.4 study: both bodies' steel elastoplastic, the bearing turning at ω_B,
   /// the journal pushed radially and spun by friction alone (docs/fe.md "Rolling study").
-  enum class Study { radial, misalignment, hertz, patch, impact, rolling };
+  enum class Study
+  {
+    radial,
+    misalignment,
+    hertz,
+    patch,
+    impact,
+    rolling
+  };
 
   /// The studies that model the joint (bearing and journal), not a verification block.
   inline bool is_joint_study(Study s)
@@ -38,9 +46,20 @@ namespace clearjoint::fe
   /// mesh size); `core` moves the journal's inner core r ≤ R_J/2 rigidly, u = (0, −δ, 0), the
   /// outer part deformable; `rigid` replaces the journal by a rigid cylinder (only the bearing
   /// is meshed).
-  enum class JournalLoading { end_faces, axis_line, core, rigid };
+  enum class JournalLoading
+  {
+    end_faces,
+    axis_line,
+    core,
+    rigid
+  };
 
-  enum class LinearSolver { automatic, cg_amg, direct };
+  enum class LinearSolver
+  {
+    automatic,
+    cg_amg,
+    direct
+  };
 
   struct Geometry
   {
@@ -55,7 +74,7 @@ namespace clearjoint::fe
     /// the mesh is generated from the numbers above (which still describe the joint).
     std::string mesh;
 
-    double R_J() const { return R_B - c_r; }  // [m] journal radius
+    double R_J() const { return R_B - c_r; }        // [m] journal radius
     double L_J() const { return L_B - 2.0 * c_a; }  // [m] journal length
   };
 
@@ -67,16 +86,20 @@ namespace clearjoint::fe
 
   struct Material
   {
-    double E = 207.0e9;  // [Pa] Young's modulus
-    double nu = 0.3;     // [1] Poisson's ratio
-    double rho = 7800.0; // [kg/m³] density (kept for the dynamic studies; unused when static)
+    double E = 207.0e9;   // [Pa] Young's modulus
+    double nu = 0.3;      // [1] Poisson's ratio
+    double rho = 7800.0;  // [kg/m³] density (kept for the dynamic studies; unused when static)
     /// [Pa] the yield check's limit: the model stays linear elastic, the run reports where von
     /// Mises exceeds this (SPEC §2's hardening table starts at 168.2 MPa, the paper's steel).
     double yield_stress = 168.2e6;
     /// The constitutive law: `elastic` (every study but rolling) or `elastoplastic` (von Mises
     /// with isotropic hardening from `hardening`, radial return with the consistent tangent;
     /// the rolling study's default and only choice).
-    enum class Model { elastic, elastoplastic } model = Model::elastic;
+    enum class Model
+    {
+      elastic,
+      elastoplastic
+    } model = Model::elastic;
     /// (ε_p [-], σ_y [Pa]) points, linear between them (material/hardening_table.h); empty:
     /// SPEC §2's default table 168.2 + 280.25·ε_p MPa at ε_p = 0, 0.1, …, 1.0.
     std::vector<std::array<double, 2>> hardening;
@@ -98,17 +121,31 @@ namespace clearjoint::fe
     /// How a deformable journal's surface is paired with the bore: node_to_node on the
     /// generated meshes' common rays, or dual mortar (any two meshes). automatic: mortar (the
     /// joint with a deformable journal, generated or Gmsh, and the verification blocks).
-    enum class Pairing { automatic, node_to_node, mortar } pairing = Pairing::automatic;
+    enum class Pairing
+    {
+      automatic,
+      node_to_node,
+      mortar
+    } pairing = Pairing::automatic;
     /// Which joint surface is the mortar slave (carries the constraints): the bore, or the
     /// journal's surface (then the journal must be driven at its core, so that no surface
     /// node is driven). automatic: the journal for the tilted journal of the misalignment
     /// study (its rim bears on the bore), the bore otherwise.
-    enum class MortarSlave { automatic, bore, journal } mortar_slave = MortarSlave::automatic;
+    enum class MortarSlave
+    {
+      automatic,
+      bore,
+      journal
+    } mortar_slave = MortarSlave::automatic;
     /// small: the mortar coupling of two deformable bodies is found once, in the reference
     /// configuration (fine while the surfaces slide much less than a contact cell); finite: it
     /// is found again at the deformed surfaces after every converged increment (Abaqus's
     /// small/finite sliding).
-    enum class Sliding { small, finite } sliding = Sliding::small;
+    enum class Sliding
+    {
+      small,
+      finite
+    } sliding = Sliding::small;
   };
 
   struct Loading
@@ -127,18 +164,18 @@ namespace clearjoint::fe
 
   struct Mesh
   {
-    unsigned int degree = 2;            // polynomial degree of the elements (1 or 2)
+    unsigned int degree = 2;              // polynomial degree of the elements (1 or 2)
     unsigned int n_circumferential = 24;  // coarse cells over 180°
-    unsigned int n_radial = 0;          // coarse cells through t_B; 0: one per 2 mm (at least 1)
-    unsigned int n_axial = 6;           // coarse cells over the half length L_B/2
+    unsigned int n_radial = 0;            // coarse cells through t_B; 0: one per 2 mm (at least 1)
+    unsigned int n_axial = 6;             // coarse cells over the half length L_B/2
     unsigned int global_refinements = 0;
     unsigned int contact_refinements = 1;  // extra refinements inside the contact window
-    double contact_window_deg = 40.0;   // [deg] half-angle of the refined zone about the bottom
+    double contact_window_deg = 40.0;      // [deg] half-angle of the refined zone about the bottom
     /// Adaptive refinement: this many cycles of (curve, Kelly indicator, refine the
     /// adaptive_fraction of the cells with the largest indicators) before the recorded curve;
     /// 0: off. A deformable journal then pairs by dual mortar.
     unsigned int adaptive_cycles = 0;
-    double adaptive_fraction = 0.2;     // [1] of the active cells refined per cycle, (0, 1)
+    double adaptive_fraction = 0.2;  // [1] of the active cells refined per cycle, (0, 1)
     /// Increments of the push on each marking mesh (the cycles before the recorded curve,
     /// which keeps loading.n_increments). Only F(δ_max) and the solution at δ_max are used
     /// there, and they hardly depend on the path: with μ = 0.1, 1 to 20 increments give
@@ -153,7 +190,7 @@ namespace clearjoint::fe
   struct Solver
   {
     LinearSolver linear = LinearSolver::automatic;
-    double tolerance = 1.0e-10;      // [1] relative residual of the linear solve
+    double tolerance = 1.0e-10;  // [1] relative residual of the linear solve
     unsigned int max_linear_iterations = 2000;
     unsigned int direct_below_dofs = 3000;  // `automatic`: direct (Amesos KLU) below this
   };
@@ -166,7 +203,7 @@ namespace clearjoint::fe
     double block_height = 20.0e-3;   // [m] H
     unsigned int n_cells = 4;        // coarse cells per edge
     unsigned int contact_refinements = 4;
-    double refine_radius = 1.0e-3;   // [m] hertz: cells within this distance get refined
+    double refine_radius = 1.0e-3;  // [m] hertz: cells within this distance get refined
     /// The body pressed onto the block: `rigid` (a rigid sphere / flat, step-42's obstacle) or
     /// `deformable` (same material, meshed independently, coupled by dual mortar): for hertz
     /// a body [0,W]×[0,H_i]×[0,W] whose bottom is the Hertz profile y = r²/2R (saturating far
@@ -184,16 +221,16 @@ namespace clearjoint::fe
   /// the run follows it through the deepest penetration until it leaves the bearing.
   struct Impact
   {
-    double velocity = 0.10;   // [m/s] speed at first touch, (0, 100)
-    double alpha = -0.05;     // [1] HHT α in [−1/3, 0] (solve/hht.h says why this default)
+    double velocity = 0.10;  // [m/s] speed at first touch, (0, 100)
+    double alpha = -0.05;    // [1] HHT α in [−1/3, 0] (solve/hht.h says why this default)
     /// Δt = T_c / steps_per_period, T_c = 2π √(m_J/k_c) the period of the journal's mass on
     /// the contact's secant stiffness k_c at the expected δ_max (measured by a static push on
     /// the same mesh): ≥ 10, the Δt/T ≤ 1/10.
     unsigned int steps_per_period = 40;
-    double time_step = 0.0;   // [s] > 0: this Δt instead (0: from steps_per_period)
-    double end_time = 0.0;    // [s] > 0: run to this time (past the separation: the bearing's
-                              //   free vibration); 0: stop once the journal has left, at the
-                              //   latest at 4 T_c (twice a linear contact's duration)
+    double time_step = 0.0;  // [s] > 0: this Δt instead (0: from steps_per_period)
+    double end_time = 0.0;   // [s] > 0: run to this time (past the separation: the bearing's
+                             //   free vibration); 0: stop once the journal has left, at the
+                             //   latest at 4 T_c (twice a linear contact's duration)
     /// [kg] > 0: the rigid journal's mass instead of ρ π R_J² L_J (0: that) — e.g. the mass
     /// that meets the bearing in a mechanism, the pin with the links it carries
     double journal_mass = 0.0;
@@ -202,7 +239,12 @@ namespace clearjoint::fe
     /// The mass matrix: `redistributed` (row-sum lumped, the contact surface's nodes massless,
     /// their mass moved to their cells' other nodes: the contact force converges with Δt),
     /// `lumped` (row-sum), `consistent` (both oscillate at the contact: docs/fe.md).
-    enum class Mass { redistributed, lumped, consistent } mass = Mass::redistributed;
+    enum class Mass
+    {
+      redistributed,
+      lumped,
+      consistent
+    } mass = Mass::redistributed;
   };
 
   /// Rolling study (paper §3.4): the bearing turns about its axis (+z) at omega_B; the rigid
@@ -212,20 +254,24 @@ namespace clearjoint::fe
   /// The bearing is computed in its co-rotating frame (docs/fe.md).
   struct Rolling
   {
-    double omega_B = 12.56;   // [rad/s] the bearing's spin, (0, 1e4)
-    double ramp_time = 0.25;  // [s] the push reaches δ_max at this time, > 0
-    double end_time = 0.0;    // [s] ≥ ramp_time: run to this time (0: ramp_time)
+    double omega_B = 12.56;     // [rad/s] the bearing's spin, (0, 1e4)
+    double ramp_time = 0.25;    // [s] the push reaches δ_max at this time, > 0
+    double end_time = 0.0;      // [s] ≥ ramp_time: run to this time (0: ramp_time)
     unsigned int n_steps = 40;  // time steps over end_time (≥ 4)
     /// The bearing's support, turning with it: `outer_surface` (its whole outer surface, a
     /// bearing pressed into a rotating housing) or `upper_half` (the outer surface's nodes at
     /// y ≥ 0 at t = 0, the radial study's support: for comparisons at small ω_B).
-    enum class Support { outer_surface, upper_half } support = Support::outer_surface;
+    enum class Support
+    {
+      outer_surface,
+      upper_half
+    } support = Support::outer_surface;
     /// [kg m²] > 0: the journal's spin inertia about its axis instead of ½ m R_J² with
     /// m = ρ π R_J² L_J (0: that)
     double journal_inertia = 0.0;
-    unsigned int max_spin_iterations = 60;  // torque-balance iterations per step at most
+    unsigned int max_spin_iterations = 60;    // torque-balance iterations per step at most
     unsigned int max_newton_iterations = 25;  // material Newton iterations per solve at most
-    unsigned int field_stride = 10;  // VTU fields every this many steps (and the last)
+    unsigned int field_stride = 10;           // VTU fields every this many steps (and the last)
   };
 
   struct Output
@@ -247,11 +293,11 @@ namespace clearjoint::fe
     Output output;
     Impact impact;
     Rolling rolling;
-    bool full_model = false;  // false: the symmetry planes the scene allows (quarter model)
+    bool full_model = false;        // false: the symmetry planes the scene allows (quarter model)
     std::vector<double> sweep_t_B;  // [m] if non-empty, one run per value, one folder each
     std::vector<double> sweep_theta_deg;  // [deg] the same for the misalignment angle
     std::vector<double> sweep_velocity;   // [m/s] the same for the impact velocity
-    std::string source_file;        // for messages and the manifest
+    std::string source_file;              // for messages and the manifest
   };
 
   /// Reads and validates a scene file (YAML or JSON). Throws InputError.
@@ -291,4 +337,4 @@ namespace clearjoint::fe
   std::string to_string(Contact::Pairing p);
   std::string to_string(Contact::MortarSlave s);
   std::string to_string(Contact::Sliding s);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -24,8 +24,7 @@ namespace clearjoint::fe
             {"pressure_max", "Pa", [](const R &r) { return r.pressure_max; }},
             {"wall_time", "s", [](const R &r) { return r.wall_time; }},
             {"friction_cone_excess", "1", [](const R &r) { return r.friction_cone_excess; }},
-            {"friction_slip_law_error", "1",
-             [](const R &r) { return r.friction_slip_law_error; }},
+            {"friction_slip_law_error", "1", [](const R &r) { return r.friction_slip_law_error; }},
             {"friction_direction_error", "1",
              [](const R &r) { return r.friction_direction_error; }}};
   }
@@ -45,11 +44,10 @@ namespace clearjoint::fe
       "as fractions of mu*lambda_max: cone_excess = max(|t_T| - mu*lambda)+, slip_law_error = "
       "max ||t_T| - mu*lambda| at slipping nodes, direction_error = max 1 + cos(t_T, slip); "
       "0 without friction",
-      scene.contact.mu > 0.0 ?
-        "Coulomb friction mu = " + format_value(scene.contact.mu) +
-          " (stick/slip active set); slipping_contact_points of the active "
-          "points slip, the rest stick" :
-        "frictionless contact (mu = 0)"};
+      scene.contact.mu > 0.0 ? "Coulomb friction mu = " + format_value(scene.contact.mu) +
+                                 " (stick/slip active set); slipping_contact_points of the active "
+                                 "points slip, the rest stick" :
+                               "frictionless contact (mu = 0)"};
   }
 
   Columns<AdaptiveCycleRow> adaptive_cycles_columns()
@@ -68,9 +66,8 @@ namespace clearjoint::fe
   {
     const auto &M = scene.mesh;
     return {"clearjoint fe_stage: adaptive refinement, mesh.adaptive_cycles = " +
-              std::to_string(M.adaptive_cycles) +
-              ", adaptive_fraction = " + format_value(M.adaptive_fraction) +
-              " (Kelly indicator, fixed fraction of the cells)",
+              std::to_string(M.adaptive_cycles) + ", adaptive_fraction = " +
+              format_value(M.adaptive_fraction) + " (Kelly indicator, fixed fraction of the cells)",
             "force_at_delta_max = F at delta_max on that mesh (full body; "
             "marking meshes pushed in mesh.adaptive_increments = " +
               std::to_string(M.adaptive_increments) +
@@ -99,8 +96,8 @@ namespace clearjoint::fe
             {"bodies", bodies}};
   }
 
-  CaseOutput::CaseOutput(const FeScene &scene, const std::string &dir, const int argc,
-                         char **argv, const PresetUse &preset)
+  CaseOutput::CaseOutput(const FeScene &scene, const std::string &dir, const int argc, char **argv,
+                         const PresetUse &preset)
     : scene_(scene)
     , dir_(dir)
   {
@@ -117,7 +114,8 @@ namespace clearjoint::fe
         nlohmann::json o = nlohmann::json::object();
         for (const auto &[k, v] : preset.overrides)
           o[k] = v;
-        manifest_->extra()["preset"] = {{"name", preset.name}, {"file", preset.file},
+        manifest_->extra()["preset"] = {{"name", preset.name},
+                                        {"file", preset.file},
                                         {"scene_keys", o}};
       }
     manifest_->extra()["scene"] = scene_to_json(scene);
@@ -129,26 +127,26 @@ namespace clearjoint::fe
     // mesh; the time history goes to impact_history.csv.
     if (scene.study == Study::impact)
       {
-        impact_history_ = std::make_unique<RecordCsv<DynamicStepRecord>>(
-          dir + "/impact_history.csv", impact_history_columns(), impact_history_comments(scene));
+        impact_history_ =
+          std::make_unique<RecordCsv<DynamicStepRecord>>(dir + "/impact_history.csv",
+                                                         impact_history_columns(),
+                                                         impact_history_comments(scene));
         impact_history_->write(impact_history_start(scene));
       }
     // Study rolling: the time history and, at the end, the strain profile.
     if (scene.study == Study::rolling)
       {
-        rolling_history_ = std::make_unique<RecordCsv<RollingStepRecord>>(
-          dir + "/rolling_history.csv", rolling_history_columns(),
-          rolling_history_comments(scene));
+        rolling_history_ =
+          std::make_unique<RecordCsv<RollingStepRecord>>(dir + "/rolling_history.csv",
+                                                         rolling_history_columns(),
+                                                         rolling_history_comments(scene));
         rolling_history_->write(RollingStepRecord{});
       }
   }
 
   CaseOutput::~CaseOutput() = default;
 
-  void CaseOutput::write_increment(const IncrementRecord &r)
-  {
-    curve_->write(r);
-  }
+  void CaseOutput::write_increment(const IncrementRecord &r) { curve_->write(r); }
 
   void CaseOutput::write_dynamic_step(const DynamicStepRecord &r)
   {
@@ -205,12 +203,13 @@ namespace clearjoint::fe
       profile.write(p);
     profile.commit(result.complete, result.message);
     manifest_->add_output(profile_path);
-    manifest_->extra()["rolling"] = rolling_summary_json(
-      result.rolling, result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
+    manifest_->extra()["rolling"] =
+      rolling_summary_json(result.rolling,
+                           result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
     // the slip stages go to the plot as text: the manifest is written after it
     if (plots && !result.rolling_steps.empty() &&
-        run_plot_script("fe_rolling", {dir_ + "/rolling.png", dir_,
-                                       manifest_->extra()["rolling"].dump()}))
+        run_plot_script("fe_rolling",
+                        {dir_ + "/rolling.png", dir_, manifest_->extra()["rolling"].dump()}))
       manifest_->add_output(dir_ + "/rolling.png");
   }
 
@@ -227,7 +226,8 @@ namespace clearjoint::fe
       {
         const auto &c = result.adaptive_cycles[k];
         cycles.write({k, c});
-        rows.push_back({{"n_cells", c.n_cells}, {"n_dofs", c.n_dofs},
+        rows.push_back({{"n_cells", c.n_cells},
+                        {"n_dofs", c.n_dofs},
                         {"force_at_delta_max", {{"value", c.force}, {"unit", "N"}}},
                         {"contact_iterations", c.contact_iterations},
                         {"wall_time", {{"value", c.wall_time}, {"unit", "s"}}}});
@@ -235,14 +235,17 @@ namespace clearjoint::fe
     cycles.commit(true, "");
     manifest_->add_output(path);
     auto &a = manifest_->extra()["adaptive"];
-    a = {{"cycles", rows}, {"fraction", M.adaptive_fraction},
+    a = {{"cycles", rows},
+         {"fraction", M.adaptive_fraction},
          {"marking_increments", M.adaptive_increments}};
     if (M.adaptive_target_error > 0.0)
-      a["target_error"] = {{"value", M.adaptive_target_error}, {"unit", "1"},
+      a["target_error"] = {{"value", M.adaptive_target_error},
+                           {"unit", "1"},
                            {"reached", result.adaptive_target_reached},
                            {"max_cycles", M.adaptive_cycles}};
     if (result.adaptive_error >= 0.0)
-      a["estimated_error_F_max"] = {{"value", result.adaptive_error}, {"unit", "1"},
+      a["estimated_error_F_max"] = {{"value", result.adaptive_error},
+                                    {"unit", "1"},
                                     {"method", result.adaptive_error_method}};
     if (result.adaptive_order > 0.0)
       a["extrapolated_force"] = {{"value", result.adaptive_extrapolated_force}, {"unit", "N"}};
@@ -262,13 +265,13 @@ namespace clearjoint::fe
     x["h_min"] = {{"value", result.h_min}, {"unit", "m"}};
     x["setup_time"] = {{"value", result.setup_time}, {"unit", "s"}};
     // what the VTU's contact fields hold (docs/fe.md): Abaqus's CSTATUS codes
-    x["contact_fields"] = {
-      {"status_codes", {{"0", "open"}, {"1", "slip"}, {"2", "stick"}}},
-      {"note", "contact_shear is the friction traction (zero without friction); "
-               "contact_slip is nonzero only at contact points"}};
-    x["friction"] = {{"mu", scene_.contact.mu}, {"model", scene_.contact.mu > 0.0 ?
-                                                            "Coulomb, stick/slip active set" :
-                                                            "frictionless"}};
+    x["contact_fields"] = {{"status_codes", {{"0", "open"}, {"1", "slip"}, {"2", "stick"}}},
+                           {"note",
+                            "contact_shear is the friction traction (zero without friction); "
+                            "contact_slip is nonzero only at contact points"}};
+    x["friction"] = {{"mu", scene_.contact.mu},
+                     {"model",
+                      scene_.contact.mu > 0.0 ? "Coulomb, stick/slip active set" : "frictionless"}};
     if (!result.increments.empty())
       {
         x["force_at_delta_max"] = {{"value", result.increments.back().force}, {"unit", "N"}};
@@ -280,8 +283,8 @@ namespace clearjoint::fe
   {
     const double delta = result.increments.empty() ? 0.0 : result.increments.back().delta;
     const double force = result.increments.empty() ? 0.0 : result.increments.back().force;
-    log::info("fe_stage: " + shown_dir + ": F(" + format_value(delta) + " m) = " +
-              format_value(force) + " N, " + log::format_duration(result.wall_time));
+    log::info("fe_stage: " + shown_dir + ": F(" + format_value(delta) +
+              " m) = " + format_value(force) + " N, " + log::format_duration(result.wall_time));
     if (result.field_files.empty())
       return;
     log::info("fe_stage: fields: open " + shown_dir +
@@ -295,4 +298,4 @@ namespace clearjoint::fe
                  std::string("plastic_zone, contact_pressure, contact_status, "
                              "contact_shear, contact_slip; one step per increment)")));
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -71,4 +71,4 @@ namespace clearjoint::fe
     std::unique_ptr<RecordCsv<DynamicStepRecord>> impact_history_;
     std::unique_ptr<RecordCsv<RollingStepRecord>> rolling_history_;
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -33,13 +33,15 @@ namespace clearjoint::fe
       "clearjoint fe_stage: impact study (paper 3.2), " +
         std::string(scene.loading.journal == JournalLoading::rigid ? "rigid" : "deformable") +
         " journal launched at first touch "
-      "toward the bearing (-y) at " + format_value(scene.impact.velocity) + " m/s; HHT alpha = " +
-        format_value(scene.impact.alpha),
+        "toward the bearing (-y) at " +
+        format_value(scene.impact.velocity) +
+        " m/s; HHT alpha = " + format_value(scene.impact.alpha),
       "delta = the journal's displacement toward the bearing beyond first touch (a deformable "
       "journal's centre of mass); delta_rate > 0 approaching",
       "force = contact force on the journal (full body); force_support = the bearing supports' "
       "reaction (full body; differs from force by the bearing's inertia)",
-      "kinetic_*, strain_* = energies of the full bodies (strain_journal 0 for a rigid journal); work_contact = net work of the "
+      "kinetic_*, strain_* = energies of the full bodies (strain_journal 0 for a rigid journal); "
+      "work_contact = net work of the "
       "contact forces on both bodies since t = 0 (trapezoidal; negative = lost where contact "
       "points close inside a step); numerical_dissipation = HHT's since t = 0 "
       "(work_contact - change of kinetic and strain energy; 0 to round-off for alpha = 0)",
@@ -99,7 +101,9 @@ namespace clearjoint::fe
 
   nlohmann::json impact_summary_json(const ImpactSummary &s)
   {
-    auto q = [](double v, const char *unit) { return nlohmann::json{{"value", v}, {"unit", unit}}; };
+    auto q = [](double v, const char *unit) {
+      return nlohmann::json{{"value", v}, {"unit", unit}};
+    };
     return {{"velocity_in", q(s.velocity_in, "m/s")},
             {"journal_mass", q(s.journal_mass, "kg")},
             {"contact_stiffness", q(s.contact_stiffness, "N/m")},
@@ -129,4 +133,4 @@ namespace clearjoint::fe
               "stiffness of the quasi-static curve at the expected delta_max",
               "dynamic_gap = peak_force / (quasi-static force at delta_at_peak) - 1"}}};
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -25,4 +25,4 @@ namespace clearjoint::fe
 
   /// The manifest's "impact" object: every number with its unit.
   nlohmann::json impact_summary_json(const ImpactSummary &s);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

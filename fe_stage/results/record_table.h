@@ -77,4 +77,4 @@ namespace clearjoint::fe
     Columns<Record> columns_;
     CsvWriter csv_;
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -102,24 +102,33 @@ namespace clearjoint::fe
   {
     nlohmann::json j = {
       {"journal_inertia", {{"value", s.journal_inertia}, {"unit", "kg m^2"}}},
-      {"rolling_rate", {{"value", s.rolling_rate}, {"unit", "rad/s"},
-                        {"meaning", "omega_B (R_B + delta_max) / R_J: the spin of rolling without slip at the end of the push"}}},
+      {"rolling_rate",
+       {{"value", s.rolling_rate},
+        {"unit", "rad/s"},
+        {"meaning", "omega_B (R_B + delta_max) / R_J: the spin of rolling without slip at the end "
+                    "of the push"}}},
       {"time_step", {{"value", s.time_step}, {"unit", "s"}}},
       {"slip_stages",
        {{"found", s.stages_found},
         {"slip_speed_max", {{"value", s.slip_speed_max}, {"unit", "m/s"}}},
-        {"end_of_slip", {{"value", s.end_of_slip}, {"unit", "s"},
-                         {"meaning", "the slip speed first falls below half its largest value"}}},
-        {"settled", {{"value", s.settled}, {"unit", "s"},
-                     {"meaning", "from here the slip speed stays within 5 % of its largest "
-                                 "value about its final value"}}},
+        {"end_of_slip",
+         {{"value", s.end_of_slip},
+          {"unit", "s"},
+          {"meaning", "the slip speed first falls below half its largest value"}}},
+        {"settled",
+         {{"value", s.settled},
+          {"unit", "s"},
+          {"meaning", "from here the slip speed stays within 5 % of its largest "
+                      "value about its final value"}}},
         {"slip_speed_final", {{"value", s.slip_speed_final}, {"unit", "m/s"}}}}},
       {"max_plastic_strain", s.max_plastic_strain},
-      {"max_strain", {{"value", s.max_strain},
-                      {"meaning", "largest principal total strain: small strain is accurate "
-                                  "while this stays well below ~0.01"}}},
-      {"energy_balance_error", {{"value", s.energy_balance_error},
-                                {"meaning", "|error| / (|work_drive| + |work_push|) at the end"}}}};
+      {"max_strain",
+       {{"value", s.max_strain},
+        {"meaning", "largest principal total strain: small strain is accurate "
+                    "while this stays well below ~0.01"}}},
+      {"energy_balance_error",
+       {{"value", s.energy_balance_error},
+        {"meaning", "|error| / (|work_drive| + |work_push|) at the end"}}}};
     if (last)
       j["final"] = {{"time", last->time},
                     {"force_normal", last->force_normal},
@@ -134,4 +143,4 @@ namespace clearjoint::fe
                     {"units", "s, N, rad/s, rad/s, rad/s, J, J, J, J, J"}};
     return j;
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

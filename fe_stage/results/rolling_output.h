@@ -24,4 +24,4 @@ namespace clearjoint::fe
 
   /// The manifest's "rolling" object, every number with its unit.
   nlohmann::json rolling_summary_json(const RollingSummary &s, const RollingStepRecord *last);
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -29,9 +29,8 @@ namespace clearjoint::fe
     if (kind == SweepKind::velocity)
       {
         for (auto &c : impact_sweep_columns())
-          columns.push_back({c.name, c.unit, [value = c.value](const SweepCase &s) {
-                               return value(s.impact);
-                             }});
+          columns.push_back(
+            {c.name, c.unit, [value = c.value](const SweepCase &s) { return value(s.impact); }});
         return columns;
       }
     const bool by_theta = kind == SweepKind::theta;
@@ -73,8 +72,8 @@ namespace clearjoint::fe
     manifest_->add_output(table_path_);
     if (kind_ == SweepKind::velocity)
       {
-        if (plots && run_plot_script("fe_impact", {dir_ + "/impact_sweep.png", "--sweep",
-                                                   table_path_}))
+        if (plots &&
+            run_plot_script("fe_impact", {dir_ + "/impact_sweep.png", "--sweep", table_path_}))
           manifest_->add_output(dir_ + "/impact_sweep.png");
       }
     else
@@ -92,4 +91,4 @@ namespace clearjoint::fe
       }
     manifest_->write(complete ? "complete" : "incomplete");
   }
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe

@@ -14,7 +14,12 @@
 namespace clearjoint::fe
 {
   /// The swept parameter: sweep.t_B, sweep.theta_deg or sweep.velocity.
-  enum class SweepKind { thickness, theta, velocity };
+  enum class SweepKind
+  {
+    thickness,
+    theta,
+    velocity
+  };
   SweepKind sweep_kind(const FeScene &scene);
 
   /// A number as `std::ostream <<` writes it (6 significant digits): folder names and labels.
@@ -36,8 +41,8 @@ namespace clearjoint::fe
   class SweepOutput
   {
   public:
-    SweepOutput(const std::string &dir, SweepKind kind, const std::string &scene_path,
-                int argc, char **argv);
+    SweepOutput(const std::string &dir, SweepKind kind, const std::string &scene_path, int argc,
+                char **argv);
     ~SweepOutput();
     /// A finished case (complete or not): its row and its manifest.
     void add_case(const SweepCase &c);
@@ -51,4 +56,4 @@ namespace clearjoint::fe
     std::unique_ptr<RecordCsv<SweepCase>> table_;
     std::vector<SweepCase> cases_;
   };
-} // namespace clearjoint::fe
+}  // namespace clearjoint::fe
