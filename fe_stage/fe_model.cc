@@ -3,6 +3,7 @@
 #include "fe_stage/fe_model.h"
 
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/study/study.h"
 
 #include <deal.II/base/revision.h>
 
@@ -17,12 +18,12 @@ namespace clearjoint::fe
       , comm_(options.comm)
       , rank_(Utilities::MPI::this_mpi_process(options.comm))
       , n_ranks_(Utilities::MPI::n_mpi_processes(options.comm))
-      , tria_(options.comm, Triangulation<dim>::limit_level_difference_at_vertices)
-      , dof_handler_(tria_)
+      , bodies_(scene, plan_, options.comm)
+      , dofs_(scene, plan_, bodies_, options.comm)
+      , contact_(scene, dofs_, options.comm)
       , start_(std::chrono::steady_clock::now())
     {
       material_ = make_material(scene, plan_.rolling);
-      friction_ = scene.contact.mu > 0.0;
       obstacle_ = plan_.obstacle;
     }
   }  // namespace detail

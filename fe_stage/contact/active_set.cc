@@ -2,14 +2,78 @@
 // slip (Coulomb), and the linearisation of each slipping node's friction force for the next
 // solve — one step of a semi-smooth Newton method on the complementarity functions of
 // Hüeber–Stadler–Wohlmuth (2008), in the projection form of contact/coulomb_ssn.h.
+#include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/coulomb_ssn.h"
-#include "fe_stage/core/contact_model.h"
 
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 
 namespace clearjoint::fe::detail
 {
-  ContactModel::ActiveSetChange ContactModel::update_active_set(const double c, const double eps_g)
+  ContactProblem::ContactProblem(const FeScene &scene, const DofSpace &dofs, MPI_Comm comm)
+    : scene_(scene)
+    , dofs_(dofs)
+    , comm_(comm)
+    , friction_(scene.contact.mu > 0.0)
+  {}
+
+  // Friction's constant c_T only steers the Newton path: a converged state (settled sets,
+  // slip law met) is the same for every c_T (docs/fe.md). A few nodes at the stick/slip border
+  // can flip every iteration at a given c_T (seen with hanging nodes in the contact zone, and
+  // in the rolling study); each 8 iterations that have not settled after the first 12
+  // therefore take c_T down by 0.3, to 1e-3 of the scene's value at most.
+  void ContactProblem::reset_tangential_scale()
+  {
+    tangential_scale_ = scene_.contact.tangential_scale;
+  }
+
+  bool ContactProblem::soften_tangential_scale(const unsigned int iteration)
+  {
+    constexpr unsigned int patient = 12, every = 8;
+    if (friction_ && iteration >= patient && (iteration - patient) % every == 0 &&
+        tangential_scale_ > 1.001e-3 * scene_.contact.tangential_scale)
+      {
+        tangential_scale_ *= 0.3;
+        return true;
+      }
+    return false;
+  }
+
+  bool ContactProblem::collect_slipping()
+  {
+    slipping_.clear();
+    slipping_dof_.clear();
+    if (friction_)
+      for (unsigned int i = 0; i < nodes_.size(); ++i)
+        if (nodes_[i].candidate && nodes_[i].active && !nodes_[i].stick)
+          {
+            slipping_.push_back(i);
+            for (const auto d : nodes_[i].dofs)
+              slipping_dof_[d] = i;
+          }
+    nonsymmetric_ = Utilities::MPI::max(slipping_.empty() ? 0u : 1u, comm_) > 0;
+    return nonsymmetric_;
+  }
+
+  bool ContactProblem::choose_constrained_component(ContactNode &cn, const Tensor<1, dim> &n) const
+  {
+    std::array<unsigned int, dim> order = {0, 1, 2};
+    std::sort(order.begin(), order.end(),
+              [&](unsigned a, unsigned b) { return std::abs(n[a]) > std::abs(n[b]); });
+    for (const unsigned int c : order)
+      if (std::abs(n[c]) > 0.3 && !dofs_.fixed().is_constrained(cn.dofs[c]))
+        {
+          cn.constrained_component = c;
+          return true;
+        }
+    return false;
+  }
+
+  ContactProblem::Change ContactProblem::update_active_set(const double c, const double eps_g)
   {
     // Normal: with ξ = λ − c·ĝ, active where ξ > 0 (the primal–dual active set, step-41).
     // Friction, with t the tangential contact force and s_T the slip in this increment,
@@ -32,8 +96,8 @@ namespace clearjoint::fe::detail
         bool stick = cn.stick;
         if (friction_ && now)
           {
-            const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
-            const Tensor<1, dim> w = t - tangential_scale_ * c * contact_slip_increment(cn);
+            const Tensor<1, dim> t = tangential(traction(cn), cn.n);
+            const Tensor<1, dim> w = t - tangential_scale_ * c * slip_increment(cn);
             stick = coulomb_state(xi, w.norm(), mu, band) == FrictionState::stick;
             if (!stick)
               {

@@ -9,28 +9,28 @@ namespace clearjoint::fe::detail
   /// λ_i / w_i (exact for a uniform pressure; Q2 face weights are all positive).
   void ContactModel::compute_nodal_weights()
   {
-    const QGauss<dim - 1> fq(fe_->degree + 1);
-    FEFaceValues<dim> fv(*mapping_, *fe_, fq, update_values | update_JxW_values);
-    TrilinosWrappers::MPI::Vector w(owned_, comm_);
-    std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
-    Vector<double> cell_w(fe_->n_dofs_per_cell());
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    const QGauss<dim - 1> fq(dofs_.fe().degree + 1);
+    FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq, update_values | update_JxW_values);
+    TrilinosWrappers::MPI::Vector w(dofs_.owned(), comm_);
+    std::vector<types::global_dof_index> dofs(dofs_.fe().n_dofs_per_cell());
+    Vector<double> cell_w(dofs_.fe().n_dofs_per_cell());
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == slave_surface_id())
             {
               fv.reinit(cell, f);
               cell_w = 0.0;
-              for (unsigned int i = 0; i < fe_->n_dofs_per_cell(); ++i)
+              for (unsigned int i = 0; i < dofs_.fe().n_dofs_per_cell(); ++i)
                 for (const unsigned int q : fv.quadrature_point_indices())
                   cell_w(i) += fv.shape_value(i, q) * fv.JxW(q);
               cell->get_dof_indices(dofs);
               w.add(dofs, cell_w);
             }
     w.compress(VectorOperation::add);
-    TrilinosWrappers::MPI::Vector wg(owned_, relevant_, comm_);
+    TrilinosWrappers::MPI::Vector wg(dofs_.owned(), dofs_.relevant(), comm_);
     wg = w;
-    for (auto &cn : nodes_)
+    for (auto &cn : contact_.nodes())
       cn.weight = wg[cn.dofs[0]];
   }
 
@@ -53,26 +53,26 @@ namespace clearjoint::fe::detail
   /// moment from the normal force) is ĝ = n·(X + u − P − obstacle_u − Σ w Q u_p).
   void ContactModel::set_obstacle_position(const double delta)
   {
-    if (rolling_)
-      obstacle_.frame_angle = rolling_phi_;
+    if (frame_.turning)
+      obstacle_.frame_angle = frame_.phi;
     if (rolling_deformable_journal())
       {
-        partner_rotation_ = rotation_z(rolling_psi());
-        for (auto &cn : nodes_)
+        frame_.partner_rotation = JournalFrame::rotation_z(frame_.psi());
+        for (auto &cn : contact_.nodes())
           {
-            cn.obstacle_u = partner_frame_motion(cn, rolling_centre_, rolling_psi());
+            cn.obstacle_u = frame_.partner_motion(cn, frame_.centre, frame_.psi());
             Tensor<1, dim> r;  // from the journal's axis to the node, in the cross-section
             for (unsigned int k = 0; k + 1 < dim; ++k)
-              r[k] = cn.X[k] + solution_[cn.dofs[k]] - rolling_centre_[k];
+              r[k] = cn.X[k] + solution_[cn.dofs[k]] - frame_.centre[k];
             cn.n = r / r.norm();
             cn.g0 = cn.n * (cn.X - cn.partner_X - cn.obstacle_u);
           }
         return;
       }
-    for (auto &cn : nodes_)
+    for (auto &cn : contact_.nodes())
       if (!cn.two_body)
         {
-          if (!rolling_)
+          if (!frame_.turning)
             obstacle_gap(cn.X, delta, cn.g0, cn.n);
           else
             {
@@ -88,14 +88,14 @@ namespace clearjoint::fe::detail
                                      "journal's length");
               cn.g0 = g - cn.n * u;
             }
-          if (!rolling_)
+          if (!frame_.turning)
             cn.obstacle_u = Tensor<1, dim>({0.0, -delta, 0.0});
           else
             {
               const auto d =
-                rolling::journal_surface_step(rolling_centre_previous_, rolling_centre_,
+                rolling::journal_surface_step(frame_.centre_previous, frame_.centre,
                                               scene_.geometry.R_J(), {cn.n[0], cn.n[1], cn.n[2]},
-                                              rolling_delta_psi_);
+                                              frame_.delta_psi);
               cn.obstacle_u = cn.obstacle_u_converged + Tensor<1, dim>({d[0], d[1], d[2]});
             }
         }
@@ -105,7 +105,7 @@ namespace clearjoint::fe::detail
   {
     solution_owned_ = 0.0;
     solution_ = 0.0;
-    for (auto &cn : nodes_)
+    for (auto &cn : contact_.nodes())
       {
         cn.active = false;
         cn.stick = true;
@@ -120,9 +120,9 @@ namespace clearjoint::fe::detail
   {
     TrilinosWrappers::MPI::Vector load = dynamic_load_;
     condense_hanging(load);
-    TrilinosWrappers::MPI::Vector load_ghosted(owned_, relevant_, comm_);
+    TrilinosWrappers::MPI::Vector load_ghosted(dofs_.owned(), dofs_.relevant(), comm_);
     load_ghosted = load;
-    for (auto &cn : nodes_)
+    for (auto &cn : contact_.nodes())
       for (unsigned int c = 0; c < dim; ++c)
         cn.load_offset[c] = load_ghosted[cn.dofs[c]];
   }
@@ -159,35 +159,35 @@ namespace clearjoint::fe::detail
     std::set<unsigned int> touched;
     for (unsigned int i = 0; i < n; ++i)
       {
-        if (const auto it = slipping_dof_.find(dofs[i]); it != slipping_dof_.end())
-          touched.insert(it->second);
-        if (const auto *entries = hanging_constraints_.get_constraint_entries(dofs[i]))
+        if (const int node = contact_.slipping_node_of(dofs[i]); node >= 0)
+          touched.insert(node);
+        if (const auto *entries = dofs_.hanging().get_constraint_entries(dofs[i]))
           for (const auto &entry : *entries)
-            if (const auto it = slipping_dof_.find(entry.first); it != slipping_dof_.end())
-              touched.insert(it->second);
+            if (const int node = contact_.slipping_node_of(entry.first); node >= 0)
+              touched.insert(node);
       }
     // per slipping node: the rows F(u) over the cell's columns (3 × n)
     std::vector<std::pair<const ContactNode *, FullMatrix<double>>> rows_of;
     for (const unsigned int node : touched)
       {
-        const ContactNode &cn = nodes_[node];
+        const ContactNode &cn = contact_.nodes()[node];
         // (K u)_s over the cell's columns, with the rows of hanging DoFs that hang from s
         FullMatrix<double> Ks(dim, n);
         for (unsigned int r = 0; r < n; ++r)
           for (unsigned int c = 0; c < dim; ++c)
             {
               double share = dofs[r] == cn.dofs[c] ? 1.0 : 0.0;
-              if (share == 0.0 && hanging_constraints_.is_constrained(dofs[r]))
+              if (share == 0.0 && dofs_.hanging().is_constrained(dofs[r]))
                 for (const auto &[m, coefficient] :
-                     *hanging_constraints_.get_constraint_entries(dofs[r]))
+                     *dofs_.hanging().get_constraint_entries(dofs[r]))
                   if (m == cn.dofs[c])
                     share += coefficient;
               if (share != 0.0)
                 for (unsigned int j = 0; j < n; ++j)
                   Ks(c, j) += share * Kc(r, j);
             }
-        const Tensor<2, dim> Q =
-          tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
+        const Tensor<2, dim> Q = ContactProblem::tangent_projection(cn) -
+                                 outer_product(cn.slip_direction, cn.slip_direction);
         const double mu = scene_.contact.mu;
         FullMatrix<double> F(dim, n);
         for (unsigned int j = 0; j < n; ++j)
@@ -199,7 +199,7 @@ namespace clearjoint::fe::detail
               {
                 double f = mu * cn.slip_direction[a] * lambda_j;
                 for (unsigned int b = 0; b < dim; ++b)
-                  if (contact_holds(cn, b))
+                  if (contact_.holds(cn, b))
                     f += cn.kappa * Q[a][b] * Ks(b, j);
                 F(a, j) = f;
               }
@@ -223,7 +223,7 @@ namespace clearjoint::fe::detail
       return std::find(ext.begin(), ext.end(), d) - ext.begin();
     };
     // the reaction on the partners, turned into their frame: + w_p Qᵀ F(u)
-    const Tensor<2, dim> &Q = partner_rotation_;
+    const Tensor<2, dim> &Q = frame_.partner_rotation;
     for (const auto &[cn, F] : rows_of)
       for (unsigned int a = 0; a < dim; ++a)
         {
@@ -245,7 +245,7 @@ namespace clearjoint::fe::detail
   /// The slip term of a slipping node's linearised friction force, −κ c Q s_T(u) with
   /// s_T = P_T M (D u + b) (M: the components the contact holds, as in
   /// contact_slip_increment): rows of the node +κ c Q M (D u + b) = 0 part, rows of its partners
-  /// −w_p R_pᵀ κ c Q M (D u + b), with D u = u − Σ w_p R_p u_p (R_p = partner_rotation_, the
+  /// −w_p R_pᵀ κ c Q M (D u + b), with D u = u − Σ w_p R_p u_p (R_p = frame_.partner_rotation, the
   /// identity unless the rolling study's journal turns); the constant part goes to the
   /// right-hand side. Added once per node (by the rank that owns it).
   void ContactModel::friction_node_matrix(const ContactNode &cn, const double c,
@@ -259,21 +259,21 @@ namespace clearjoint::fe::detail
     std::vector<std::pair<const std::array<types::global_dof_index, dim> *, Tensor<2, dim>>> points;
     points.emplace_back(&cn.dofs, I);
     for (const auto &p : cn.partners)
-      points.emplace_back(&p.dofs, -p.weight * partner_rotation_);
+      points.emplace_back(&p.dofs, -p.weight * frame_.partner_rotation);
     ext.clear();
     for (const auto &[d, B] : points)
       ext.insert(ext.end(), d->begin(), d->end());
     M.reinit(ext.size(), ext.size());
     rhs.reinit(ext.size());
     const Tensor<2, dim> Q =
-      tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
+      ContactProblem::tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
     // the obstacle's surface point (or the partners' frame) moved
     const Tensor<1, dim> b = -cn.relative_converged - cn.obstacle_u;
     // H = κc Q M: M keeps the components the contact holds
     Tensor<2, dim> H;
     for (unsigned int a = 0; a < dim; ++a)
       for (unsigned int bb = 0; bb < dim; ++bb)
-        if (contact_holds(cn, bb))
+        if (contact_.holds(cn, bb))
           H[a][bb] = cn.kappa * c * Q[a][bb];
     const Tensor<1, dim> Hb = H * b;
     // rows of body point r: B_rᵀ H (D u + b); the node's B is I, a partner's −w_p Q
@@ -297,7 +297,7 @@ namespace clearjoint::fe::detail
     if (plastic_ || dynamic_)
       {
         const Tensor<1, dim> Fb = -scene_.contact.mu * (cn.n * cn.load_offset) * cn.slip_direction -
-                                  cn.kappa * (Q * held_components(cn, cn.load_offset));
+                                  cn.kappa * (Q * contact_.held_components(cn, cn.load_offset));
         for (unsigned int r = 0; r < points.size(); ++r)
           {
             const Tensor<1, dim> f = transpose(points[r].second) * Fb;
@@ -314,20 +314,20 @@ namespace clearjoint::fe::detail
     const double /*delta: in each node's g0, obstacle_u*/)
   {
     constraints_.clear();
-    constraints_.reinit(relevant_);
-    for (const auto &cn : nodes_)
-      if (cn.active && friction_ && cn.stick)
+    constraints_.reinit(dofs_.relevant());
+    for (const auto &cn : contact_.nodes())
+      if (cn.active && contact_.friction() && cn.stick)
         {
           // No new slip: u = Σ w·u_partner + P_t(r_conv + u_obstacle) − g0·n, with r_conv
           // the relative displacement of the last converged increment and P_t = I − n nᵀ
           // (the normal part is ĝ = 0). Components fixed by symmetry stay as they are.
           // (the obstacle's — or the partners' frame's — motion: obstacle_u, 0 for two bodies
           // at rest; a rigid obstacle's g0 holds its motion already). The partners' turn Q.
-          const Tensor<2, dim> &Q = partner_rotation_;
+          const Tensor<2, dim> &Q = frame_.partner_rotation;
           const Tensor<1, dim> target =
             tangential(cn.relative_converged + cn.obstacle_u, cn.n) - cn.g0 * cn.n;
           for (unsigned int k = 0; k < dim; ++k)
-            if (!fixed_delta_.is_constrained(cn.dofs[k]))
+            if (!dofs_.fixed_at_delta().is_constrained(cn.dofs[k]))
               {
                 constraints_.add_line(cn.dofs[k]);
                 for (const auto &p : cn.partners)
@@ -342,7 +342,7 @@ namespace clearjoint::fe::detail
           const unsigned int cc = cn.constrained_component;
           const auto d = cn.dofs[cc];
           // n·(u − Σ w Q u_p) = −g0; on a partner's DoF m: w (Qᵀ n)_m
-          const Tensor<1, dim> n_partner = transpose(partner_rotation_) * cn.n;
+          const Tensor<1, dim> n_partner = transpose(frame_.partner_rotation) * cn.n;
           constraints_.add_line(d);
           for (unsigned int k = 0; k < dim; ++k)
             {
@@ -354,7 +354,7 @@ namespace clearjoint::fe::detail
             }
           constraints_.set_inhomogeneity(d, -cn.g0 / cn.n[cc]);
         }
-    constraints_.merge(fixed_delta_, AffineConstraints<double>::left_object_wins, true);
+    constraints_.merge(dofs_.fixed_at_delta(), AffineConstraints<double>::left_object_wins, true);
     constraints_.close();
   }
 

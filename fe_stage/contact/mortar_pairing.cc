@@ -36,7 +36,7 @@ namespace clearjoint::fe::detail
       if (u)
         for (unsigned int c = 0; c < dim; ++c)
           ud[c] = (*u)[d[c]];
-      return turning_journal && master_node ? place_journal_point(x, ud) : x + ud;
+      return turning_journal && master_node ? frame_.place(x, ud) : x + ud;
     };
     const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
     const bool journal_slave = joint && plan_.journal_is_slave;
@@ -50,7 +50,7 @@ namespace clearjoint::fe::detail
       if (journal_slave)
         {
           // −(radial direction from the journal's own axis), turned with the journal
-          const Point<dim> l = journal_local(X);
+          const Point<dim> l = bodies_.journal_local(X);
           const double y = l[1] + scene_.geometry.c_r;
           const double r = std::hypot(l[0], y);
           const auto n = plan_.journal_pose.rotate({-l[0] / r, -y / r, 0.0});
@@ -60,7 +60,7 @@ namespace clearjoint::fe::detail
         {
           // along the journal's radius through the bore node (X: where it is now), as
           // set_obstacle_position keeps it
-          const double x = X[0] - rolling_centre_[0], y = X[1] - rolling_centre_[1];
+          const double x = X[0] - frame_.centre[0], y = X[1] - frame_.centre[1];
           const double r = std::hypot(x, y);
           return Tensor<1, dim>({x / r, y / r, 0.0});
         }
@@ -74,14 +74,14 @@ namespace clearjoint::fe::detail
     const double z_end = joint && !journal_slave ? plan_.obstacle.half_length * (1.0 + 1e-9) :
                                                    std::numeric_limits<double>::infinity();
 
-    std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
+    std::vector<types::global_dof_index> face_dofs(dofs_.fe().n_dofs_per_face());
     using NodeDofs = std::array<types::global_dof_index, dim>;
     // Master faces from every rank (the face facing a slave node is often on no cell this
     // rank sees): per face its node count, then per node 3 DoFs, the position searched, whether
     // its y-DoF is driven by the load (the journal's rim under end-face loading) and its
     // displacement (0 in the reference search).
     std::vector<double> mine;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == master_id)
@@ -92,8 +92,7 @@ namespace clearjoint::fe::detail
                 {
                   const Point<dim> x = position(d, true);
                   const Point<dim> &X = support.at(d[0]);
-                  const bool driven =
-                    std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(), d[1]);
+                  const bool driven = dofs_.is_loaded_y_dof(d[1]);
                   mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0], x[1],
                                            x[2], driven ? 1.0 : 0.0});
                   for (unsigned int c = 0; c < dim; ++c)
@@ -129,7 +128,7 @@ namespace clearjoint::fe::detail
     // cell is among them, so owned and ghost nodes of owned cells see all their faces).
     std::vector<mortar::Face> slave;
     std::map<long, NodeDofs> slave_dofs;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned() || cell->is_ghost())
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == slave_id)
@@ -175,9 +174,9 @@ namespace clearjoint::fe::detail
         ContactNode cn;
         cn.dofs = dofs;
         cn.X = support.at(dofs[0]);
-        cn.owned = owned_.is_element(dofs[0]);
+        cn.owned = dofs_.owned().is_element(dofs[0]);
         cn.n = slave_normal(turning_journal ? position(dofs) : cn.X);
-        if (!choose_constrained_component(cn, cn.n))
+        if (!contact_.choose_constrained_component(cn, cn.n))
           continue;  // hanging or supported: it follows its masters
         cn.g0 = cp.gap;
         cn.two_body = true;

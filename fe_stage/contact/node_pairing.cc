@@ -14,7 +14,7 @@ namespace clearjoint::fe::detail
     const double a = std::atan2(X[0], -X[1]);
     const double sweep = scene_.rolling.omega_B * rolling_end_time(scene_);
     RigidObstacle o = obstacle_;
-    o.frame_angle = rolling_path_distance(a) == 0.0 ?
+    o.frame_angle = rolling_path_distance(scene_, a) == 0.0 ?
                       -a :
                       (std::abs(std::remainder(a, 2.0 * units::pi)) <
                            std::abs(std::remainder(a + sweep, 2.0 * units::pi)) ?
@@ -28,14 +28,14 @@ namespace clearjoint::fe::detail
   void ContactModel::find_contact_nodes()
   {
     std::map<types::global_dof_index, Point<dim>> support;
-    DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+    DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
 
     // Candidates: surface nodes that could touch within the push (gap at δ_max below the
     // push itself, with a factor 2 margin). After every solve all surface nodes are checked
     // for penetration, so a window that was too small is an error, not a silent miss.
     const double window_gap = 2.0 * scene_.loading.delta_max;
     std::map<types::global_dof_index, ContactNode> by_x_dof;
-    std::vector<types::global_dof_index> face_dofs(fe_->n_dofs_per_face());
+    std::vector<types::global_dof_index> face_dofs(dofs_.fe().n_dofs_per_face());
 
     // Two bodies: the journal's surface nodes, keyed by (φ, z) — they lie on the same rays as
     // the bearing's (RayChart), so pairing is an exact lookup.
@@ -53,27 +53,24 @@ namespace clearjoint::fe::detail
     };
     std::map<std::pair<long, long>, JournalNode> journal_nodes;
     const bool mortar = plan_.pairing == StudyPlan::Pairing::mortar;
-    if (two_body_ && !mortar)
+    if (plan_.deformable_partner && !mortar)
       {
         std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag
         std::set<types::global_dof_index> seen;
-        for (const auto &cell : dof_handler_.active_cell_iterators())
+        for (const auto &cell : dofs_.handler().active_cell_iterators())
           if (cell->is_locally_owned())
             for (const auto f : cell->face_indices())
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == bid_journal_surface)
                 for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
-                  if (owned_.is_element(dofs[0]) && seen.insert(dofs[0]).second)
+                  if (dofs_.owned().is_element(dofs[0]) && seen.insert(dofs[0]).second)
                     {
                       const Point<dim> &X = support.at(dofs[0]);
                       const auto key = key_of(X);
                       mine.insert(mine.end(),
                                   {double(key.first), double(key.second), double(dofs[0]),
                                    double(dofs[1]), double(dofs[2]), X[0], X[1], X[2],
-                                   std::binary_search(loaded_sorted_.begin(), loaded_sorted_.end(),
-                                                      dofs[1]) ?
-                                     1.0 :
-                                     0.0});
+                                   dofs_.is_loaded_y_dof(dofs[1]) ? 1.0 : 0.0});
                     }
         for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
           for (std::size_t i = 0; i + 9 <= part.size(); i += 9)
@@ -91,7 +88,7 @@ namespace clearjoint::fe::detail
     if (mortar)
       find_mortar_contact_nodes(support, by_x_dof, search_displacement_);
     else
-      for (const auto &cell : dof_handler_.active_cell_iterators())
+      for (const auto &cell : dofs_.handler().active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_contact)
@@ -109,7 +106,7 @@ namespace clearjoint::fe::detail
                       continue;
                     if (plan_.rolling)
                       rolling_gap_on_path(cn.X, g0, n);
-                    cn.owned = owned_.is_element(dofs[0]);
+                    cn.owned = dofs_.owned().is_element(dofs[0]);
                     if (g0 > window_gap)
                       {
                         cn.candidate = false;  // watched only
@@ -117,9 +114,9 @@ namespace clearjoint::fe::detail
                         continue;
                       }
                     // Hanging or supported nodes are skipped: they follow their masters.
-                    if (!choose_constrained_component(cn, n))
+                    if (!contact_.choose_constrained_component(cn, n))
                       continue;
-                    if (two_body_)
+                    if (plan_.deformable_partner)
                       {
                         const auto it = journal_nodes.find(key_of(cn.X));
                         if (it == journal_nodes.end())
@@ -137,36 +134,34 @@ namespace clearjoint::fe::detail
                     by_x_dof.emplace(dofs[0], cn);
                   }
               }
-    nodes_.clear();
+    contact_.nodes().clear();
     for (auto &[d, cn] : by_x_dof)
-      nodes_.push_back(cn);
+      contact_.nodes().push_back(cn);
 
     // Partner DoFs this rank does not see yet become ghosts (solution values, constraint
     // lines), and then the masters of partners that hang (a journal face refined on one
     // side): closed lines have no chains, so two rounds suffice. After each round the fixed
     // constraints are rebuilt on the enlarged set and made consistent across ranks.
-    if (two_body_ && n_ranks_ > 1)
+    if (plan_.deformable_partner && n_ranks_ > 1)
       {
         auto add_ghosts = [&](const auto &dofs_of_partner) {
-          IndexSet extra(dof_handler_.n_dofs());
-          for (const auto &cn : nodes_)
+          IndexSet extra(dofs_.handler().n_dofs());
+          for (const auto &cn : contact_.nodes())
             for (const auto &partner : cn.partners)
               for (const auto p : partner.dofs)
                 for (const auto d : dofs_of_partner(p))
-                  if (!relevant_.is_element(d))
+                  if (!dofs_.relevant().is_element(d))
                     extra.add_index(d);
           extra.compress();
           if (Utilities::MPI::max(extra.n_elements(), comm_) == 0)
             return;  // collective: every rank takes the same branch
-          relevant_.add_indices(extra);
-          relevant_.compress();
-          build_fixed_constraints();
+          dofs_.add_relevant(extra);
         };
         add_ghosts(
           [](const types::global_dof_index p) { return std::vector<types::global_dof_index>{p}; });
         add_ghosts([&](const types::global_dof_index p) {
           std::vector<types::global_dof_index> masters;
-          if (const auto *e = fixed_constraints_.get_constraint_entries(p))
+          if (const auto *e = dofs_.fixed().get_constraint_entries(p))
             for (const auto &entry : *e)
               masters.push_back(entry.first);
           return masters;
@@ -176,14 +171,14 @@ namespace clearjoint::fe::detail
     // Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
     // contributions change with the active set (a hanging node's share moves on through the
     // contact line of its master); all other cells go into A_static once.
-    IndexSet candidate_dofs(dof_handler_.n_dofs());
-    for (const auto &cn : nodes_)
+    IndexSet candidate_dofs(dofs_.handler().n_dofs());
+    for (const auto &cn : contact_.nodes())
       if (cn.candidate)
         for (const auto d : cn.dofs)
           candidate_dofs.add_index(d);
     candidate_dofs.compress();
-    IndexSet hanging_on_candidates(dof_handler_.n_dofs());
-    for (const auto &line : fixed_constraints_.get_lines())
+    IndexSet hanging_on_candidates(dofs_.handler().n_dofs());
+    for (const auto &line : dofs_.fixed().get_lines())
       for (const auto &entry : line.entries)
         if (candidate_dofs.is_element(entry.first))
           {
@@ -192,10 +187,10 @@ namespace clearjoint::fe::detail
           }
     candidate_dofs.add_indices(hanging_on_candidates);
     candidate_dofs.compress();
-    contact_cell_of_.assign(tria_.n_active_cells(), -1);
-    std::vector<types::global_dof_index> cell_dofs(fe_->n_dofs_per_cell());
+    contact_cell_of_.assign(bodies_.triangulation().n_active_cells(), -1);
+    std::vector<types::global_dof_index> cell_dofs(dofs_.fe().n_dofs_per_cell());
     unsigned int n = 0;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(cell_dofs);

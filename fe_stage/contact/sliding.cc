@@ -13,7 +13,7 @@ namespace clearjoint::fe::detail
   /// gap at the converged u is the weighted gap found there, and slip counts from u_start (the
   /// increment's start) with the new partners. Returns how far the coupling moved (the
   /// largest over the candidate nodes of Σ_m |ΔC_sm| and |Δgap|/δ_max). `rebuild` forces the
-  /// rebuild: after a failed attempt restored nodes_ whose partners the pattern no longer has.
+  /// rebuild: after a failed attempt restored contact_.nodes() whose partners the pattern no longer has.
   double ContactModel::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start,
                                       const bool rebuild)
   {
@@ -21,14 +21,14 @@ namespace clearjoint::fe::detail
     // [1] and the change of its linearised gap at u [m] (against δ_max).
     const double delta_max = scene_.loading.delta_max;
     std::map<types::global_dof_index, Point<dim>> support;
-    DoFTools::map_dofs_to_support_points(*mapping_, dof_handler_, support);
+    DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
     std::map<types::global_dof_index, ContactNode> fresh;
     find_mortar_contact_nodes(support, fresh, &solution_);
 
     // the new couplings fit the pattern when every new candidate was one in the pattern, with
     // the same constrained component and its new partners among the pattern's
-    bool fits = fresh.size() == nodes_.size();
-    for (const auto &cn : nodes_)
+    bool fits = fresh.size() == contact_.nodes().size();
+    for (const auto &cn : contact_.nodes())
       {
         if (!fits)
           break;
@@ -51,7 +51,7 @@ namespace clearjoint::fe::detail
           fits = fits && in_pattern->second.partners.count(p.dofs[0]) > 0;
       }
     double change = 0.0;
-    for (const auto &cn : nodes_)
+    for (const auto &cn : contact_.nodes())
       {
         const auto it = fresh.find(cn.dofs[0]);
         if (!cn.candidate || it == fresh.end())
@@ -72,7 +72,7 @@ namespace clearjoint::fe::detail
     fits = !rebuild && Utilities::MPI::min(fits ? 1u : 0u, comm_) == 1u;
     change = Utilities::MPI::max(change, comm_);
     if (fits)
-      for (auto &cn : nodes_)
+      for (auto &cn : contact_.nodes())
         {
           const ContactNode &f = fresh.at(cn.dofs[0]);
           cn.partners = f.partners;
@@ -90,7 +90,7 @@ namespace clearjoint::fe::detail
         const TrilinosWrappers::MPI::Vector u_owned = solution_owned_;
         const TrilinosWrappers::MPI::Vector u_ghosted = solution_;  // the old ghost layout
         std::map<types::global_dof_index, ContactNode> old_state;
-        for (const auto &cn : nodes_)
+        for (const auto &cn : contact_.nodes())
           old_state.emplace(cn.dofs[0], cn);
         // the DoF numbering stays (same mesh); the ghosts, the pattern and A_static change
         search_displacement_ = &u_ghosted;
@@ -98,7 +98,7 @@ namespace clearjoint::fe::detail
         search_displacement_ = nullptr;
         solution_owned_ = u_owned;
         solution_ = solution_owned_;
-        for (auto &cn : nodes_)
+        for (auto &cn : contact_.nodes())
           {
             const auto it = old_state.find(cn.dofs[0]);
             if (it == old_state.end())
@@ -113,20 +113,21 @@ namespace clearjoint::fe::detail
     // Friction: the slip of the (re-solved or next) increment counts from its start, u_start,
     // measured with the new partners.
     // The turning journal: the slip counts from the step's start, where the journal's frame
-    // had the last converged pose (rolling_centre_previous_, ψ of the last converged step):
+    // had the last converged pose (frame_.centre_previous, ψ of the last converged step):
     // the new partners' frame motion and turn there. (The pose now: set_obstacle_position.)
     const bool turning = rolling_deformable_journal();
-    const Tensor<2, dim> Q_start = turning ? rotation_z(rolling_psi_converged_) : partner_rotation_;
+    const Tensor<2, dim> Q_start =
+      turning ? JournalFrame::rotation_z(frame_.psi_converged) : frame_.partner_rotation;
     if (turning)
       {
         set_obstacle_position(0.0);
-        for (auto &cn : nodes_)
+        for (auto &cn : contact_.nodes())
           cn.obstacle_u_converged =
-            partner_frame_motion(cn, rolling_centre_previous_, rolling_psi_converged_);
+            frame_.partner_motion(cn, frame_.centre_previous, frame_.psi_converged);
       }
-    TrilinosWrappers::MPI::Vector start(owned_, relevant_, comm_);
+    TrilinosWrappers::MPI::Vector start(dofs_.owned(), dofs_.relevant(), comm_);
     start = u_start;
-    for (auto &cn : nodes_)
+    for (auto &cn : contact_.nodes())
       {
         for (unsigned int c = 0; c < dim; ++c)
           cn.relative_converged[c] = start[cn.dofs[c]];
@@ -135,11 +136,5 @@ namespace clearjoint::fe::detail
       }
     evaluate_contact(0.0);  // relative displacements and gaps at u with the new couplings
     return change;
-  }
-
-  Point<dim> ContactModel::place_journal_point(const Point<dim> &X, const Tensor<1, dim> &u) const
-  {
-    const Point<dim> c(rolling_centre_[0], rolling_centre_[1], rolling_centre_[2]);
-    return c + rotation_z(rolling_psi()) * (X - Point<dim>(journal_axis_mesh_) + u);
   }
 }  // namespace clearjoint::fe::detail

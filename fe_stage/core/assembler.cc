@@ -10,21 +10,21 @@ namespace clearjoint::fe::detail
   /// the energies.
   void ContactModel::assemble_static()
   {
-    const unsigned int p = fe_->degree;
+    const unsigned int p = dofs_.fe().degree;
     const QGauss<dim> quadrature(p + 1);
-    FEValues<dim> fe_values(*mapping_, *fe_, quadrature,
+    FEValues<dim> fe_values(bodies_.mapping(), dofs_.fe(), quadrature,
                             update_gradients | update_JxW_values |
                               (dynamic_ ? update_values : update_default));
-    const unsigned int n_dofs = fe_->n_dofs_per_cell();
+    const unsigned int n_dofs = dofs_.fe().n_dofs_per_cell();
     const double c_m = dynamic_ ? operator_coefficients_.mass : 0.0;
     const double c_k = dynamic_ ? operator_coefficients_.stiffness : 1.0;
     const double rho = scene_.material.rho;
     FullMatrix<double> cell_matrix(n_dofs, n_dofs), cell_mass(n_dofs, n_dofs);
-    // the contact surface's DoFs (every node of nodes_, candidate or watched): massless with
+    // the contact surface's DoFs (every node of contact_.nodes(), candidate or watched): massless with
     // impact.mass = redistributed
     std::set<types::global_dof_index> surface_dofs;
     if (dynamic_ && scene_.impact.mass == Impact::Mass::redistributed)
-      for (const auto &cn : nodes_)
+      for (const auto &cn : contact_.nodes())
         surface_dofs.insert(cn.dofs.begin(), cn.dofs.end());
     const LinearElastic &C = material_->elastic();
     Vector<double> cell_rhs(n_dofs);
@@ -33,7 +33,7 @@ namespace clearjoint::fe::detail
     std::vector<SymmetricTensor<2, dim>> eps(n_dofs);
     std::vector<double> div(n_dofs);
 
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
@@ -62,9 +62,9 @@ namespace clearjoint::fe::detail
               for (const unsigned int q : fe_values.quadrature_point_indices())
                 for (unsigned int i = 0; i < n_dofs; ++i)
                   {
-                    const unsigned int ci = fe_->system_to_component_index(i).first;
+                    const unsigned int ci = dofs_.fe().system_to_component_index(i).first;
                     for (unsigned int j = 0; j < n_dofs; ++j)
-                      if (fe_->system_to_component_index(j).first == ci)
+                      if (dofs_.fe().system_to_component_index(j).first == ci)
                         cell_mass(i, j) += rho * fe_values.shape_value(i, q) *
                                            fe_values.shape_value(j, q) * fe_values.JxW(q);
                   }
@@ -85,8 +85,8 @@ namespace clearjoint::fe::detail
           else
             {
               cell_rhs = 0.0;
-              fixed_constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, A_static_,
-                                                            rhs_static_unit_);
+              dofs_.fixed().distribute_local_to_global(cell_matrix, cell_rhs, dofs, A_static_,
+                                                       rhs_static_unit_);
             }
         }
     K_.compress(VectorOperation::add);
@@ -108,22 +108,12 @@ namespace clearjoint::fe::detail
     A_.copy_from(A_static_);
     rhs_ = 0.0;  // the static part δ·rhs_static_unit_ is added after compress(): adding
                  // into a vector whose last operation was an assignment is collective
-    Vector<double> cell_rhs(fe_->n_dofs_per_cell());
-    slipping_.clear();
-    slipping_dof_.clear();
-    if (friction_)
-      for (unsigned int i = 0; i < nodes_.size(); ++i)
-        if (nodes_[i].candidate && nodes_[i].active && !nodes_[i].stick)
-          {
-            slipping_.push_back(i);
-            for (const auto d : nodes_[i].dofs)
-              slipping_dof_[d] = i;
-          }
-    nonsymmetric_ = Utilities::MPI::max(slipping_.empty() ? 0u : 1u, comm_) > 0;
+    Vector<double> cell_rhs(dofs_.fe().n_dofs_per_cell());
+    contact_.collect_slipping();
     FullMatrix<double> friction_matrix;
     std::vector<types::global_dof_index> friction_dofs;
     for (unsigned int k = 0; k < contact_cell_matrices_.size(); ++k)
-      if (friction_ && friction_cell_matrix(k, friction_matrix, friction_dofs))
+      if (contact_.friction() && friction_cell_matrix(k, friction_matrix, friction_dofs))
         {
           Vector<double> zero(friction_dofs.size());
           constraints_.distribute_local_to_global(friction_matrix, zero, friction_dofs, A_, rhs_);
@@ -135,11 +125,11 @@ namespace clearjoint::fe::detail
                                                   contact_cell_dofs_[k], A_, rhs_);
         }
     Vector<double> node_rhs;
-    for (const unsigned int i : slipping_)
-      if (nodes_[i].owned)  // once per node over all ranks
+    for (const unsigned int i : contact_.slipping())
+      if (contact_.nodes()[i].owned)  // once per node over all ranks
         {
-          friction_node_matrix(nodes_[i], tangential_scale_ * c, delta, friction_matrix, node_rhs,
-                               friction_dofs);
+          friction_node_matrix(contact_.nodes()[i], contact_.tangential_scale() * c, delta,
+                               friction_matrix, node_rhs, friction_dofs);
           constraints_.distribute_local_to_global(friction_matrix, node_rhs, friction_dofs, A_,
                                                   rhs_);
         }
@@ -172,7 +162,7 @@ namespace clearjoint::fe::detail
         {
           double total = 0.0, moved = 0.0;
           for (unsigned int i = 0; i < n; ++i)
-            if (fe_->system_to_component_index(i).first == c)
+            if (dofs_.fe().system_to_component_index(i).first == c)
               {
                 total += m[i];
                 if (surface.count(dofs[i]))
@@ -181,7 +171,7 @@ namespace clearjoint::fe::detail
           if (moved <= 0.0 || moved >= total)
             continue;  // no surface DoF in the cell (or only: keep its mass where it is)
           for (unsigned int i = 0; i < n; ++i)
-            if (fe_->system_to_component_index(i).first == c)
+            if (dofs_.fe().system_to_component_index(i).first == c)
               m[i] = surface.count(dofs[i]) ? 0.0 : m[i] * total / (total - moved);
         }
     cell_mass = 0.0;
@@ -197,7 +187,7 @@ namespace clearjoint::fe::detail
       *m = 0.0;
     M_.reinit(K_);  // K_'s pattern (a new setup may have changed it)
     elastic_.K.reinit(K_);
-    dynamic_load_.reinit(owned_, comm_);
+    dynamic_load_.reinit(dofs_.owned(), comm_);
     M_ = 0.0;
     elastic_.K = 0.0;
     rhs_static_unit_ = 0.0;
@@ -211,12 +201,13 @@ namespace clearjoint::fe::detail
   void ContactModel::add_condensed(const TrilinosWrappers::MPI::Vector &b,
                                    TrilinosWrappers::MPI::Vector &rhs)
   {
-    TrilinosWrappers::MPI::Vector ghosted(owned_, relevant_, comm_);
+    TrilinosWrappers::MPI::Vector ghosted(dofs_.owned(), dofs_.relevant(), comm_);
     ghosted = b;
     TrilinosWrappers::MPI::Vector moved;
-    moved.reinit(owned_, relevant_, comm_, true);  // writable: masters owned elsewhere
+    moved.reinit(dofs_.owned(), dofs_.relevant(), comm_,
+                 true);  // writable: masters owned elsewhere
     for (const auto &line : constraints_.get_lines())
-      if (owned_.is_element(line.index))
+      if (dofs_.owned().is_element(line.index))
         {
           const double bi = ghosted[line.index];
           for (const auto &[m, c] : line.entries)

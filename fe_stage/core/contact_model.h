@@ -4,9 +4,10 @@
 // solve,results}/ (fe_stage/README.md maps each to its file).
 //
 // The class is being dissolved into objects that own their state (issue 29, FE_DESIGN §4.1).
-// Owners so far, each in its own header: the linear solver and its AMG (SystemSolver,
-// solve/linear_solver.h), the material law with its quadrature-point history (MaterialLaw,
-// material/material_law.h), the steppers' step-size policy (StepController,
+// Owners so far, each in its own header: the meshed bodies (Bodies, mesh/bodies.h), the DoF
+// space and its fixed constraints (DofSpace, core/dof_space.h), the linear solver and its AMG
+// (SystemSolver, solve/linear_solver.h), the material law with its quadrature-point history
+// (MaterialLaw, material/material_law.h), the steppers' step-size policy (StepController,
 // solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's coefficients and
 // predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law (contact/coulomb_ssn.h).
 //
@@ -27,17 +28,21 @@
 #pragma once
 
 #include "fe_stage/contact/contact_node.h"
+#include "fe_stage/contact/contact_problem.h"
+#include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
+#include "fe_stage/core/dof_space.h"
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/material_law.h"
+#include "fe_stage/mesh/bodies.h"
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/solve/adaptive_estimate.h"
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/linear_solver.h"
 #include "fe_stage/solve/rolling_kinematics.h"
-#include "fe_stage/study/study.h"
+#include "fe_stage/study_plan.h"
 
 #include "common/error.h"
 #include "common/log.h"
@@ -111,22 +116,10 @@ namespace clearjoint::fe::detail
     RunResult run();
 
   private:
-    void make_grid();
-    void make_radial_grid();
-    void make_gmsh_grid();
-    void refine_joint_mesh();
-    /// Study rolling: the angle [rad] from a bore point at frame angle `angle` to the arc of
-    /// frame angles the contact point passes over the run (0 on it): [−sweep, 0], the sweep
-    /// the bearing's ω_B t_end unless given (a deformable journal's surface: its own turn).
-    double rolling_path_distance(double angle, double sweep = -1.0) const;
     /// Study rolling: the journal's gap [m] and normal at the bore point X when the journal,
     /// pushed to δ_max, is nearest to it on its path (contact/node_pairing.cc).
     void rolling_gap_on_path(const Point<dim> &X, double &g0, Tensor<1, dim> &n) const;
-    template <typename CellIterator>
-    bool bore_gap_below(const CellIterator &cell, double limit) const;
     void make_block_grid();
-    void setup_system();
-    void build_fixed_constraints();
     void find_contact_nodes();
     void find_mortar_contact_nodes(const std::map<types::global_dof_index, Point<dim>> &support,
                                    std::map<types::global_dof_index, ContactNode> &by_x_dof,
@@ -144,7 +137,6 @@ namespace clearjoint::fe::detail
     IncrementRecord settle_sliding(double delta, const TrilinosWrappers::MPI::Vector &u_start,
                                    IncrementRecord rec);
     void make_matrices();
-    void set_fixed_constraints_for(double delta);
     void assemble_static();
     void compute_nodal_weights();
     void set_obstacle_position(double delta);
@@ -202,41 +194,8 @@ namespace clearjoint::fe::detail
     // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)
     void build_contact_constraints(double delta);
     void assemble_system(double delta, double c);
-    struct ActiveSetChange
-    {
-      unsigned int n_changed = 0;  // nodes whose active or stick state changed (all ranks)
-      double slip_residual = 0.0;  // [N] largest |t − μλŵ| at nodes that slipped in the
-                                   // solve and still slip (all ranks): Coulomb's slip law
-      double force_scale = 0.0;    // [N] largest normal nodal force λ (all ranks)
-      std::string changed;         // the first few changed nodes, "(x, y, z) mm
-                                   // stick→slip, …" (this rank's; for messages)
-    };
-    ActiveSetChange update_active_set(double c, double eps_g);
-    // c_T / c of this increment's iterations: contact.tangential_scale, lowered when the
-    // stick/slip decisions cycle (solve/contact_iteration.cc)
-    double tangential_scale_ = 1.0;
     void record_forces(double delta, IncrementRecord &rec);
     void record_coulomb_check(IncrementRecord &rec) const;
-    /// Whether the contact holds DoF k of the node: a DoF fixed by a symmetry plane carries
-    /// that plane's reaction, not contact (on the plane the friction force lies in it).
-    bool contact_holds(const ContactNode &cn, const unsigned int k) const
-    {
-      return !fixed_constraints_.is_constrained(cn.dofs[k]);
-    }
-    /// v with the components the contact does not hold (fixed by a symmetry plane or a
-    /// support, or hanging) set to zero.
-    Tensor<1, dim> held_components(const ContactNode &cn, Tensor<1, dim> v) const
-    {
-      for (unsigned int k = 0; k < dim; ++k)
-        if (!contact_holds(cn, k))
-          v[k] = 0.0;
-      return v;
-    }
-    /// The contact force on a node: K u on the DoFs the contact holds.
-    Tensor<1, dim> contact_traction(const ContactNode &cn) const
-    {
-      return held_components(cn, cn.traction);
-    }
     /// The boundary whose nodes carry the contact constraints: the bore (or the block's top),
     /// or the journal's surface when it is the mortar slave.
     types::boundary_id slave_surface_id() const
@@ -248,46 +207,6 @@ namespace clearjoint::fe::detail
     /// +1 when the slave is the bore (or the block), −1 when it is the journal: the force on
     /// the bearing is this times the force on the slave's nodes.
     double slave_sign() const { return slave_surface_id() == bid_journal_surface ? -1.0 : 1.0; }
-    /// A point of the deformable journal where it sits → the aligned journal as meshed (its
-    /// axis e_z through (0, −c_r, 0)), and back (plan_.journal_pose; identity unless tilted).
-    Point<dim> journal_local(const Point<dim> &X) const
-    {
-      const auto l = plan_.journal_pose.to_local({X[0], X[1], X[2]});
-      return Point<dim>(l[0], l[1], l[2]);
-    }
-    Point<dim> journal_world(const Point<dim> &x) const
-    {
-      const auto X = plan_.journal_pose.to_world({x[0], x[1], x[2]});
-      return Point<dim>(X[0], X[1], X[2]);
-    }
-    /// Sets the node's constrained component: the largest component of the normal n
-    /// (|n_c| > 0.3) whose DoF is not already constrained. False if there is none (a hanging or
-    /// supported node: it follows its masters and is no contact node).
-    bool choose_constrained_component(ContactNode &cn, const Tensor<1, dim> &n) const
-    {
-      std::array<unsigned int, dim> order = {0, 1, 2};
-      std::sort(order.begin(), order.end(),
-                [&](unsigned a, unsigned b) { return std::abs(n[a]) > std::abs(n[b]); });
-      for (const unsigned int c : order)
-        if (std::abs(n[c]) > 0.3 && !fixed_constraints_.is_constrained(cn.dofs[c]))
-          {
-            cn.constrained_component = c;
-            return true;
-          }
-      return false;
-    }
-    /// The slip of a node in this increment, on the components the contact holds: a node on a
-    /// symmetry plane cannot slip across it (its partner combination may move across it when
-    /// the partners are not on the plane themselves, as a mortar coupling's are not).
-    Tensor<1, dim> contact_slip_increment(const ContactNode &cn) const
-    {
-      return tangential(held_components(cn, cn.relative - cn.relative_converged), cn.n);
-    }
-    /// P_T = I − n nᵀ at the node.
-    static Tensor<2, dim> tangent_projection(const ContactNode &cn)
-    {
-      return Tensor<2, dim>(unit_symmetric_tensor<dim>()) - outer_product(cn.n, cn.n);
-    }
     /// The rigid obstacle's gap at a reference point (deal.II types around RigidObstacle::gap).
     bool obstacle_gap(const Point<dim> &X, double delta, double &g0, Tensor<1, dim> &n) const
     {
@@ -316,7 +235,7 @@ namespace clearjoint::fe::detail
       std::vector<ContactNode> nodes;
       unsigned int sliding_rebuilds = 0;
     };
-    Snapshot save_state() const { return {solution_owned_, nodes_, n_sliding_rebuilds_}; }
+    Snapshot save_state() const { return {solution_owned_, contact_.nodes(), n_sliding_rebuilds_}; }
     void restore_state(const Snapshot &s);
     /// [s] since the model was made (the runs' setup and wall times).
     double elapsed() const
@@ -338,35 +257,20 @@ namespace clearjoint::fe::detail
     MPI_Comm comm_;
     const unsigned int rank_, n_ranks_;
 
-    parallel::distributed::Triangulation<dim> tria_;
-    std::unique_ptr<FESystem<dim>> fe_;
-    std::unique_ptr<MappingQ<dim>> mapping_;
-    DoFHandler<dim> dof_handler_;
-    IndexSet owned_, relevant_;
+    Bodies bodies_;           // the mesh, its mapping, symmetry factor and h_min
+    DofSpace dofs_;           // FE, DoFs, index sets, fixed constraints, loaded and support DoFs
+    ContactProblem contact_;  // the contact nodes, slipping set, c_T, active-set update
 
     RigidObstacle obstacle_;
-    double symmetry_factor_ = 1.0;
-    double h_min_ = 0.0;
     /// The bodies' law (make_material: J2 with its history for the rolling study, else
     /// linear elastic); material_->elastic() is the law of the static operator.
     std::unique_ptr<MaterialLaw> material_;
 
-    AffineConstraints<double> hanging_constraints_;  // hanging nodes only (residual condensing)
-    AffineConstraints<double> fixed_constraints_;    // hanging nodes, symmetry, supports,
-                                                     // journal load at δ = 1 (scaled by δ)
-    AffineConstraints<double> fixed_delta_;          // the same at the current δ
     TrilinosWrappers::MPI::Vector rhs_static_unit_;  // static cells' right-hand side at δ = 1
-    std::vector<types::global_dof_index> loaded_y_dofs_;  // owned journal DoFs driven by δ
-    std::vector<types::global_dof_index> loaded_sorted_;  // the same, sorted (lookups)
-    bool two_body_ = false;
-    bool journal_driven_ = true;          // false: a deformable journal is free
-    bool friction_ = false;               // contact.mu > 0
-    bool nonsymmetric_ = false;           // slipping nodes in A_ (GMRES, not CG)
-    std::vector<unsigned int> slipping_;  // nodes slipping in this iteration (indices, ascending)
-    std::map<types::global_dof_index, unsigned int> slipping_dof_;  // any of their DoFs → node
-    AffineConstraints<double> constraints_;  // + contact lines of the active set
-    TrilinosWrappers::SparseMatrix K_;       // unconstrained stiffness (reactions);
-                                             // dynamic: c_m M + c_k K
+    bool journal_driven_ = true;                     // false: a deformable journal is free
+    AffineConstraints<double> constraints_;          // + contact lines of the active set
+    TrilinosWrappers::SparseMatrix K_;               // unconstrained stiffness (reactions);
+                                                     // dynamic: c_m M + c_k K
     // Implicit dynamics (study impact): the operator K_ and the condensed matrices hold
     // c_m M + c_k K; the residual K_ u − dynamic_load_ is then the constraint forces.
     bool dynamic_ = false;
@@ -374,28 +278,10 @@ namespace clearjoint::fe::detail
     // load, so that K_ u − dynamic_load_ is again the constraint forces.
     bool plastic_ = false;
     unsigned int n_q_ = 0;  // quadrature points per cell: material_'s point = cell · n_q_ + q
-    // The rolling study's pose of the rigid journal for set_obstacle_position: the frame angle
-    // φ of the bearing, the journal's axis in the frame at the last converged step and now,
-    // and its turn relative to the frame since then.
-    bool rolling_ = false;
-    double rolling_phi_ = 0.0, rolling_delta_psi_ = 0.0;
-    std::array<double, 3> rolling_centre_previous_{}, rolling_centre_{};
-    // The rolling study's deformable journal: computed in its own frame (turned by ψ = γ − φ
-    // relative to the bearing's frame about its axis, its core clamped there); a journal point
-    // X (as meshed, axis through journal_axis_mesh_) with displacement u is placed in the
-    // bearing's frame at c + Q(ψ)(X − a + u), c = rolling_centre_. ψ of the last converged
-    // step; ψ now = rolling_psi_converged_ + rolling_delta_psi_.
-    double rolling_psi_converged_ = 0.0;
-    Tensor<1, dim> journal_axis_mesh_;
-    /// Q: every partner's displacement as the slave node sees it is Q u_p (identity unless the
-    /// rolling study's journal turns; its partners are all journal nodes).
-    Tensor<2, dim> partner_rotation_ = Tensor<2, dim>(unit_symmetric_tensor<dim>());
-    bool rolling_deformable_journal() const { return rolling_ && two_body_; }
-    /// [rad] the deformable journal's turn relative to the bearing's frame now.
-    double rolling_psi() const { return rolling_psi_converged_ + rolling_delta_psi_; }
-    /// Where the deformable journal's point X (as meshed) with displacement u sits in the
-    /// bearing's frame (the pose rolling_centre_, rolling_psi()).
-    Point<dim> place_journal_point(const Point<dim> &X, const Tensor<1, dim> &u) const;
+    /// The rolling study's journal as the contact sees it (the bearing's frame angle, the
+    /// journal's centre and turn; identity elsewhere): set by the spin stepper.
+    JournalFrame frame_;
+    bool rolling_deformable_journal() const { return frame_.turning && plan_.deformable_partner; }
     /// Σ_p w_p Q u_p: the partners' displacement as the slave node sees it (ghosted v; Q the
     /// partners' turn now unless given).
     Tensor<1, dim> partner_displacement(const ContactNode &cn,
@@ -406,21 +292,7 @@ namespace clearjoint::fe::detail
       for (const auto &p : cn.partners)
         for (unsigned int c = 0; c < dim; ++c)
           s[c] += p.weight * v[p.dofs[c]];
-      return (Q ? *Q : partner_rotation_) * s;
-    }
-    /// The turning journal's frame at centre c and turn ψ moves the node's partner
-    /// combination by (Σ w) c + Q(ψ)(P − (Σ w) a) − P from where it was meshed.
-    Tensor<1, dim> partner_frame_motion(const ContactNode &cn, const std::array<double, 3> &c,
-                                        double psi) const
-    {
-      const Tensor<1, dim> P = cn.partner_X;
-      return cn.partner_weight * Tensor<1, dim>({c[0], c[1], c[2]}) +
-             rotation_z(psi) * (P - cn.partner_weight * journal_axis_mesh_) - P;
-    }
-    static Tensor<2, dim> rotation_z(const double angle)
-    {
-      const double cs = std::cos(angle), sn = std::sin(angle);
-      return Tensor<2, dim>({{cs, -sn, 0.0}, {sn, cs, 0.0}, {0.0, 0.0, 1.0}});
+      return (Q ? *Q : frame_.partner_rotation) * s;
     }
     /// The partner combinations' sparsity: per candidate node (by its x-DoF) the component of
     /// its normal line and its partners' x-DoFs, as make_matrices built the pattern for them
@@ -450,10 +322,8 @@ namespace clearjoint::fe::detail
     TrilinosWrappers::SparseMatrix A_static_;     // condensed, cells without contact nodes
     TrilinosWrappers::SparseMatrix A_;            // condensed system of this iteration
     TrilinosWrappers::MPI::Vector solution_owned_, rhs_, residual_owned_;
-    TrilinosWrappers::MPI::Vector solution_, residual_;    // ghosted
-    std::vector<types::global_dof_index> support_y_dofs_;  // owned y-DoFs of the supports
+    TrilinosWrappers::MPI::Vector solution_, residual_;  // ghosted
 
-    std::vector<ContactNode> nodes_;    // locally relevant candidates
     std::vector<int> contact_cell_of_;  // active_cell_index → index or −1
     std::vector<FullMatrix<double>> contact_cell_matrices_;
     std::vector<std::vector<types::global_dof_index>> contact_cell_dofs_;

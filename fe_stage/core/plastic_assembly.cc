@@ -18,12 +18,12 @@ namespace clearjoint::fe::detail
       throw NumericalError("fe_stage: the elastoplastic assembly needs a material law with "
                            "history (make_material)");
     plastic_ = true;
-    const QGauss<dim> quadrature(fe_->degree + 1);
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
     n_q_ = quadrature.size();
-    material_->resize(std::size_t(tria_.n_active_cells()) * n_q_);
+    material_->resize(std::size_t(bodies_.triangulation().n_active_cells()) * n_q_);
     keep_elastic_operator();
-    dynamic_load_.reinit(owned_, comm_);
-    for (const auto &line : fixed_constraints_.get_lines())
+    dynamic_load_.reinit(dofs_.owned(), comm_);
+    for (const auto &line : dofs_.fixed().get_lines())
       if (line.inhomogeneity != 0.0)
         throw NumericalError("fe_stage: the elastoplastic assembly needs homogeneous supports "
                              "(a rigid journal, or a deformable one clamped in its own frame); "
@@ -48,10 +48,11 @@ namespace clearjoint::fe::detail
   {
     ScopedTimer timer(t_assemble_);
     PlasticAssembly info;
-    const QGauss<dim> quadrature(fe_->degree + 1);
-    FEValues<dim> fv(*mapping_, *fe_, quadrature, update_gradients | update_JxW_values);
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
+                     update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector u(0);
-    const unsigned int n = fe_->n_dofs_per_cell();
+    const unsigned int n = dofs_.fe().n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);
     Vector<double> u_cell(n), b_cell(n);
     FullMatrix<double> D(n, n);
@@ -62,7 +63,7 @@ namespace clearjoint::fe::detail
     A_static_.copy_from(elastic_.A_static);
     contact_cell_matrices_ = elastic_.contact_cells;
     dynamic_load_ = 0.0;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
@@ -114,7 +115,7 @@ namespace clearjoint::fe::detail
           if (k >= 0)
             contact_cell_matrices_[k].add(1.0, D);
           else
-            fixed_constraints_.distribute_local_to_global(D, dofs, A_static_);
+            dofs_.fixed().distribute_local_to_global(D, dofs, A_static_);
         }
     K_.compress(VectorOperation::add);
     A_static_.compress(VectorOperation::add);
@@ -129,12 +130,13 @@ namespace clearjoint::fe::detail
   /// energies from the committed states.
   ContactModel::PlasticEnergies ContactModel::commit_plasticity()
   {
-    const QGauss<dim> quadrature(fe_->degree + 1);
-    FEValues<dim> fv(*mapping_, *fe_, quadrature, update_gradients | update_JxW_values);
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
+                     update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector u(0);
     std::vector<SymmetricTensor<2, dim>> eps(n_q_);
     PlasticEnergies e;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
@@ -164,13 +166,14 @@ namespace clearjoint::fe::detail
             }
           e.plastic_volume += cell_plastic_volume;
         }
-    e.plastic_work_step = symmetry_factor_ * Utilities::MPI::sum(e.plastic_work_step, comm_);
-    e.elastic_energy = symmetry_factor_ * Utilities::MPI::sum(e.elastic_energy, comm_);
+    e.plastic_work_step =
+      bodies_.symmetry_factor() * Utilities::MPI::sum(e.plastic_work_step, comm_);
+    e.elastic_energy = bodies_.symmetry_factor() * Utilities::MPI::sum(e.elastic_energy, comm_);
     e.bearing_plastic_work_step =
-      symmetry_factor_ * Utilities::MPI::sum(e.bearing_plastic_work_step, comm_);
+      bodies_.symmetry_factor() * Utilities::MPI::sum(e.bearing_plastic_work_step, comm_);
     e.bearing_elastic_energy =
-      symmetry_factor_ * Utilities::MPI::sum(e.bearing_elastic_energy, comm_);
-    e.plastic_volume = symmetry_factor_ * Utilities::MPI::sum(e.plastic_volume, comm_);
+      bodies_.symmetry_factor() * Utilities::MPI::sum(e.bearing_elastic_energy, comm_);
+    e.plastic_volume = bodies_.symmetry_factor() * Utilities::MPI::sum(e.plastic_volume, comm_);
     e.max_plastic_strain = Utilities::MPI::max(e.max_plastic_strain, comm_);
     e.max_strain = Utilities::MPI::max(e.max_strain, comm_);
     return e;
@@ -182,15 +185,15 @@ namespace clearjoint::fe::detail
   void ContactModel::plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
                                          Vector<float> &alpha_max, Vector<float> &vm_max) const
   {
-    const QGauss<dim> quadrature(fe_->degree + 1);
-    FEValues<dim> fv(*mapping_, *fe_, quadrature, update_gradients);
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
     const FEValuesExtractors::Vector u(0);
     std::vector<SymmetricTensor<2, dim>> eps(n_q_);
-    mean_eps_p.assign(tria_.n_active_cells(), SymmetricTensor<2, dim>());
-    alpha_max.reinit(tria_.n_active_cells());
-    vm_max.reinit(tria_.n_active_cells());
+    mean_eps_p.assign(bodies_.triangulation().n_active_cells(), SymmetricTensor<2, dim>());
+    alpha_max.reinit(bodies_.triangulation().n_active_cells());
+    vm_max.reinit(bodies_.triangulation().n_active_cells());
     const LinearElastic &C = material_->elastic();
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
@@ -217,15 +220,16 @@ namespace clearjoint::fe::detail
                                                                const double turn,
                                                                const double half_angle) const
   {
-    const QGauss<dim - 1> fq(fe_->degree + 2);
-    FEFaceValues<dim> fv(*mapping_, *fe_, fq, update_gradients | update_quadrature_points);
+    const QGauss<dim - 1> fq(dofs_.fe().degree + 2);
+    FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq,
+                         update_gradients | update_quadrature_points);
     const FEValuesExtractors::Vector u(0);
     std::vector<SymmetricTensor<2, dim>> eps(fq.size());
     std::vector<double> mine;
     const double R = body == 0 ? scene_.geometry.R_B : scene_.geometry.R_J();
     const double axis_y = body == 0 ? 0.0 : -scene_.geometry.c_r;  // the body's axis (x = 0)
     const types::boundary_id surface = body == 0 ? bid_contact : bid_journal_surface;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned() && cell->material_id() == body)
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == surface)

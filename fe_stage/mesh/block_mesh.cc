@@ -1,13 +1,32 @@
 // The verification block (patch test, Hertz) and its optional deformable indenter.
-#include "fe_stage/core/contact_model.h"
 #include "fe_stage/mesh/append_body.h"
+#include "fe_stage/mesh/bodies.h"
+#include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/mesh/charts.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
   /// The verification block [0,W]×[−H,0]×[0,W] (quarter model: symmetry planes x = 0, z = 0),
   /// roller support u_y = 0 at y = −H, contact on y = 0.
-  void ContactModel::make_block_grid()
+  void Bodies::make_block_grid()
   {
     const auto &V = scene_.verification;
     const unsigned int n = V.n_cells;

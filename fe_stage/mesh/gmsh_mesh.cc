@@ -1,8 +1,27 @@
 // A user's bearing from a Gmsh mesh (docs/geometry.md): groups to boundary ids, symmetry planes.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/mesh/bodies.h"
+#include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/mesh/charts.h"
 
 #include "geometry/msh_check.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
@@ -15,7 +34,7 @@ namespace clearjoint::fe::detail
   /// is the scene's rigid cylinder (R_J, L_J from the geometry keys), or with a deformable
   /// journal loading the mesh's own journal (its volume, journal_contact surface on the
   /// journal chart, journal_loaded end faces), paired with the bore by dual mortar.
-  void ContactModel::make_gmsh_grid()
+  void Bodies::make_gmsh_grid()
   {
     const auto &G = scene_.geometry;
     // validate_scene has checked the mesh against the scene (groups, cells, bore radius,
@@ -141,7 +160,7 @@ namespace clearjoint::fe::detail
       tria_.set_manifold(1, RayChart(G.c_r, G.R_J(), true));  // axis at y = −c_r
     refine_joint_mesh();
     symmetry_factor_ = (sym_x ? 2.0 : 1.0) * (sym_z ? 2.0 : 1.0);
-    if (rank_ == 0)
+    if (Utilities::MPI::this_mpi_process(comm_) == 0)
       log::info("fe_stage: " + G.mesh + ": " + std::to_string(cells.size()) +
                 (journal ? " bearing and journal" : " bearing") + " hexahedra, symmetry planes" +
                 (sym_x ? " x = 0" : "") + (sym_z ? " z = 0" : "") +

@@ -1,14 +1,33 @@
 // The joint's generated mesh: bearing ring and (deformable) journal on common rays, the rigid
 // journal's placement (aligned or tilted), and the refinement toward the contact.
-#include "fe_stage/core/contact_model.h"
 #include "fe_stage/mesh/append_body.h"
+#include "fe_stage/mesh/bodies.h"
+#include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/mesh/charts.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
   /// The bearing ring (and, unless the journal is rigid, the journal) as hexahedra on the
   /// RayChart manifolds; φ is measured from −y toward +x: point = (r sin φ, −r cos φ).
-  void ContactModel::make_radial_grid()
+  void Bodies::make_radial_grid()
   {
     const auto &G = scene_.geometry;
     const auto &M = scene_.mesh;
@@ -298,7 +317,7 @@ namespace clearjoint::fe::detail
   /// `limit` to the journal pushed to δ_max. Sampled on a 16 × 16 grid of the extent, not at
   /// the vertices only: a rim contact patch can be much smaller than a coarse cell.
   template <typename CellIterator>
-  bool ContactModel::bore_gap_below(const CellIterator &cell, const double limit) const
+  bool Bodies::bore_gap_below(const CellIterator &cell, const double limit) const
   {
     double phi_lo = std::numeric_limits<double>::max(), phi_hi = -phi_lo;
     double z_lo = phi_lo, z_hi = -phi_lo;
@@ -321,17 +340,18 @@ namespace clearjoint::fe::detail
           const double phi = phi_lo + (phi_hi - phi_lo) * i / n;
           const Point<dim> X(R * std::sin(phi), -R * std::cos(phi), z_lo + (z_hi - z_lo) * j / n);
           double g0;
-          Tensor<1, dim> normal;
-          if (obstacle_gap(X, scene_.loading.delta_max, g0, normal) && g0 < limit)
+          Vec3 normal;
+          if (plan_.obstacle.gap({X[0], X[1], X[2]}, scene_.loading.delta_max, g0, normal) &&
+              g0 < limit)
             return true;
         }
     return false;
   }
 
-  double ContactModel::rolling_path_distance(const double angle, const double body_sweep) const
+  double rolling_path_distance(const FeScene &scene, const double angle, const double body_sweep)
   {
     const double sweep =
-      body_sweep >= 0.0 ? body_sweep : scene_.rolling.omega_B * rolling_end_time(scene_);
+      body_sweep >= 0.0 ? body_sweep : scene.rolling.omega_B * rolling_end_time(scene);
     if (sweep >= 2.0 * units::pi)
       return 0.0;
     // the frame angles the contact point passes: [−sweep, 0] (mod 2π)
@@ -349,7 +369,7 @@ namespace clearjoint::fe::detail
   /// (a vertex within 2 δ_max of the journal pushed to δ_max; hanging nodes in the contact
   /// zone pass their force to their masters, see condense_hanging); the rolling study, the
   /// cells within the window of the arc the contact point travels over in the frame.
-  void ContactModel::refine_joint_mesh()
+  void Bodies::refine_joint_mesh()
   {
     const auto &M = scene_.mesh;
     for (unsigned int k = 0; k < M.global_refinements; ++k)
@@ -384,7 +404,7 @@ namespace clearjoint::fe::detail
                   const Point<dim> c = cell->center();
                   if (cell->material_id() == 0)
                     {
-                      if (rolling_path_distance(std::atan2(c[0], -c[1])) < window)
+                      if (rolling_path_distance(scene_, std::atan2(c[0], -c[1])) < window)
                         cell->set_refine_flag();
                       continue;
                     }
@@ -394,7 +414,8 @@ namespace clearjoint::fe::detail
                   const double gamma_end = scene_.rolling.omega_B *
                                            (scene_.geometry.R_B + scene_.loading.delta_max) /
                                            scene_.geometry.R_J() * rolling_end_time(scene_);
-                  if (at_surface && rolling_path_distance(std::atan2(c[0], -y), gamma_end) < window)
+                  if (at_surface &&
+                      rolling_path_distance(scene_, std::atan2(c[0], -y), gamma_end) < window)
                     cell->set_refine_flag();
                   continue;
                 }

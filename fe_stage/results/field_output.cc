@@ -78,8 +78,8 @@ namespace clearjoint::fe::detail
   {
     const std::string dir = options_.output_dir + "/fields";
     // contact fields at the nodes, in the x/y/z slots of a system vector
-    TrilinosWrappers::MPI::Vector cf_owned(owned_, comm_), ff_owned(owned_, comm_);
-    for (const auto &cn : nodes_)
+    TrilinosWrappers::MPI::Vector cf_owned(dofs_.owned(), comm_), ff_owned(dofs_.owned(), comm_);
+    for (const auto &cn : contact_.nodes())
       if (cn.owned)
         {
           cf_owned[cn.dofs[0]] = cn.active && cn.weight > 0.0 ? cn.lambda / cn.weight : 0.0;
@@ -89,15 +89,16 @@ namespace clearjoint::fe::detail
           // contact slides freely: slip); shear = the friction traction |t_T|/w, zero without
           // friction and off contact; slip = the tangential displacement against the other
           // body since the start, where in contact.
-          const double shear = tangential(contact_traction(cn), cn.n).norm();
-          ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (friction_ && cn.stick ? 2.0 : 1.0);
+          const double shear = tangential(contact_.traction(cn), cn.n).norm();
+          ff_owned[cn.dofs[0]] = !cn.active ? 0.0 : (contact_.friction() && cn.stick ? 2.0 : 1.0);
           ff_owned[cn.dofs[1]] =
-            friction_ && cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;
+            contact_.friction() && cn.active && cn.weight > 0.0 ? shear / cn.weight : 0.0;
           ff_owned[cn.dofs[2]] = cn.active ? tangential(cn.relative, cn.n).norm() : 0.0;
         }
     cf_owned.compress(VectorOperation::insert);
     ff_owned.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector cf(owned_, relevant_, comm_), ff(owned_, relevant_, comm_);
+    TrilinosWrappers::MPI::Vector cf(dofs_.owned(), dofs_.relevant(), comm_),
+      ff(dofs_.owned(), dofs_.relevant(), comm_);
     cf = cf_owned;
     ff = ff_owned;
 
@@ -107,7 +108,7 @@ namespace clearjoint::fe::detail
       plastic_cell_fields(mean_eps_p, alpha_max, vm_max);
     StressPostprocessor post(material_->elastic(), plastic_ ? &mean_eps_p : nullptr);
     DataOut<dim> out;
-    out.attach_dof_handler(dof_handler_);
+    out.attach_dof_handler(dofs_.handler());
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
       dim, DataComponentInterpretation::component_is_part_of_vector);
     out.add_data_vector(solution_, std::vector<std::string>(dim, "displacement"),
@@ -122,11 +123,12 @@ namespace clearjoint::fe::detail
     out.add_data_vector(ff,
                         std::vector<std::string>{"contact_status", "contact_shear", "contact_slip"},
                         DataOut<dim>::type_dof_data, sc);
-    Vector<float> subdomain(tria_.n_active_cells());
+    Vector<float> subdomain(bodies_.triangulation().n_active_cells());
     for (auto &s : subdomain)
-      s = static_cast<float>(tria_.locally_owned_subdomain());
+      s = static_cast<float>(bodies_.triangulation().locally_owned_subdomain());
     out.add_data_vector(subdomain, "subdomain");
-    Vector<float> plastic_zone(tria_.n_active_cells());  // volume fraction above yield
+    Vector<float> plastic_zone(
+      bodies_.triangulation().n_active_cells());  // volume fraction above yield
     if (plastic_)
       {
         // the elastoplastic model's own plastic zone: its equivalent plastic strain
@@ -138,7 +140,7 @@ namespace clearjoint::fe::detail
         check_yield(&plastic_zone);
         out.add_data_vector(plastic_zone, "plastic_zone");
       }
-    out.build_patches(*mapping_, fe_->degree, DataOut<dim>::curved_inner_cells);
+    out.build_patches(bodies_.mapping(), dofs_.fe().degree, DataOut<dim>::curved_inner_cells);
     const std::string pvtu =
       out.write_vtu_with_pvtu_record(dir + "/", "solution", counter, comm_, 4, 0);
     if (rank_ == 0)

@@ -14,7 +14,7 @@ namespace clearjoint::fe::detail
       residual_owned_ -= dynamic_load_;
     condense_hanging(residual_owned_);
     residual_ = residual_owned_;
-    for (auto &cn : nodes_)
+    for (auto &cn : contact_.nodes())
       {
         for (unsigned int c = 0; c < dim; ++c)
           {
@@ -39,9 +39,10 @@ namespace clearjoint::fe::detail
   {
     residual_ = r;  // ghosted copy: the hanging DoF's value on whichever rank owns its line
     TrilinosWrappers::MPI::Vector moved;
-    moved.reinit(owned_, relevant_, comm_, true);  // writable: entries of masters elsewhere
-    for (const auto &line : hanging_constraints_.get_lines())
-      if (owned_.is_element(line.index))
+    moved.reinit(dofs_.owned(), dofs_.relevant(), comm_,
+                 true);  // writable: entries of masters elsewhere
+    for (const auto &line : dofs_.hanging().get_lines())
+      if (dofs_.owned().is_element(line.index))
         {
           const double rh = residual_[line.index];
           for (const auto &[m, c] : line.entries)
@@ -63,10 +64,10 @@ namespace clearjoint::fe::detail
     // the y-force a node's contact passes on to the bearing: normal only, or with its friction
     // force (the force on the slave node; on the bearing the opposite when the journal is slave)
     auto contact_force_y = [&, sign = slave_sign()](const ContactNode &cn) {
-      return sign * (friction_ ? cn.traction[1] : cn.lambda * cn.n[1]);
+      return sign * (contact_.friction() ? cn.traction[1] : cn.lambda * cn.n[1]);
     };
     Point<dim> deepest;
-    for (const auto &cn : nodes_)
+    for (const auto &cn : contact_.nodes())
       if (cn.owned)
         {
           if (-cn.gap > max_pen)
@@ -74,7 +75,7 @@ namespace clearjoint::fe::detail
           if (cn.active)
             {
               ++n_act;
-              if (friction_ && !cn.stick)
+              if (contact_.friction() && !cn.stick)
                 ++n_slip;
               f_contact -= contact_force_y(cn);
               if (cn.weight > 0.0)
@@ -85,27 +86,28 @@ namespace clearjoint::fe::detail
             }
         }
     double f_support = 0.0, f_load = 0.0;
-    for (const auto d : support_y_dofs_)
+    for (const auto d : dofs_.support_y_dofs())
       f_support += residual_owned_[d];
-    for (const auto d : loaded_y_dofs_)
+    for (const auto d : dofs_.loaded_y_dofs())
       f_load -= residual_owned_[d];
     // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
     // the contact force reaches that DoF through the constraint, not through K u: add it.
-    for (const auto &cn : nodes_)
+    for (const auto &cn : contact_.nodes())
       if (cn.active && cn.owned)
         for (const auto &p : cn.partners)
           if (p.driven_y)
             f_load -= p.weight * contact_force_y(cn);
-    rec.force_load = two_body_ ? symmetry_factor_ * Utilities::MPI::sum(f_load, comm_) :
-                                 symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
-    rec.force = symmetry_factor_ * Utilities::MPI::sum(f_contact, comm_);
-    rec.force_support = symmetry_factor_ * Utilities::MPI::sum(f_support, comm_);
+    rec.force_load = plan_.deformable_partner ?
+                       bodies_.symmetry_factor() * Utilities::MPI::sum(f_load, comm_) :
+                       bodies_.symmetry_factor() * Utilities::MPI::sum(f_contact, comm_);
+    rec.force = bodies_.symmetry_factor() * Utilities::MPI::sum(f_contact, comm_);
+    rec.force_support = bodies_.symmetry_factor() * Utilities::MPI::sum(f_support, comm_);
     rec.n_active = Utilities::MPI::sum(n_act, comm_);
     rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
     rec.max_penetration = Utilities::MPI::max(max_pen, comm_);
     rec.pressure_min = Utilities::MPI::min(p_min, comm_);
     rec.pressure_max = Utilities::MPI::max(p_max, comm_);
-    if (friction_)
+    if (contact_.friction())
       record_coulomb_check(rec);
     if (!std::isfinite(rec.force) || !std::isfinite(rec.force_support))
       throw StepFailure{"non-finite contact force"};
@@ -132,29 +134,29 @@ namespace clearjoint::fe::detail
   }
 
   /// How well the converged state satisfies Coulomb's law at every node (IncrementRecord's
-  /// friction_* fields): computed from K u and the displacements, independently of the
+  /// contact_.friction()* fields): computed from K u and the displacements, independently of the
   /// stick/slip decisions that produced them.
   void ContactModel::record_coulomb_check(IncrementRecord &rec) const
   {
     const double mu = scene_.contact.mu;
     double lambda_max = 0.0, cone = -std::numeric_limits<double>::max(), slip_law = 0.0,
            direction = 0.0;
-    for (const auto &cn : nodes_)
+    for (const auto &cn : contact_.nodes())
       if (cn.owned && cn.active)
         lambda_max = std::max(lambda_max, cn.lambda);
     lambda_max = Utilities::MPI::max(lambda_max, comm_);
     // slid: the tangential relative displacement in this increment exceeds 1e-6 of the
     // increment's push (a sticking node's is 0 to round-off)
     const double slid = 1e-6 * scene_.loading.delta_max / scene_.loading.n_increments;
-    for (const auto &cn : nodes_)
+    for (const auto &cn : contact_.nodes())
       if (cn.owned && cn.active)
         {
-          const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
+          const Tensor<1, dim> t = tangential(contact_.traction(cn), cn.n);
           cone = std::max(cone, t.norm() - mu * cn.lambda);
           if (!cn.stick)
             {
               slip_law = std::max(slip_law, std::abs(t.norm() - mu * cn.lambda));
-              const Tensor<1, dim> s = contact_slip_increment(cn);
+              const Tensor<1, dim> s = contact_.slip_increment(cn);
               if (s.norm() > slid && t.norm() > 0.0)
                 direction = std::max(direction, 1.0 + (t / t.norm()) * (s / s.norm()));
             }

@@ -8,8 +8,8 @@ namespace clearjoint::fe::detail
 {
   YieldCheck ContactModel::check_yield(Vector<float> *cell_fraction_above) const
   {
-    const QGauss<dim> quadrature(fe_->degree + 1);
-    FEValues<dim> fv(*mapping_, *fe_, quadrature,
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
                      update_gradients | update_JxW_values | update_quadrature_points);
     const FEValuesExtractors::Vector u(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
@@ -19,7 +19,7 @@ namespace clearjoint::fe::detail
     constexpr unsigned int n_bodies = 2;
     std::array<double, n_bodies> volume{}, above{}, max_vm{};
     std::array<Point<dim>, n_bodies> where;
-    for (const auto &cell : dof_handler_.active_cell_iterators())
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
@@ -57,8 +57,8 @@ namespace clearjoint::fe::detail
           continue;  // no such body (a rigid journal or indenter)
         YieldCheck::Body body;
         body.name = plan_.body_names[b];
-        body.volume = symmetry_factor_ * v;
-        body.volume_above_yield = symmetry_factor_ * Utilities::MPI::sum(above[b], comm_);
+        body.volume = bodies_.symmetry_factor() * v;
+        body.volume_above_yield = bodies_.symmetry_factor() * Utilities::MPI::sum(above[b], comm_);
         for (const auto &r : all)
           if (r[0] > body.max_von_mises)
             {

@@ -9,8 +9,9 @@ namespace clearjoint::fe::detail
     IncrementRecord rec;
     rec.delta = delta;
     set_obstacle_position(delta);
-    set_fixed_constraints_for(delta);
-    const double c = scene_.contact.active_set_scale * scene_.material.E * h_min_;  // [N/m]
+    dofs_.set_delta(delta);
+    const double c =
+      scene_.contact.active_set_scale * scene_.material.E * bodies_.h_min();  // [N/m]
     // ε_g: a penetration below this is round-off, not contact (makes the active set
     // deterministic across rank counts). 1e-9 of the push is far below any physical effect.
     const double eps_g = 1e-9 * scene_.loading.delta_max;
@@ -19,13 +20,9 @@ namespace clearjoint::fe::detail
     // nodal forces are ~2 % of F), far below the discretisation error, and Newton's quadratic
     // convergence usually lands well below it (1e-7 → 1e-12, docs/fe.md).
     const double slip_tolerance = 1e-6;
-    // Friction's constant c_T only steers the Newton path: a converged state (settled sets,
-    // slip law met) is the same for every c_T (docs/fe.md). A few nodes at the stick/slip
-    // border can flip every iteration at a given c_T (seen with hanging nodes in the contact
-    // zone, and in the rolling study); each 8 iterations that have not settled after the
-    // first 12 therefore take c_T down by 0.3, to 1e-3 of the scene's value at most.
-    tangential_scale_ = scene_.contact.tangential_scale;
-    const unsigned int patient = 12, every = 8;
+    // friction's c_T: the scene's at the start of each increment, lowered while the stick/slip
+    // decisions cycle (contact/active_set.cc)
+    contact_.reset_tangential_scale();
     // Inexact solves while the sets still move: an iteration whose active or stick set will
     // change again only decides the next sets, so its linear solve stops at a relative residual
     // of 1e-6 instead of solver.tolerance (1e-10): about 40 % fewer Krylov iterations. The
@@ -39,17 +36,10 @@ namespace clearjoint::fe::detail
     unsigned int it = 0;
     for (; it < scene_.contact.max_iterations; ++it)
       {
-        if (friction_ && it >= patient && (it - patient) % every == 0 &&
-            tangential_scale_ > 1.001e-3 * scene_.contact.tangential_scale)
-          {
-            tangential_scale_ *= 0.3;
-            if (log::level() <= log::Level::debug)
-              log::debug("  delta " + format_value(delta) +
-                         " m: the stick/slip decisions have "
-                         "not settled in " +
-                         std::to_string(it) + " iterations; c_T now " +
-                         format_value(tangential_scale_) + " c");
-          }
+        if (contact_.soften_tangential_scale(it) && log::level() <= log::Level::debug)
+          log::debug("  delta " + format_value(delta) +
+                     " m: the stick/slip decisions have not settled in " + std::to_string(it) +
+                     " iterations; c_T now " + format_value(contact_.tangential_scale()) + " c");
         build_contact_constraints(delta);
         assemble_system(delta, c);
 
@@ -57,34 +47,35 @@ namespace clearjoint::fe::detail
         {
           ScopedTimer timer(t_solve_);
           rec.linear_iterations +=
-            solver_.solve(A_, nonsymmetric_, dof_handler_, *mapping_, solution_owned_, rhs_,
-                          loose ? loose_tolerance : scene_.solver.tolerance);
+            solver_.solve(A_, contact_.nonsymmetric(), dofs_.handler(), bodies_.mapping(),
+                          solution_owned_, rhs_, loose ? loose_tolerance : scene_.solver.tolerance);
         }
         ScopedTimer eval_timer(t_evaluate_);
         constraints_.distribute(solution_owned_);
         solution_ = solution_owned_;
         evaluate_contact(delta);
-        if (friction_ && log::level() <= log::Level::debug)
+        if (contact_.friction() && log::level() <= log::Level::debug)
           {
             // the friction rows' own check: at a node that slipped in this solve the solved
             // tangential force must be the linearised slip law it was given (round-off)
             double mismatch = 0.0;
-            for (const unsigned int i : slipping_)
-              if (nodes_[i].owned)
+            for (const unsigned int i : contact_.slipping())
+              if (contact_.nodes()[i].owned)
                 {
-                  const ContactNode &cn = nodes_[i];
-                  const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
-                  const Tensor<2, dim> Q =
-                    tangent_projection(cn) - outer_product(cn.slip_direction, cn.slip_direction);
+                  const ContactNode &cn = contact_.nodes()[i];
+                  const Tensor<1, dim> t = tangential(contact_.traction(cn), cn.n);
+                  const Tensor<2, dim> Q = ContactProblem::tangent_projection(cn) -
+                                           outer_product(cn.slip_direction, cn.slip_direction);
                   const Tensor<1, dim> F =
                     scene_.contact.mu * cn.lambda * cn.slip_direction +
-                    cn.kappa * (Q * (t - tangential_scale_ * c * contact_slip_increment(cn)));
+                    cn.kappa *
+                      (Q * (t - contact_.tangential_scale() * c * contact_.slip_increment(cn)));
                   mismatch = std::max(mismatch, (t - F).norm());
                 }
             log::debug("  friction rows: largest |t - F(u)| " +
                        format_value(Utilities::MPI::max(mismatch, comm_)) + " N");
           }
-        const auto change = update_active_set(c, eps_g);
+        const auto change = contact_.update_active_set(c, eps_g);
         const bool slip_settled = change.slip_residual <= slip_tolerance * change.force_scale;
         if (log::level() <= log::Level::debug)
           log::debug("  delta " + format_value(delta) + " m, iteration " + std::to_string(it + 1) +

@@ -23,23 +23,23 @@ namespace clearjoint::fe::detail
     m_.start_from_rest();
     for (auto *x : {&u_, &v_, &a_, &lambda_, &u_new_, &v_new_, &a_new_, &lambda_new_, &tmp_,
                     &journal_mask_, &journal_y_})
-      x->reinit(m_.owned_, m_.comm_);
+      x->reinit(m_.dofs_.owned(), m_.comm_);
     d_rate_ = velocity;
     // A deformable journal: its DoFs (mask), its y-DoFs (the direction of δ), its mass from the
     // FE mass matrix; it starts as a rigid translation at −v e_y. δ is its centre of mass's
     // displacement: −(1_yᵀ M u)/(1_yᵀ M 1_y).
     if (deformable_)
       {
-        std::vector<types::global_dof_index> dofs(m_.fe_->n_dofs_per_cell());
-        for (const auto &cell : m_.dof_handler_.active_cell_iterators())
+        std::vector<types::global_dof_index> dofs(m_.dofs_.fe().n_dofs_per_cell());
+        for (const auto &cell : m_.dofs_.handler().active_cell_iterators())
           if (cell->is_locally_owned() && cell->material_id() == 1)
             {
               cell->get_dof_indices(dofs);
               for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (m_.owned_.is_element(dofs[i]))
+                if (m_.dofs_.owned().is_element(dofs[i]))
                   {
                     journal_mask_[dofs[i]] = 1.0;
-                    if (m_.fe_->system_to_component_index(i).first == 1)
+                    if (m_.dofs_.fe().system_to_component_index(i).first == 1)
                       journal_y_[dofs[i]] = 1.0;
                   }
             }
@@ -47,7 +47,7 @@ namespace clearjoint::fe::detail
         journal_y_.compress(VectorOperation::insert);
         m_.M_.vmult(tmp_, journal_y_);
         journal_mass_modelled_ = journal_y_ * tmp_;
-        journal_mass_ = m_.symmetry_factor_ * journal_mass_modelled_;
+        journal_mass_ = m_.bodies_.symmetry_factor() * journal_mass_modelled_;
         v_.add(-velocity, journal_y_);
       }
     ledger_.start(0.5 * journal_mass_ * velocity * velocity);
@@ -67,10 +67,10 @@ namespace clearjoint::fe::detail
   {
     A.vmult(tmp_, x);
     if (!journal_only)
-      return 0.5 * m_.symmetry_factor_ * (x * tmp_);
+      return 0.5 * m_.bodies_.symmetry_factor() * (x * tmp_);
     TrilinosWrappers::MPI::Vector xm = x;
     xm.scale(journal_mask_);
-    return 0.5 * m_.symmetry_factor_ * (xm * tmp_);
+    return 0.5 * m_.bodies_.symmetry_factor() * (xm * tmp_);
   }
 
   double HhtStepper::centre_of_mass_y(const TrilinosWrappers::MPI::Vector &x)
@@ -86,7 +86,8 @@ namespace clearjoint::fe::detail
     if (end_time > 0.0 && t_ + dt > end_time * (1.0 + 1e-12))
       dt = control_.begin_step(end_time - t_);
     operator_for(dt);
-    const ContactModel::Snapshot saved{u_, m_.nodes_, m_.n_sliding_rebuilds_};  // converged
+    const ContactModel::Snapshot saved{u_, m_.contact_.nodes(),
+                                       m_.n_sliding_rebuilds_};  // converged
     IncrementRecord inc;
     double d_new = 0.0;
     for (;;)
@@ -127,7 +128,7 @@ namespace clearjoint::fe::detail
   {
     const double c_m = hht_.coefficients(dt).mass;
     // the predictor û and the known part b = c_m M û + α(K u_n − λ_n)
-    TrilinosWrappers::MPI::Vector u_hat(m_.owned_, m_.comm_);
+    TrilinosWrappers::MPI::Vector u_hat(m_.dofs_.owned(), m_.comm_);
     hht_.predict(u_, v_, a_, dt, u_hat, HhtAlpha::Predictor::newmark);
     m_.M_.vmult(m_.dynamic_load_, u_hat);
     m_.dynamic_load_ *= c_m;
@@ -189,7 +190,7 @@ namespace clearjoint::fe::detail
     // net work of the contact forces: on the meshed bodies (λ at the contact DoFs, and at a
     // deformable journal's mortar partners; the supports do not move) and on a rigid journal
     // (F e_y along its displacement −δ e_y)
-    const double sym = m_.symmetry_factor_;
+    const double sym = m_.bodies_.symmetry_factor();
     const double w_bodies = sym * trapezoidal_work(u_new_, u_, lambda_new_, lambda_);
     const double w_journal = deformable_ ? 0.0 : -0.5 * (d_new - d_) * (F_ + F_new);
     work_contact_ += w_bodies + w_journal;
@@ -213,7 +214,7 @@ namespace clearjoint::fe::detail
     d_rate_ = d_rate_new;
     d_acc_ = d_acc_new;
     F_ = F_new;
-    for (auto &cn : m_.nodes_)
+    for (auto &cn : m_.contact_.nodes())
       cn.relative_converged = cn.relative;
 
     rec.time = t_;

@@ -54,12 +54,12 @@ namespace clearjoint::fe::detail
     const auto &I = scene_.impact;
     const auto &L = scene_.loading;
     auto &S = result.impact;
-    make_grid();
+    bodies_.build();
     prepare_mesh();
-    result.n_dofs = dof_handler_.n_dofs();
-    result.n_cells = tria_.n_global_active_cells();
-    result.symmetry_factor = symmetry_factor_;
-    result.h_min = h_min_;
+    result.n_dofs = dofs_.handler().n_dofs();
+    result.n_cells = bodies_.triangulation().n_global_active_cells();
+    result.symmetry_factor = bodies_.symmetry_factor();
+    result.h_min = bodies_.h_min();
     result.setup_time = elapsed();
     S.velocity_in = I.velocity;
     S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, below
@@ -145,7 +145,7 @@ namespace clearjoint::fe::detail
       log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +
                 " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
-    TrilinosWrappers::MPI::Vector u_peak(owned_, comm_);
+    TrilinosWrappers::MPI::Vector u_peak(dofs_.owned(), comm_);
     bool in_contact = false, have_peak = false;
     unsigned int free_steps = 0;  // steps without contact since the contact last ended
     double contact_end = 0.0;     // [s] when it last ended

@@ -20,7 +20,7 @@ namespace clearjoint::fe::detail
     start_from_rest();
     double delta_done = 0.0, delta_previous = 0.0;
     bool have_previous = false;
-    TrilinosWrappers::MPI::Vector solution_previous(owned_, comm_);
+    TrilinosWrappers::MPI::Vector solution_previous(dofs_.owned(), comm_);
     for (unsigned int inc = 1; inc <= targets.size(); ++inc)
       {
         const double target = targets[inc - 1];
@@ -45,14 +45,14 @@ namespace clearjoint::fe::detail
                     set_obstacle_position(try_delta);
                     evaluate_contact(try_delta);
                     const double eps_g = 1e-9 * L.delta_max;
-                    for (auto &cn : nodes_)
+                    for (auto &cn : contact_.nodes())
                       if (cn.candidate && cn.gap < -eps_g)
                         cn.active = true;
                   }
                 rec = solve_increment(try_delta);
                 if (finite_sliding())
                   rec = settle_sliding(try_delta, saved.u, rec);
-                for (auto &cn : nodes_)
+                for (auto &cn : contact_.nodes())
                   cn.relative_converged = cn.relative;  // friction: slip counts from here
                 solution_previous = saved.u;
                 delta_previous = delta_done;
@@ -90,7 +90,7 @@ namespace clearjoint::fe::detail
   {
     solution_owned_ = s.u;
     solution_ = solution_owned_;
-    nodes_ = s.nodes;
+    contact_.nodes() = s.nodes;
     // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
     // restored state again so that the pattern holds its partners (the rolling study's turning
     // journal, not finite sliding, searches again at its next evaluation anyway)
@@ -135,17 +135,8 @@ namespace clearjoint::fe::detail
   /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
   void ContactModel::prepare_mesh()
   {
-    h_min_ = Utilities::MPI::min(
-      [&] {
-        double h = std::numeric_limits<double>::max();
-        for (const auto &cell : tria_.active_cell_iterators())
-          if (cell->is_locally_owned())
-            h = std::min(h, cell->minimum_vertex_distance());
-        return h;
-      }(),
-      comm_);
     solver_.invalidate();  // its AMG was built for the previous mesh's matrix
-    setup_system();
+    dofs_.distribute(journal_driven_);
     find_contact_nodes();
     make_matrices();
     assemble_static();
@@ -157,14 +148,13 @@ namespace clearjoint::fe::detail
   /// the cells with the largest indicators in both bodies; p4est refines them (2:1 balance).
   void ContactModel::refine_adaptively()
   {
-    Vector<float> indicator(tria_.n_active_cells());
-    KellyErrorEstimator<dim>::estimate(*mapping_, dof_handler_, QGauss<dim - 1>(fe_->degree + 1),
-                                       {}, solution_, indicator, ComponentMask(), nullptr,
+    Vector<float> indicator(bodies_.triangulation().n_active_cells());
+    KellyErrorEstimator<dim>::estimate(bodies_.mapping(), dofs_.handler(),
+                                       QGauss<dim - 1>(dofs_.fe().degree + 1), {}, solution_,
+                                       indicator, ComponentMask(), nullptr,
                                        numbers::invalid_unsigned_int,
-                                       tria_.locally_owned_subdomain());
-    parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
-      tria_, indicator, scene_.mesh.adaptive_fraction, 0.0);
-    tria_.execute_coarsening_and_refinement();
+                                       bodies_.triangulation().locally_owned_subdomain());
+    bodies_.refine_largest(indicator, scene_.mesh.adaptive_fraction);
   }
 
   namespace
@@ -207,8 +197,8 @@ namespace clearjoint::fe::detail
           break;
         const double t0 = elapsed();
         AdaptiveCycle c;
-        c.n_dofs = dof_handler_.n_dofs();
-        c.n_cells = tria_.n_global_active_cells();
+        c.n_dofs = dofs_.handler().n_dofs();
+        c.n_cells = bodies_.triangulation().n_global_active_cells();
         if (!push_through(marking_targets, result.message, [&](unsigned int, IncrementRecord &r) {
               c.force = r.force;
               c.contact_iterations += r.contact_iterations;
@@ -294,24 +284,22 @@ namespace clearjoint::fe::detail
     result.n_ranks = n_ranks_;
     const auto &L = scene_.loading;
     const std::vector<double> targets = equal_steps(L.delta_max, L.n_increments);
-    make_grid();
+    bodies_.build();
     bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
     if (!run_adaptive_cycles(result, last_mesh_marked))
       return result;
-    result.n_dofs = dof_handler_.n_dofs();
-    result.n_cells = tria_.n_global_active_cells();
-    result.symmetry_factor = symmetry_factor_;
-    result.h_min = h_min_;
+    result.n_dofs = dofs_.handler().n_dofs();
+    result.n_cells = bodies_.triangulation().n_global_active_cells();
+    result.symmetry_factor = bodies_.symmetry_factor();
+    result.h_min = bodies_.h_min();
     result.setup_time = elapsed();
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
       std::filesystem::create_directories(options_.output_dir + "/fields");
-    const unsigned int n_candidates =
-      Utilities::MPI::sum((unsigned int)std::count_if(nodes_.begin(), nodes_.end(),
-                                                      [](const ContactNode &c) {
-                                                        return c.owned && c.candidate;
-                                                      }),
-                          comm_);  // collective: outside the rank-0 branch
+    const unsigned int n_candidates = Utilities::MPI::sum(
+      (unsigned int)std::count_if(contact_.nodes().begin(), contact_.nodes().end(),
+                                  [](const ContactNode &c) { return c.owned && c.candidate; }),
+      comm_);  // collective: outside the rank-0 branch
     if (rank_ == 0)
       log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +

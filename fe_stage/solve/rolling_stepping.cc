@@ -21,7 +21,7 @@ namespace clearjoint::fe::detail
     // iterations once the plastic zone and the active set have settled.
     const double tolerance = 1e-7 * scene_.loading.delta_max;
     const unsigned int max_it = scene_.rolling.max_newton_iterations;
-    TrilinosWrappers::MPI::Vector before(owned_, comm_);
+    TrilinosWrappers::MPI::Vector before(dofs_.owned(), comm_);
     double last_correction = 0.0;
     unsigned int growths = 0;
     for (unsigned int k = 0;; ++k)
@@ -61,17 +61,17 @@ namespace clearjoint::fe::detail
     // (only the friction force has a moment: the normal n passes through the journal's axis)
     // (the deformable journal: the arm from its axis to the bore node where it is now)
     double torque = 0.0;
-    for (const auto &cn : nodes_)
-      if (friction_ && cn.owned && cn.active)
+    for (const auto &cn : contact_.nodes())
+      if (contact_.friction() && cn.owned && cn.active)
         {
-          const Tensor<1, dim> t = tangential(contact_traction(cn), cn.n);
+          const Tensor<1, dim> t = tangential(contact_.traction(cn), cn.n);
           Tensor<1, dim> arm = scene_.geometry.R_J() * cn.n;
           if (rolling_deformable_journal())
             for (unsigned int c = 0; c + 1 < dim; ++c)
-              arm[c] = cn.X[c] + solution_[cn.dofs[c]] - rolling_centre_[c];
+              arm[c] = cn.X[c] + solution_[cn.dofs[c]] - frame_.centre[c];
           torque -= arm[0] * t[1] - arm[1] * t[0];
         }
-    rs.torque_journal = symmetry_factor_ * Utilities::MPI::sum(torque, comm_);
+    rs.torque_journal = bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
     return rs;
   }
 
@@ -82,18 +82,18 @@ namespace clearjoint::fe::detail
     const auto &R = scene_.rolling;
     const auto &L = scene_.loading;
     const auto &G = scene_.geometry;
-    rolling_ = true;
+    frame_.turning = true;
     // a deformable journal: its frame at the start (as meshed; the mortar search places it)
-    rolling_centre_previous_ = rolling_centre_ = {0.0, -G.c_r, 0.0};
-    journal_axis_mesh_ = Tensor<1, dim>({0.0, -G.c_r, 0.0});
-    rolling_psi_converged_ = rolling_delta_psi_ = 0.0;
-    make_grid();
+    frame_.centre_previous = frame_.centre = {0.0, -G.c_r, 0.0};
+    frame_.axis_mesh = Tensor<1, dim>({0.0, -G.c_r, 0.0});
+    frame_.psi_converged = frame_.delta_psi = 0.0;
+    bodies_.build();
     prepare_mesh();
     init_plasticity();
-    result.n_dofs = dof_handler_.n_dofs();
-    result.n_cells = tria_.n_global_active_cells();
-    result.symmetry_factor = symmetry_factor_;
-    result.h_min = h_min_;
+    result.n_dofs = dofs_.handler().n_dofs();
+    result.n_cells = bodies_.triangulation().n_global_active_cells();
+    result.symmetry_factor = bodies_.symmetry_factor();
+    result.h_min = bodies_.h_min();
     result.setup_time = elapsed();
 
     const rolling::Motion motion{R.omega_B, R.ramp_time, L.delta_max, G.c_r, G.R_B, G.R_J()};
@@ -107,7 +107,7 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log::info("fe_stage: rolling study, " + std::to_string(result.n_dofs) + " DoFs, " +
                 std::to_string(result.n_cells) + " cells, " +
-                std::to_string(std::count_if(nodes_.begin(), nodes_.end(),
+                std::to_string(std::count_if(contact_.nodes().begin(), contact_.nodes().end(),
                                              [](const auto &c) { return c.candidate; })) +
                 " contact candidate nodes (rank 0); omega_B " + format_value(R.omega_B) +
                 " rad/s, delta_max " + format_value(L.delta_max) + " m at " +
@@ -119,25 +119,25 @@ namespace clearjoint::fe::detail
     start_from_rest();
     // the bore node at the bottom of the mid-plane: it touches the journal at t = 0 (paper
     // Fig. 9's N_B); the generated ring has a vertex there
-    // (kept by its DoFs: a deformable journal's search rebuilds nodes_ at every step)
+    // (kept by its DoFs: a deformable journal's search rebuilds contact_.nodes() at every step)
     int tracked = -1;
     std::array<types::global_dof_index, dim> tracked_dofs{};
-    for (unsigned int i = 0; i < nodes_.size(); ++i)
-      if (nodes_[i].owned && std::abs(nodes_[i].X[0]) < 1e-9 * G.R_B &&
-          std::abs(nodes_[i].X[1] + G.R_B) < 1e-9 * G.R_B &&
-          std::abs(nodes_[i].X[2]) < 1e-9 * G.R_B)
-        tracked = int(i), tracked_dofs = nodes_[i].dofs;
+    for (unsigned int i = 0; i < contact_.nodes().size(); ++i)
+      if (contact_.nodes()[i].owned && std::abs(contact_.nodes()[i].X[0]) < 1e-9 * G.R_B &&
+          std::abs(contact_.nodes()[i].X[1] + G.R_B) < 1e-9 * G.R_B &&
+          std::abs(contact_.nodes()[i].X[2]) < 1e-9 * G.R_B)
+        tracked = int(i), tracked_dofs = contact_.nodes()[i].dofs;
     // the deformable journal's surface node under it at t = 0 (paper Fig. 9's N_J, the same
     // point as meshed; owned by one rank)
     bool journal_tracked = false;
     std::array<types::global_dof_index, dim> journal_dofs{};
     if (rolling_deformable_journal())
       {
-        for (const auto &cell : dof_handler_.active_cell_iterators())
+        for (const auto &cell : dofs_.handler().active_cell_iterators())
           if (cell->is_locally_owned() && cell->material_id() == 1)
             for (const auto v : cell->vertex_indices())
               if (cell->vertex(v).distance(Point<dim>(0.0, -G.R_B, 0.0)) < 1e-9 * G.R_B &&
-                  owned_.is_element(cell->vertex_dof_index(v, 0)))
+                  dofs_.owned().is_element(cell->vertex_dof_index(v, 0)))
                 {
                   journal_tracked = true;
                   for (unsigned int c = 0; c < dim; ++c)
@@ -157,16 +157,16 @@ namespace clearjoint::fe::detail
       std::filesystem::create_directories(options_.output_dir + "/fields");
     if (fields)
       {
-        rolling_phi_ = 0.0;
-        rolling_centre_previous_ = rolling_centre_ = motion.centre_frame(0.0);
-        rolling_delta_psi_ = 0.0;
+        frame_.phi = 0.0;
+        frame_.centre_previous = frame_.centre = motion.centre_frame(0.0);
+        frame_.delta_psi = 0.0;
         set_obstacle_position(0.0);
         evaluate_contact(0.0);
         write_fields(field_counter++, 0.0);
       }
 
     // the bearing's balance in its frame: the contact forces' work on it, node by node
-    // (by the node's x-DoF: a deformable journal's search rebuilds nodes_ at every step)
+    // (by the node's x-DoF: a deformable journal's search rebuilds contact_.nodes() at every step)
     std::map<types::global_dof_index, Tensor<1, dim>> force_before, u_before;
     double work_frame = 0.0;
     double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction_work = 0.0;
@@ -192,24 +192,24 @@ namespace clearjoint::fe::detail
         double fr = 0.0, torque_bearing = 0.0;
         Tensor<1, dim> force_frame;
         unsigned int n_active = 0, n_slip = 0;
-        for (const auto &cn : nodes_)
+        for (const auto &cn : contact_.nodes())
           if (cn.owned && cn.active)
             {
-              const Tensor<1, dim> tr = contact_traction(cn);
-              fr -= tangential(tr, cn.n) * contact_slip_increment(cn);
+              const Tensor<1, dim> tr = contact_.traction(cn);
+              fr -= tangential(tr, cn.n) * contact_.slip_increment(cn);
               force_frame += tr;
               Tensor<1, dim> x = cn.X;
               for (unsigned int c = 0; c < dim; ++c)
                 x[c] += solution_[cn.dofs[c]];
               torque_bearing += x[0] * tr[1] - x[1] * tr[0];
               ++n_active;
-              if (friction_ && !cn.stick)
+              if (contact_.friction() && !cn.stick)
                 ++n_slip;
             }
         for (unsigned int c = 0; c < dim; ++c)
           force_frame[c] = Utilities::MPI::sum(force_frame[c], comm_);
-        fr = symmetry_factor_ * Utilities::MPI::sum(fr, comm_);
-        torque_bearing = symmetry_factor_ * Utilities::MPI::sum(torque_bearing, comm_);
+        fr = bodies_.symmetry_factor() * Utilities::MPI::sum(fr, comm_);
+        torque_bearing = bodies_.symmetry_factor() * Utilities::MPI::sum(torque_bearing, comm_);
         const auto on_journal =
           rolling::rotate_z({-force_frame[0], -force_frame[1], 0.0}, motion.phi(t1));
         Vec3 u_tracked{0.0, 0.0, 0.0};
@@ -225,12 +225,13 @@ namespace clearjoint::fe::detail
         for (auto &c : u_journal)
           c = Utilities::MPI::sum(c, comm_);
         double dw = 0.0;
-        for (unsigned int i = 0; i < nodes_.size(); ++i)
+        for (unsigned int i = 0; i < contact_.nodes().size(); ++i)
           {
-            auto &cn = nodes_[i];
-            if (cn.owned)  // (every node: a deformable journal's search may rebuild nodes_)
+            auto &cn = contact_.nodes()[i];
+            if (
+              cn.owned)  // (every node: a deformable journal's search may rebuild contact_.nodes())
               {
-                const Tensor<1, dim> f = cn.active ? contact_traction(cn) : Tensor<1, dim>();
+                const Tensor<1, dim> f = cn.active ? contact_.traction(cn) : Tensor<1, dim>();
                 Tensor<1, dim> u;
                 for (unsigned int c = 0; c < dim; ++c)
                   u[c] = solution_[cn.dofs[c]];
@@ -242,9 +243,9 @@ namespace clearjoint::fe::detail
             cn.relative_converged = cn.relative;
             cn.obstacle_u_converged = cn.obstacle_u;
           }
-        work_frame += symmetry_factor_ * Utilities::MPI::sum(dw, comm_);
-        rolling_psi_converged_ += rolling_delta_psi_;
-        rolling_delta_psi_ = 0.0;
+        work_frame += bodies_.symmetry_factor() * Utilities::MPI::sum(dw, comm_);
+        frame_.psi_converged += frame_.delta_psi;
+        frame_.delta_psi = 0.0;
         const PlasticEnergies pe = commit_plasticity();
 
         RollingStepRecord rec;
@@ -252,8 +253,8 @@ namespace clearjoint::fe::detail
         rec.time = t1;
         rec.delta = motion.delta(t1);
         // (+ 0.0: a step without contact sums no force, and −0 would be written "-0")
-        rec.force_normal = symmetry_factor_ * on_journal[1] + 0.0;
-        rec.force_tangential = symmetry_factor_ * on_journal[0] + 0.0;
+        rec.force_normal = bodies_.symmetry_factor() * on_journal[1] + 0.0;
+        rec.force_tangential = bodies_.symmetry_factor() * on_journal[0] + 0.0;
         rec.phi = motion.phi(t1);
         rec.phi_rate = R.omega_B;
         rec.gamma_rate = rate_new;
@@ -266,13 +267,13 @@ namespace clearjoint::fe::detail
             // normal force, from each axis to where the node is now (the contact closed:
             // the journal's surface is there too), ω_B r_B − γ̇ r_J
             std::vector<double> mine{-1.0, 0.0, 0.0};
-            for (const auto &cn : nodes_)
+            for (const auto &cn : contact_.nodes())
               if (cn.owned && cn.active && cn.lambda > mine[0])
                 {
                   const double x = cn.X[0] + solution_[cn.dofs[0]];
                   const double y = cn.X[1] + solution_[cn.dofs[1]];
                   mine = {cn.lambda, std::hypot(x, y),
-                          std::hypot(x - rolling_centre_[0], y - rolling_centre_[1])};
+                          std::hypot(x - frame_.centre[0], y - frame_.centre[1])};
                 }
             std::array<double, 3> best{-1.0, 0.0, 0.0};
             for (const auto &part : Utilities::MPI::all_gather(comm_, mine))

@@ -16,7 +16,7 @@ namespace clearjoint::fe::detail
     // the step size carries over: a step that needed cuts starts the next one at its own
     // size, which doubles (up to the nominal) after two steps without a cut
     , control_(t_end / n_steps, max_cuts, 2)
-    , u_previous_step_(model.owned_, model.comm_)
+    , u_previous_step_(model.dofs_.owned(), model.comm_)
   {}
 
   bool SpinStepper::solve(Step &step, std::string &message)
@@ -32,9 +32,9 @@ namespace clearjoint::fe::detail
     for (;;)
       {
         const double t1 = t_ + dt;
-        m_.rolling_phi_ = motion_.phi(t1);
-        m_.rolling_centre_previous_ = motion_.centre_frame(t_);
-        m_.rolling_centre_ = motion_.centre_frame(t1);
+        m_.frame_.phi = motion_.phi(t1);
+        m_.frame_.centre_previous = motion_.centre_frame(t_);
+        m_.frame_.centre = motion_.centre_frame(t1);
         const double delta1 = motion_.delta(t1);
         const double dphi = motion_.phi(t1) - motion_.phi(t_);
         // the scale of the balance: from the last step's force and torque once there is
@@ -48,13 +48,14 @@ namespace clearjoint::fe::detail
         bool predicted_in_time = false;
         unsigned int n_evaluated = 0;
         double rate_last = 0.0, rate_before = 0.0;
-        TrilinosWrappers::MPI::Vector u_last(m_.owned_, m_.comm_), u_before(m_.owned_, m_.comm_);
+        TrilinosWrappers::MPI::Vector u_last(m_.dofs_.owned(), m_.comm_),
+          u_before(m_.dofs_.owned(), m_.comm_);
         try
           {
             // g(γ̇) / scale, the scale μ F R_J (+ the inertia_ term): the balance holds
             // to 1e-6 of the largest friction torque
             auto g = [&](const double rate) {
-              m_.rolling_delta_psi_ = rate * dt - dphi;
+              m_.frame_.delta_psi = rate * dt - dphi;
               // Where the material Newton iteration starts (only the start: the same
               // converged state, fewer iterations):
               // - the attempt's first evaluation: the state extrapolated linearly in time
