@@ -57,33 +57,48 @@ namespace clearjoint::fe
   // h_j from the power sums p_i = Σ δ^i by Newton's identity h_j = (1/j) Σ_{i=1..j} p_i h_{j−i}.
   // |δ_i| ≤ 2s/3 < 0.02 and |h_j| ≤ (j+2)(j+1)/2 · 0.02^j, so truncating after h_12 leaves
   // < 105·0.02¹³/15 ~ 6e-22 relative: the series is as accurate as its rounding.
+  namespace
+  {
+    /// ln[x, y, z] for sorted x ≤ y ≤ z, given d_xy = ln[x, y] and d_yz = ln[y, z].
+    double sorted_second_difference(const double x, const double y, const double z,
+                                    const double d_xy, const double d_yz)
+    {
+      if (x == z)  // f''(x)/2 exactly: the common case a = b = c of T : L's sum
+        return -0.5 / (x * x);
+      const double m = (x + y + z) / 3.0;
+      if (z - x >= second_series_threshold * m)
+        return (d_yz - d_xy) / (z - x);
+
+      const std::array<double, 3> d = {(x - m) / m, (y - m) / m, (z - m) / m};
+      std::array<double, second_series_order + 1> p{}, h{};
+      std::array<double, 3> power = d;  // δ_i^j, by repeated multiplication (std::pow is slow)
+      for (int j = 1; j <= second_series_order; ++j)
+        {
+          p[j] = power[0] + power[1] + power[2];
+          for (int i = 0; i < 3; ++i)
+            power[i] *= d[i];
+        }
+      h[0] = 1.0;
+      for (int j = 1; j <= second_series_order; ++j)
+        {
+          double sum = 0.0;
+          for (int i = 1; i <= j; ++i)
+            sum += p[i] * h[j - i];
+          h[j] = sum / j;
+        }
+      double series = 0.0;
+      for (int k = 2; k <= second_series_order + 2; ++k)
+        series += (k % 2 == 0 ? -1.0 : 1.0) * h[k - 2] / k;
+      return series / (m * m);
+    }
+  }  // namespace
+
   double log_second_divided_difference(const double x, const double y, const double z)
   {
     std::array<double, 3> v = {x, y, z};
     std::sort(v.begin(), v.end());
-    const double m = (v[0] + v[1] + v[2]) / 3.0;
-    if (v[2] - v[0] >= second_series_threshold * m)
-      return (log_divided_difference(v[1], v[2]) - log_divided_difference(v[0], v[1])) /
-             (v[2] - v[0]);
-
-    std::array<double, 3> d;
-    for (int i = 0; i < 3; ++i)
-      d[i] = (v[i] - m) / m;
-    std::array<double, second_series_order + 1> p{}, h{};
-    for (int i = 1; i <= second_series_order; ++i)
-      p[i] = std::pow(d[0], i) + std::pow(d[1], i) + std::pow(d[2], i);
-    h[0] = 1.0;
-    for (int j = 1; j <= second_series_order; ++j)
-      {
-        double sum = 0.0;
-        for (int i = 1; i <= j; ++i)
-          sum += p[i] * h[j - i];
-        h[j] = sum / j;
-      }
-    double series = 0.0;
-    for (int k = 2; k <= second_series_order + 2; ++k)
-      series += (k % 2 == 0 ? -1.0 : 1.0) * h[k - 2] / k;
-    return series / (m * m);
+    return sorted_second_difference(v[0], v[1], v[2], log_divided_difference(v[0], v[1]),
+                                    log_divided_difference(v[1], v[2]));
   }
 
   LogStrain compute_log_strain(const Eigen::Matrix3d &green_lagrange)
@@ -112,7 +127,7 @@ namespace clearjoint::fe
 
     // E = ½ ln(I + 2E_GL), so dE = ½ D ln(C)[2 dE_GL] = D ln(C)[dE_GL]: in the eigenbasis
     // dẼ_ab = ln[λ_a, λ_b] dẼ_GL,ab (Daleckii–Krein).
-    Eigen::Matrix3d d1;
+    Eigen::Matrix3d &d1 = out.first_differences;
     for (int a = 0; a < 3; ++a)
       for (int b = a; b < 3; ++b)
         d1(a, b) = d1(b, a) = log_divided_difference(out.lambda(a), out.lambda(b));
@@ -135,13 +150,16 @@ namespace clearjoint::fe
     const Eigen::Vector3d &l = log_strain.lambda;
     const Eigen::Matrix3d T = Q.transpose() * stress * Q;
 
-    // the ten distinct second divided differences, spread over the 27 index triples
+    // the ten distinct second divided differences, spread over the 27 index triples; the
+    // eigenvalues are ascending, so a ≤ b ≤ c gives sorted arguments, and the first
+    // differences are those of compute_log_strain
+    const Eigen::Matrix3d &d1 = log_strain.first_differences;
     double g[3][3][3];
     for (int a = 0; a < 3; ++a)
       for (int b = a; b < 3; ++b)
         for (int c = b; c < 3; ++c)
           {
-            const double v = log_second_divided_difference(l(a), l(b), l(c));
+            const double v = sorted_second_difference(l(a), l(b), l(c), d1(a, b), d1(b, c));
             g[a][b][c] = g[a][c][b] = g[b][a][c] = g[b][c][a] = g[c][a][b] = g[c][b][a] = v;
           }
 

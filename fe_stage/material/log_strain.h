@@ -50,6 +50,8 @@ namespace clearjoint::fe
     Matrix6 projection = Matrix6::Identity();
     Eigen::Vector3d lambda = Eigen::Vector3d::Ones();            ///< eigenvalues of C, ascending
     Eigen::Matrix3d eigenvectors = Eigen::Matrix3d::Identity();  ///< N_a as columns
+    /// ln[λ_a, λ_b], the first divided differences of ln (1/λ_a on the diagonal)
+    Eigen::Matrix3d first_differences = Eigen::Matrix3d::Identity();
   };
 
   /// The Hencky strain of C = I + 2 E_GL from the Green–Lagrange strain (symmetric, [-]).
