@@ -53,6 +53,7 @@ namespace clearjoint::fe
         describe("C = F^T F not positive definite or not finite in floating point (det F = ", J) +
         ")");
 
+    const J2State previous_trial = history.trial;  // restored if the result is not finite
     const J2Response r = law_.evaluate(log_strain.hencky, history);
     FiniteJ2Response out;
     out.status.return_map = r.status;
@@ -80,7 +81,7 @@ namespace clearjoint::fe
     // Finite input can still overflow (|F| ~ 1e154 …); report it rather than pass on Inf/NaN.
     if (!(out.stress_pk1.allFinite() && out.tangent.allFinite()))
       {
-        history.trial = history.committed;
+        history.trial = previous_trial;
         return failed("stress or tangent not finite (deformation beyond the range of double)");
       }
     return out;

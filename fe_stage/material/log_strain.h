@@ -57,7 +57,10 @@ namespace clearjoint::fe
   /// The Hencky strain of C = I + 2 E_GL from the Green–Lagrange strain (symmetric, [-]).
   /// Taking E_GL rather than C keeps the small strains' digits: the eigenvalues of E_GL are
   /// accurate relative to E_GL, and ln λ_a = log1p(2 μ_a) (μ_a the eigenvalues of E_GL), where
-  /// ln of λ_a = 1 + 2μ_a would lose them to the rounding of 1 + 2μ_a.
+  /// ln of λ_a = 1 + 2μ_a would lose them to the rounding of 1 + 2μ_a. The price is at the
+  /// other end: λ_a is then known to ~ε absolute, so a principal stretch √λ_a below ~1e-4
+  /// loses digits and one below ~1e-8 gives λ_a ≤ 0 (valid = false), far beyond any element
+  /// a solver should accept.
   LogStrain compute_log_strain(const Eigen::Matrix3d &green_lagrange);
 
   /// T : L as a symmetric 6×6 (row and column in strain Voigt, engineering shear): for

@@ -511,6 +511,9 @@ TEST(FiniteJ2, BadDeformationGradientIsReportedNotThrown)
     {with_inf, "not finite"},
     {Eigen::Matrix3d::Constant(nan), "not finite"},
     {1e200 * Eigen::Matrix3d::Identity(), "not finite"},  // C overflows
+    // det F = 1e-30 > 0, but C's eigenvalues 1e-20 are below the ~ε absolute resolution of
+    // C = I + 2E_GL: reported, not turned into ln 0
+    {1e-10 * Eigen::Matrix3d::Identity(), "not positive definite"},
   };
   // A committed plastic state, and a trial that must not be touched by a failed evaluation.
   J2History h;
