@@ -29,10 +29,11 @@ and the note says which figures this run wrote); the rest of the file — commen
 untouched. The file is read back (yaml) and, unless --no-check, checked with `run_pipeline
 --check`. --times-only measures times and DoFs and keeps the error entries (no reference runs).
 
---tiny uses bench/measure_presets_tiny.yaml: presets of a few thousand DoFs, three increments, one
-impact velocity — a smoke case of the machinery in minutes with the real fe_stage, in seconds
-with the tests' stand-in stages. Its figures are not the presets': it refuses to write the
-repository's own pipeline.yaml. --set KEY=VALUE adds a scene key (YAML value) to every run.
+--tiny uses bench/measure_presets_tiny.yaml: presets of 1.4-18 k DoFs (level 0, contact
+refinements 0-2), three increments, one impact velocity — a smoke case of the machinery in
+minutes with the real fe_stage, in seconds with the tests' stand-in stages. Its figures are not
+the presets': it refuses to write the repository's own pipeline.yaml. --set KEY=VALUE adds a
+scene key (YAML value) to every run.
 --dry-run prints the new blocks without writing.
 """
 import argparse
@@ -74,13 +75,6 @@ def significant(x, digits=3):
         return x
     r = round(x, digits - 1 - int(math.floor(math.log10(abs(x)))))
     return int(r) if float(r).is_integer() and abs(r) >= 10 ** (digits - 1) else r
-
-
-def set_path(d, path, value):
-    keys = path.split(".")
-    for k in keys[:-1]:
-        d = d.setdefault(k, {})
-    d[keys[-1]] = value
 
 
 def machine():
@@ -220,9 +214,12 @@ class Measurer:
         if len(tasks) != 1:
             raise MeasureError(f"{name}: expected one {stage} task, found {len(tasks)}")
         t = tasks[0]
-        result = {"seconds": t["wall_time"]["value"], "outcome": t["outcome"],
-                  "value": self.quantity(study, t["output_dir"]),
-                  "dofs": self.dofs(t["output_dir"]), "name": name}
+        try:
+            result = {"seconds": t["wall_time"]["value"], "outcome": t["outcome"],
+                      "value": self.quantity(study, t["output_dir"]),
+                      "dofs": self.dofs(t["output_dir"]), "name": name}
+        except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
+            raise MeasureError(f"{name}: cannot read the result in {t['output_dir']}: {e!r}")
         print(f"        {t['outcome']} in {result['seconds']:.1f} s: {result['value']!r}"
               + (f", {result['dofs']} DoFs" if result["dofs"] else ""), flush=True)
         self.results[key] = result
@@ -257,7 +254,8 @@ class Measurer:
             return None
         if "n_dofs" in m.get("extra", {}):
             return int(m["extra"]["n_dofs"])
-        for o in m.get("outputs", []):  # a sweep: its cases' manifests
+        for o in m.get("outputs", []):  # a sweep: its cases' manifests ({path, sha256})
+            o = o.get("path", "") if isinstance(o, dict) else o
             if o.endswith("manifest.json") and os.path.isfile(o):
                 with open(o) as f:
                     n = json.load(f).get("extra", {}).get("n_dofs")
@@ -300,7 +298,7 @@ class Measurer:
                     raise MeasureError(f"study '{study}': a reference needs richardson, run or parts")
             except MeasureError as e:
                 return None, (f"{what}, {case}preset {preset}: not measurable — {e}; "
-                              f"bench/measure_presets.py {self.date}")
+                              f"bench/measure_presets.py, {self.date}")
             e = 100.0 * abs(of - r) / abs(r)
             total += e
             name = f"{significant(e)} % from {part['name']}: " if part.get("name") else ""
@@ -459,7 +457,7 @@ def write_blocks(path, blocks, dry_run):
     parsed = yaml.safe_load(text)  # read back: the blocks must be what was meant
     for preset, block in blocks.items():
         back = parsed["presets"][preset]["measured"]
-        if json.loads(json.dumps(back)) != json.loads(json.dumps(block)):
+        if json.loads(json.dumps(back, default=str)) != json.loads(json.dumps(block, default=str)):
             raise MeasureError(f"presets.{preset}.measured does not read back as written")
     if not dry_run:
         tmp = path + ".measure.tmp"
@@ -541,7 +539,7 @@ def main(argv=None):
     blocks, failures = {}, []
     for preset in args.presets:
         old = ((pipeline["presets"].get(preset) or {}).get("measured")) or {}
-        block = json.loads(json.dumps(old))
+        block = json.loads(json.dumps(old, default=str))
         block.setdefault("error_F_max", {})
         wrote = []
         for study in studies:
