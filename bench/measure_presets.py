@@ -109,7 +109,8 @@ def richardson(values, ratio):
     d1, d2 = q1 - q2, q2 - q3
     if d2 == 0 or d1 / d2 <= 1:
         raise MeasureError(f"the three values {q1:.6g}, {q2:.6g}, {q3:.6g} do not converge "
-                           f"monotonically (differences {d1:.3g}, {d2:.3g}): no Richardson value")
+                           f"(differences {d1:.3g}, {d2:.3g}: not of one sign and shrinking): "
+                           f"no Richardson value")
     p = math.log(d1 / d2) / math.log(ratio)
     return q3 - d2 / (ratio ** p - 1), p
 
