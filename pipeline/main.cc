@@ -137,9 +137,18 @@ int main(int argc, char **argv)
       return exit_numerical_error;
     }
     manifest->write("complete");
+    // The whole run beside the preset's measured pipeline_time: only comparable when every
+    // task ran (a reused task costs nothing).
+    std::string against;
+    if (const auto m = config.preset_measured.find(config.preset);
+        m != config.preset_measured.end() && m->second.pipeline_time && n_reused == 0)
+      against = " (" +
+                pipeline::describe_against_figure(config.preset, manifest->elapsed_seconds(),
+                                                  *m->second.pipeline_time) +
+                ")";
     log::info("run_pipeline: " + std::to_string(n_ran) + " tasks ran, " +
               std::to_string(n_reused) + " reused, in " +
-              log::format_duration(manifest->elapsed_seconds()) + "; " +
+              log::format_duration(manifest->elapsed_seconds()) + against + "; " +
               pipeline::describe_preset_errors(config, config.preset));
     return exit_success;
   }

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <tuple>
 
 namespace clearjoint::pipeline
 {
@@ -94,6 +95,37 @@ namespace clearjoint::pipeline
         r.error_F_max[it.key()] = pe;
       }
       errors.finish();
+      // Per-study figures (bench/measure_presets.py writes them): {study: number}.
+      for (const auto &[key, target, range] :
+           {std::tuple{"case_times", &r.case_times, Range::positive("s")},
+            std::tuple{"dofs", &r.dofs, Range::positive("1")}})
+      {
+        if (!m.has(key))
+        {
+          m.allow(key);
+          continue;
+        }
+        const auto &raw = m.raw(key);
+        if (!raw.is_object())
+          m.fail(key, raw.dump(), "a mapping of study names to numbers");
+        auto per_study = m.object(key);
+        for (auto it = raw.begin(); it != raw.end(); ++it)
+          (*target)[it.key()] = per_study.number(it.key(), range);
+        per_study.finish();
+      }
+      if (m.has("date"))
+        r.date = m.string("date");
+      else
+        m.allow("date");
+      if (m.has("machine"))
+      {
+        auto machine = m.object("machine");
+        r.machine_cpu = machine.string("cpu");
+        r.machine_cores = int(machine.integer("cores", 1, 1000000));
+        machine.finish();
+      }
+      else
+        m.allow("machine");
       m.finish();
       return r;
     }
@@ -341,6 +373,32 @@ namespace clearjoint::pipeline
     }
     // A preset's errors are per FE study: each name must be one of them (or `impact`, the
     // impact study's peak force, when there is one; or `rolling`, when there is one).
+    auto check_study_name = [&](const std::string &key, const std::string &study,
+                                const bool fe_only) {
+      std::string names;
+      bool found = !fe_only && ((study == "impact" && c.impact.has_value()) ||
+                                (study == "rolling" && c.rolling.has_value()));
+      for (const auto &f : c.fe_studies)
+      {
+        names += (names.empty() ? "" : "|") + f.name;
+        found = found || f.name == study;
+      }
+      if (c.impact && !fe_only)
+        names += "|impact";
+      if (c.rolling && !fe_only)
+        names += "|rolling";
+      if (!found)
+        throw InputError(path, key, study,
+                         (fe_only ? "one of the quasi-static fe_studies: " : "one of the studies: ") +
+                           names);
+    };
+    for (const auto &[preset, measured] : c.preset_measured)
+    {
+      for (const auto &[study, seconds] : measured.case_times)
+        check_study_name("presets." + preset + ".measured.case_times." + study, study, true);
+      for (const auto &[study, n] : measured.dofs)
+        check_study_name("presets." + preset + ".measured.dofs." + study, study, false);
+    }
     for (const auto &[preset, measured] : c.preset_measured)
       for (const auto &[study, error] : measured.error_F_max)
       {

@@ -97,6 +97,14 @@ namespace clearjoint::pipeline
     std::optional<double> rolling_time;      ///< [s] the FE rolling study (its one task)
     std::optional<double> pipeline_time;     ///< [s] the whole default pipeline
     std::map<std::string, PresetError> error_F_max;  ///< FE study name → error
+    /// FE study name → [s] one FE case of that study, where it differs from fe_case_time (which
+    /// is the thickness study's reference case): e.g. the misalignment study's.
+    std::map<std::string, double> case_times;
+    /// study name (FE studies, impact, rolling) → [1] DoFs of its reference case.
+    std::map<std::string, double> dofs;
+    std::string date;                        ///< when measured ("" not stated)
+    std::string machine_cpu;                 ///< the CPU model it was measured on ("" not stated)
+    std::optional<int> machine_cores;        ///< [1] that machine's cores
   };
 
   struct PipelineConfig

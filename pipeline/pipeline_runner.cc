@@ -13,6 +13,7 @@
 #include "pipeline/study_values.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -188,6 +189,17 @@ namespace clearjoint::pipeline
     return graph_.add(std::move(node));
   }
 
+  void PipelineRunner::attach_figure(const int node, const std::string &study)
+  {
+    GraphNode &n = graph_.node(node);
+    if (const auto figure = task_figure(config_, n.task.stage, study))
+    {
+      n.figure_key = figure->first;
+      n.figure_seconds = figure->second;
+      n.figure_preset = config_.preset;
+    }
+  }
+
   void PipelineRunner::record_tasks(const Scheduler &scheduler)
   {
     for (int id = 0; id < graph_.size(); ++id)
@@ -205,6 +217,10 @@ namespace clearjoint::pipeline
                               {"identity", r.identity}};
       if (!s.record.is_null())
         entry["executor"] = s.record;
+      // the preset's measured time of this task, for the report's stale-figure check
+      if (const GraphNode &node = graph_.node(id); node.figure_seconds)
+        entry["preset_time"] = {
+          {"value", *node.figure_seconds}, {"unit", "s"}, {"key", node.figure_key}};
       summary_["tasks"].push_back(entry);
     }
   }
@@ -239,6 +255,7 @@ namespace clearjoint::pipeline
     // its own stage in the ETA: five impacts, not one FE curve
     const Task fe = fe_stage_task(scene, "fe/impact", "fe_impact");
     const int fe_node = add(fe, "fe", {}, config_.mpi_ranks, scene_json);
+    attach_figure(fe_node);
     std::string law;
     if (impact.law.file)
       law = fs::absolute(*impact.law.file).string();
@@ -299,6 +316,7 @@ namespace clearjoint::pipeline
       return;
     }
     const int node = add(fe, "fe", {}, config_.mpi_ranks, scene_json);
+    attach_figure(node);
     graph_.node(node).on_failure = [this, dir = fe.output_dir](const std::string &message) {
       // The stage's own output (its manifest says why, its CSVs hold the steps that converged)
       // stays in <dir>.partial/ and is redone by the next run.
@@ -353,6 +371,7 @@ namespace clearjoint::pipeline
 
   nlohmann::json PipelineRunner::run()
   {
+    const auto started = std::chrono::steady_clock::now();
     const std::string run = run_dir();
     summary_ = {{"schema", "clearjoint.pipeline_summary/1"},
                 {"run", config_.run},
@@ -409,6 +428,7 @@ namespace clearjoint::pipeline
           write_scene(scene_json, study.scene, "fe_" + study.name + "_" + label);
         Task fe = fe_stage_task(scene, "fe/" + study.name + "/" + label, "fe_stage");
         const int fe_node = add(fe, "fe", mesh_tasks, config_.mpi_ranks, scene_json);
+        attach_figure(fe_node, study.name);
         const std::string csv = fe.output_dir + "/force_penetration.csv";
 
         Task fit;
@@ -530,6 +550,10 @@ namespace clearjoint::pipeline
                         });
     scheduler.run();
     record_tasks(scheduler);
+    // the run's tasks and their setup (not the report, which follows): beside pipeline_time
+    summary_["wall_time"] = {
+      {"value", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},
+      {"unit", "s"}};
     write_file_atomically(run + "/pipeline_summary.json", json_text(summary_) + "\n");
     return summary_;
   }

@@ -72,6 +72,9 @@ namespace clearjoint::pipeline
     /// composed scene the task runs, whose named files join its inputs when it starts.
     int add(const Task &task, const std::string &stage_group, std::vector<int> after,
             int ranks = 1, const nlohmann::json &scene = nullptr);
+    /// Sets the chosen preset's measured time of task `node` (of FE study `study`, if any):
+    /// printed beside its time when it ends and written into the summary (presets.h).
+    void attach_figure(int node, const std::string &study = "");
     /// The band variants of MBD run `m` (entry `index` of the summary's mbd_runs), once the
     /// fitted law at `law_path` exists: one MBD task each, after the fit `fit_node`.
     void add_band_tasks(const MbdRun &m, std::size_t index, const Task &mbd,

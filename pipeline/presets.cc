@@ -1,5 +1,7 @@
 #include "pipeline/presets.h"
 
+#include "common/log.h"
+
 #include <cstdio>
 
 namespace clearjoint::pipeline
@@ -69,8 +71,63 @@ namespace clearjoint::pipeline
                          {"rolling_time", opt(m.rolling_time, "s")},
                          {"pipeline_time", opt(m.pipeline_time, "s")},
                          {"error_F_max", errors}};
+        nlohmann::json case_times = nlohmann::json::object(), dofs = nlohmann::json::object();
+        for (const auto &[study, seconds] : m.case_times)
+          case_times[study] = {{"value", seconds}, {"unit", "s"}};
+        for (const auto &[study, n] : m.dofs)
+          dofs[study] = {{"value", n}, {"unit", "1"}};
+        p["measured"]["case_times"] = case_times;
+        p["measured"]["dofs"] = dofs;
+        p["measured"]["date"] = m.date.empty() ? nlohmann::json() : nlohmann::json(m.date);
+        p["measured"]["machine"] =
+          m.machine_cpu.empty() ?
+            nlohmann::json() :
+            nlohmann::json{{"cpu", m.machine_cpu},
+                           {"cores", m.machine_cores ? nlohmann::json(*m.machine_cores) :
+                                                       nlohmann::json()}};
       }
       out.push_back(p);
+    }
+    return out;
+  }
+
+  std::optional<std::pair<std::string, double>> task_figure(const PipelineConfig &config,
+                                                            const std::string &stage,
+                                                            const std::string &study)
+  {
+    const auto it = config.preset_measured.find(config.preset);
+    if (it == config.preset_measured.end())
+      return std::nullopt;
+    const PresetMeasured &m = it->second;
+    const auto named = [](const char *key, const std::optional<double> &v)
+      -> std::optional<std::pair<std::string, double>> {
+      if (!v)
+        return std::nullopt;
+      return std::pair<std::string, double>{key, *v};
+    };
+    if (stage == "fe_stage")
+    {
+      if (const auto c = m.case_times.find(study); c != m.case_times.end())
+        return std::pair<std::string, double>{"case_times." + study, c->second};
+      return named("fe_case_time", m.fe_case_time);
+    }
+    if (stage == "fe_impact")
+      return named("impact_time", m.impact_time);
+    if (stage == "fe_rolling")
+      return named("rolling_time", m.rolling_time);
+    return std::nullopt;
+  }
+
+  std::string describe_against_figure(const std::string &preset, const double run_seconds,
+                                      const double figure_seconds)
+  {
+    std::string out = "preset " + preset + " measured " + log::format_duration(figure_seconds);
+    if (figure_missed(run_seconds, figure_seconds))
+    {
+      char buf[96];
+      std::snprintf(buf, sizeof(buf), ", this run %.2gx that: figure stale? (bench/measure_presets.py)",
+                    run_seconds / figure_seconds);
+      out += buf;
     }
     return out;
   }

@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
+#include <utility>
 
 namespace clearjoint::pipeline
 {
@@ -17,4 +19,28 @@ namespace clearjoint::pipeline
   /// Every preset with its scene settings, measurements and whether it is the chosen one
   /// (pipeline_summary.json "presets").
   nlohmann::json presets_summary(const PipelineConfig &config);
+
+  /// A measured figure "misses" a run's time when either is more than this factor times the
+  /// other (report.py uses the same factor): the figure is stale in either direction — too low,
+  /// it makes the time-left estimate and the Slurm time limits too short; too high, it
+  /// overstates the preset's cost and the limits — so it no longer describes the code on the
+  /// machine it runs on.
+  inline constexpr double stale_factor = 1.5;
+  inline bool figure_missed(const double run_seconds, const double figure_seconds)
+  {
+    return run_seconds > stale_factor * figure_seconds ||
+           figure_seconds > stale_factor * run_seconds;
+  }
+
+  /// The chosen preset's measured time of one task [s] and the key of `measured` it comes from:
+  /// stage fe_stage → case_times.<study>, else fe_case_time; fe_impact → impact_time;
+  /// fe_rolling → rolling_time. nullopt for other stages and for figures not measured.
+  std::optional<std::pair<std::string, double>> task_figure(const PipelineConfig &config,
+                                                            const std::string &stage,
+                                                            const std::string &study = "");
+
+  /// "preset fast measured 2.3 s", and ", this run 3.1x that: figure stale?" when
+  /// figure_missed(): the text beside a task's time in the log.
+  std::string describe_against_figure(const std::string &preset, double run_seconds,
+                                      double figure_seconds);
 } // namespace clearjoint::pipeline

@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "common/log.h"
+#include "pipeline/presets.h"
 
 #include <algorithm>
 
@@ -153,7 +154,13 @@ namespace clearjoint::pipeline
       try
       {
         const TaskResult r = complete_run(s.task, s.run, seconds, e.record);
-        log::info("  done    " + s.task.name + "  in " + log::format_duration(seconds));
+        const GraphNode &node = graph_.node(e.node);
+        log::info("  done    " + s.task.name + "  in " + log::format_duration(seconds) +
+                  (node.figure_seconds ? "  (" +
+                                           describe_against_figure(node.figure_preset, seconds,
+                                                                   *node.figure_seconds) +
+                                           ")" :
+                                         ""));
         done(e.node, r);
       }
       catch (...)

@@ -8,6 +8,7 @@
 
 #include <deque>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ namespace clearjoint::pipeline
     /// identities become task.depends_on, in this order.
     std::vector<int> after;
     int ranks = 1;            ///< MPI ranks of the stage (slots it takes, ranks of its job)
+    /// The chosen preset's measured time of this task [s] (presets.h task_figure), the key of
+    /// `measured` it comes from and the preset's name: printed beside the task's time.
+    std::optional<double> figure_seconds;
+    std::string figure_key, figure_preset;
     /// Called once every `after` task is done, before the identity is computed (e.g. to
     /// write a file the task reads). May throw.
     std::function<void(Task &)> prepare;

@@ -37,6 +37,49 @@ PRESET_TIMES = [("fe_case_time", "one FE curve", "{:.3g}", None),
                 ("rolling_time", "FE rolling study", "{:.3g}", "rolling"),
                 ("pipeline_time", "whole pipeline", "{:.0f}", None)]
 
+# A measured time is stale when this run misses it by more than this factor, either way
+# (pipeline/presets.h stale_factor): too low, it makes the time-left estimate and the Slurm time
+# limits too short; too high, it overstates the preset's cost — either way it no longer
+# describes the code on this machine.
+STALE_FACTOR = 1.5
+
+
+def measured_time(measured, key):
+    """measured[key] for "fe_case_time" & co., measured["case_times"][study] for
+    "case_times.<study>"."""
+    if key.startswith("case_times."):
+        return ((measured or {}).get("case_times") or {}).get(key.split(".", 1)[1])
+    return (measured or {}).get(key)
+
+
+def run_times(summary):
+    """This run's time per measured-time key: {key: (seconds, n tasks that ran, n reused)}.
+    An FE case's key is the one run_pipeline compared it with (its task's preset_time.key);
+    the whole pipeline's is the run's wall time (without the report), only when every task
+    ran."""
+    out = {}
+    tasks = summary.get("tasks") or []
+    for t in tasks:
+        key = (t.get("preset_time") or {}).get("key")
+        if not key:
+            continue
+        seconds, ran, reused = out.get(key, (0.0, 0, 0))
+        if t.get("outcome") == "ran":
+            out[key] = (seconds + t["wall_time"]["value"], ran + 1, reused)
+        else:
+            out[key] = (seconds, ran, reused + 1)
+    out = {k: ((s / n if n else None), n, r) for k, (s, n, r) in out.items()}
+    wall = value_of(summary.get("wall_time"))
+    if wall is not None and tasks:
+        reused = sum(t.get("outcome") != "ran" for t in tasks)
+        out["pipeline_time"] = (wall if reused == 0 else None, len(tasks) - reused, reused)
+    return out
+
+
+def stale(run_seconds, figure_seconds):
+    return (run_seconds > STALE_FACTOR * figure_seconds or
+            figure_seconds > STALE_FACTOR * run_seconds)
+
 
 def preset_section(summary):
     """Every preset's measured cost (DoFs, times of one FE curve, the impact sweep, the rolling
@@ -54,6 +97,13 @@ def preset_section(summary):
     times = [t for t in PRESET_TIMES
              if t[3] is None or summary.get(t[3])
              or any((p.get("measured") or {}).get(t[0]) for p in presets)]
+    # an FE study's own case time (bench/measure_presets.py writes case_times.<study>)
+    case_studies = []
+    for p in presets:
+        for name in ((p.get("measured") or {}).get("case_times") or {}):
+            if name not in case_studies:
+                case_studies.append(name)
+    times[1:1] = [(f"case_times.{n}", f"one FE case, {n}", "{:.3g}", None) for n in case_studies]
 
     def quantity(q, fmt, unit):
         if not q:
@@ -75,6 +125,36 @@ def preset_section(summary):
             "".join(f"<th>{label} [s]</th>" for _, label, _, _ in times) +
             "".join(f"<th>{error_heading(s)}</th>" for s in studies) +
             "<th>source</th></tr>"]
+    missed = []
+    chosen_name = next((p["name"] for p in presets if p.get("chosen")), "")
+
+    def this_run_row(p, times, studies, measured_by_run):
+        """The row of this run's times under the chosen preset's figures: a figure this run
+        misses by more than STALE_FACTOR either way is marked; reused tasks measure nothing."""
+        m = p.get("measured") or {}
+        cells = []
+        for key, label, fmt, _ in times:
+            seconds, ran, reused = measured_by_run.get(key, (None, 0, 0))
+            figure = value_of(measured_time(m, key))
+            if seconds is None:
+                cells.append("<td>reused</td>" if reused else "<td>—</td>")
+                continue
+            shown = fmt.format(seconds) + (f" (mean of {ran})" if ran > 1 else "")
+            if key == "pipeline_time":
+                shown += " (without the report)"
+            if figure is not None and stale(seconds, figure):
+                ratio = seconds / figure
+                cells.append(f"<td style='background:#f8c0c0' title='this run / the figure = "
+                             f"{ratio:.2g}'>⚠ {shown}: {ratio:.2g}× the figure</td>")
+                missed.append(f"{html.escape(label)}: {fmt.format(seconds)} s against "
+                              f"{fmt.format(figure)} s measured ({ratio:.2g}×)")
+            else:
+                cells.append(f"<td>{shown}</td>")
+        return (f"<tr><td>this run</td><td>times of this run's tasks (those that ran) under "
+                f"preset {html.escape(p['name'])}</td><td></td>" + "".join(cells) +
+                "".join("<td></td>" for _ in studies) + "<td>pipeline_summary.json</td></tr>",
+                missed)
+
     for p in presets:
         m = p.get("measured") or {}
         errors = m.get("error_F_max") or {}
@@ -92,10 +172,20 @@ def preset_section(summary):
         style = " style='background:#ffe9b3'" if p.get("chosen") else ""
         rows.append(f"<tr{style}><td>{name}</td><td>{html.escape(settings)}</td>"
                     f"<td>{quantity(m.get('fe_dofs'), '{:.0f}', '1')}</td>" +
-                    "".join(f"<td>{quantity(m.get(key), fmt, 's')}</td>" for key, _, fmt, _ in times) +
+                    "".join(f"<td>{quantity(measured_time(m, key), fmt, 's')}</td>"
+                            for key, _, fmt, _ in times) +
                     "".join(cells) +
                     f"<td>{html.escape(m.get('note', 'no measurements stated'))}</td></tr>")
+        if p.get("chosen") and summary.get("tasks"):
+            row, missed = this_run_row(p, times, studies, run_times(summary))
+            rows.append(row)
     rows.append("</table>")
+    if missed:
+        rows.append("<p class='warning'><strong>Stale preset figures:</strong> this run missed "
+                    f"{len(missed)} of the preset's measured times by more than {STALE_FACTOR}× "
+                    "(marked ⚠ above): " + "; ".join(missed) + ". Refresh them on a quiet "
+                    "machine with <code>bench/measure_presets.py --presets "
+                    f"{html.escape(chosen_name)}</code> (docs/benchmarks.md, \"Preset figures\").</p>")
     # Where each error was measured, per column, each distinct text once with its presets.
     items = []
     for s in studies:

@@ -8,7 +8,16 @@ F = K·δ^n without any FE. Not a physics model.
 
 What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - study radial (default): K grows with geometry.t_B.
-- study impact: accepted by --check only (the impact study runs with the real fe_stage).
+- study impact: accepted by --check; run only with scene key fake_discretisation: true (below),
+  writing impact_sweep.csv (v_in_m_per_s, peak_force_N, delta_max_m) for sweep.velocity and a
+  manifest (the impact tests run the real fe_stage).
+- scene key fake_discretisation: true (for bench/measure_presets.py's test): the results carry a
+  made-up discretisation error that converges with order 1 — F and the peak force scale by
+  1 + 0.1 h with h = 2^-(mesh.global_refinements + mesh.contact_refinements) (defaults 0, 1),
+  the peak force also by 1 - 4 / impact.steps_per_period (default 40), the rolling plastic
+  dissipation by (1 + 1 / rolling.n_steps)(1 + 0.2 h) — so Richardson over levels that double
+  finds the exact value; manifest.json then has extra.n_dofs = 1000 / h (per case for impacts);
+  CLEARJOINT_FAKE_SECONDS=<s> sleeps that long per case (a task's time for the test).
 - study rolling: rolling.n_steps (default 8) must be >= 4, as fe_stage checks it; writes
   rolling_history.csv (fe_stage's columns, n_steps rows after t = 0: the journal spins up to
   near the rolling rate, a small plastic strain, a closed energy balance),
@@ -75,7 +84,9 @@ if study == "misalignment":
 elif study == "impact":
     if check:  # only its scene is checked here (the impact tests run the real fe_stage)
         sys.exit(0)
-    input_error("study", study, "radial|misalignment (the fake stage does not run impacts)")
+    if not scene.get("fake_discretisation"):
+        input_error("study", study, "radial|misalignment (the fake stage runs impacts only with "
+                                    "fake_discretisation: true)")
 elif study == "rolling":
     n_steps = scene.get("rolling", {}).get("n_steps", 8)
     if not (isinstance(n_steps, int) and n_steps >= 4):
@@ -193,6 +204,10 @@ def write_rolling(out, scene, g):
         w_drive = 0.3 * F * 1e-4 * k
         kinetic = 0.5 * 1.8e-6 * spin ** 2
         plastic = 0.2 * w_push
+        if scene.get("fake_discretisation"):
+            m = scene.get("mesh", {})
+            h = 2.0 ** -(m.get("global_refinements", 0) + m.get("contact_refinements", 1))
+            plastic *= (1 + 1.0 / n_steps) * (1 + 0.2 * h)
         friction = w_drive - kinetic
         elastic = w_push - plastic
         eps_p = 0.01 * k / n_steps
@@ -255,7 +270,8 @@ def write_rolling(out, scene, g):
         json.dump({"status": status, "message": message,
                    "outputs": [os.path.join(out, n) for n in ("rolling_history.csv",
                                                               "rolling_strain_profile.csv")],
-                   "extra": {"scene": used, "rolling": rolling}}, f)
+                   "extra": {"scene": used, "rolling": rolling,
+                             **({"n_dofs": int(1000 / fake_h)} if fake_h else {})}}, f)
     if fail:
         print(f"fe_stage: {message}", file=sys.stderr)
         sys.exit(2)
@@ -287,8 +303,33 @@ if os.environ.get("CLEARJOINT_FAKE_FAIL_MATCH", "\0") in out:
     print("fake fe_stage: failing as asked (CLEARJOINT_FAKE_FAIL_MATCH)", file=sys.stderr)
     sys.exit(2)
 os.makedirs(out, exist_ok=True)
+fake_h = None
+if scene.get("fake_discretisation"):
+    m = scene.get("mesh", {})
+    fake_h = 2.0 ** -(m.get("global_refinements", 0) + m.get("contact_refinements", 1))
+    K *= 1 + 0.1 * fake_h
+    time.sleep(float(os.environ.get("CLEARJOINT_FAKE_SECONDS", "0")))
 if study == "rolling":
     write_rolling(out, scene, g)
+    sys.exit(0)
+if study == "impact":
+    steps = scene.get("impact", {}).get("steps_per_period", 40)
+    velocities = scene.get("sweep", {}).get("velocity") or [scene.get("impact", {}).get("velocity", 0.1)]
+    cases = []
+    with open(os.path.join(out, "impact_sweep.csv"), "w") as f:
+        f.write("# fake fe_stage: impact sweep\n# units: m/s,N,m\nv_in_m_per_s,peak_force_N,delta_max_m\n")
+        for i, v in enumerate(velocities):
+            peak = 5.0e3 * v * (1 + 0.1 * fake_h) * (1 - 4.0 / steps)
+            f.write(f"{v!r},{peak!r},{1e-5 * v!r}\n")
+            case = os.path.join(out, f"v{i}")
+            os.makedirs(case, exist_ok=True)
+            with open(os.path.join(case, "manifest.json"), "w") as c:
+                json.dump({"status": "complete", "outputs": [], "extra": {"n_dofs": int(1000 / fake_h)}}, c)
+            cases.append(os.path.join(case, "manifest.json"))
+        f.write("# status: complete\n")
+    with open(os.path.join(out, "manifest.json"), "w") as f:
+        json.dump({"status": "complete", "outputs": cases + [os.path.join(out, "impact_sweep.csv")],
+                   "extra": {"scene": scene}}, f)
     sys.exit(0)
 with open(os.path.join(out, "force_penetration.csv"), "w") as f:
     f.write("# units: m,N\ndelta,force\n0,0\n")
@@ -303,6 +344,8 @@ used.setdefault("loading", {}).setdefault("journal", "rigid" if study == "misali
 used.setdefault("contact", {}).setdefault("mu", 0.0)
 used.setdefault("material", {}).setdefault("yield_stress", 168.2e6)
 extra = {"scene": used}
+if fake_h:
+    extra["n_dofs"] = int(1000 / fake_h)
 if os.environ.get("CLEARJOINT_FAKE_FIELDS") == "1":
     write_fields(out, g, scene.get("contact", {}).get("mu", 0.0), scene.get("fake_old_contact_fields", False))
     extra["symmetry_factor"] = 4

@@ -119,3 +119,66 @@ TEST(Presets, RollingTimeAndErrorNeedTheRollingStudy)
   const std::string bad = error_for("measured: {note: x, rolling_time: -1, error_F_max: {}}");
   EXPECT_NE(bad.find("presets.fast.measured.rolling_time"), std::string::npos) << bad;
 }
+
+// Issue 32 item 2: what bench/measure_presets.py writes besides the figures above — per-study
+// case times and DoFs, the machine and the date — read strictly; a bad value names its key.
+TEST(Presets, MeasuredMachineDateAndPerStudyFigures)
+{
+  test_support::ScratchDir dir("presets_per_study");
+  const auto c = read(dir, "measured: {note: x, date: '2026-11-28 10:00 UTC', "
+                           "machine: {cpu: Some CPU, cores: 2}, fe_case_time: 2.3, "
+                           "case_times: {misalignment: 1.9}, dofs: {thickness: 3588, misalignment: 2418}, "
+                           "error_F_max: {}}");
+  const auto &m = c.preset_measured.at("fast");
+  EXPECT_EQ(m.date, "2026-11-28 10:00 UTC");
+  EXPECT_EQ(m.machine_cpu, "Some CPU");
+  EXPECT_EQ(*m.machine_cores, 2);
+  EXPECT_EQ(m.case_times.at("misalignment"), 1.9);
+  EXPECT_EQ(m.dofs.at("misalignment"), 2418.0);
+  // an FE case's figure: its study's own case time, else fe_case_time
+  EXPECT_EQ(task_figure(c, "fe_stage", "misalignment")->first, "case_times.misalignment");
+  EXPECT_EQ(task_figure(c, "fe_stage", "misalignment")->second, 1.9);
+  EXPECT_EQ(task_figure(c, "fe_stage", "thickness")->first, "fe_case_time");
+  EXPECT_FALSE(task_figure(c, "fe_impact").has_value());  // not measured
+  EXPECT_FALSE(task_figure(c, "fit_stage").has_value());  // no figure of its own
+  const auto s = presets_summary(c);
+  EXPECT_EQ(s[0]["measured"]["case_times"]["misalignment"]["value"], 1.9);
+  EXPECT_EQ(s[0]["measured"]["dofs"]["thickness"]["unit"], "1");
+  EXPECT_EQ(s[0]["measured"]["machine"]["cores"], 2);
+  EXPECT_EQ(s[0]["measured"]["date"], "2026-11-28 10:00 UTC");
+
+  // negative time, unknown study, non-numeric values: input errors naming the key
+  std::string e = error_for("measured: {note: x, case_times: {misalignment: -1}, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.case_times.misalignment"), std::string::npos) << e;
+  e = error_for("measured: {note: x, case_times: {radial: 2}, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.case_times.radial"), std::string::npos) << e;
+  EXPECT_NE(e.find("thickness|misalignment"), std::string::npos) << e;
+  e = error_for("measured: {note: x, dofs: {impact: 1782}, error_F_max: {}}");  // no impact study
+  EXPECT_NE(e.find("presets.fast.measured.dofs.impact"), std::string::npos) << e;
+  e = error_for("measured: {note: x, case_times: {thickness: fast}, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.case_times.thickness"), std::string::npos) << e;
+  e = error_for("measured: {note: x, fe_case_time: two, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.fe_case_time"), std::string::npos) << e;
+  e = error_for("measured: {note: x, impact_time: -14, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.impact_time"), std::string::npos) << e;
+  e = error_for("measured: {note: x, case_times: 3, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.case_times"), std::string::npos) << e;
+  e = error_for("measured: {note: x, machine: {cpu: c, cores: 0}, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.machine.cores"), std::string::npos) << e;
+  e = error_for("measured: {note: x, machine: {cpu: c}, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.machine.cores"), std::string::npos) << e;
+}
+
+// A figure is stale when the run misses it by more than 1.5x either way.
+TEST(Presets, FigureMissedEitherWay)
+{
+  EXPECT_FALSE(figure_missed(10.0, 10.0));
+  EXPECT_FALSE(figure_missed(15.0, 10.0));
+  EXPECT_TRUE(figure_missed(15.1, 10.0));   // the run slower
+  EXPECT_FALSE(figure_missed(10.0, 15.0));
+  EXPECT_TRUE(figure_missed(10.0, 15.1));   // the figure too high
+  EXPECT_EQ(describe_against_figure("fast", 2.4, 2.3), "preset fast measured 2.3 s");
+  const std::string stale = describe_against_figure("standard", 449.0, 260.0);
+  EXPECT_NE(stale.find("preset standard measured"), std::string::npos) << stale;
+  EXPECT_NE(stale.find("1.7x that: figure stale?"), std::string::npos) << stale;
+}

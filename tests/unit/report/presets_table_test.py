@@ -139,6 +139,62 @@ def main():
     cell = dict(zip(heads, t.rows[1])).get("error of F(δ_max), thickness [%]")
     expect(cell is not None and cell[0] == "not yet measured", f"a null thickness percent: {t.rows[1]}")
 
+    # Issue 32 item 2: this run's times beside the chosen preset's figures, a figure missed by
+    # more than 1.5x either way flagged as stale; reused tasks measure nothing; an FE study's
+    # own case time (case_times) gets its column.
+    def task(name, stage, seconds, key, figure, outcome="ran"):
+        return {"name": name, "stage": stage, "outcome": outcome,
+                "wall_time": {"value": seconds, "unit": "s"},
+                "preset_time": {"value": figure, "unit": "s", "key": key}}
+
+    standard = preset("standard", True, 21996, 19.2, 260, 103, 34,
+                      {"thickness": {"percent": 2.0, "where": WHERE_THICKNESS}})
+    standard["measured"]["case_times"] = {"misalignment": {"value": 7.8, "unit": "s"}}
+    run = {"presets": [preset("fast", False, 3588, 2.3, 66, 14, 27, {}), standard],
+           "studies": [{"name": "thickness"}, {"name": "misalignment"}],
+           "impact": {"scene": "impact.yaml"}, "rolling": {"status": "complete"},
+           "wall_time": {"value": 449.0, "unit": "s"},
+           "tasks": [task("fe/thickness/t_B=0.002", "fe_stage", 19.0, "fe_case_time", 19.2),
+                     task("fe/thickness/t_B=0.004", "fe_stage", 21.0, "fe_case_time", 19.2),
+                     task("fe/misalignment/theta=1", "fe_stage", 8.1, "case_times.misalignment", 7.8),
+                     task("fe/impact", "fe_impact", 40.0, "impact_time", 103),
+                     task("fe/rolling", "fe_rolling", 33.0, "rolling_time", 34),
+                     {"name": "fit/thickness/t_B=0.004", "stage": "fit_stage", "outcome": "ran",
+                      "wall_time": {"value": 0.5, "unit": "s"}}]}
+    text = preset_section(run)
+    t = parse(text)
+    heads = [h for h, _ in t.rows[0]]
+    expect("one FE case, misalignment [s]" in heads, f"a column for case_times.misalignment: {heads}")
+    this = [r for r in t.rows[1:] if r[0][0] == "this run"]
+    expect(len(this) == 1, f"one row of this run's times: {[r[0][0] for r in t.rows]}")
+    if this:
+        cells = dict(zip(heads, this[0]))
+        expect(cells["one FE curve [s]"][0] == "20 (mean of 2)", f"FE cases: {cells['one FE curve [s]']}")
+        expect(cells["one FE case, misalignment [s]"][0] == "8.1", f"misalignment: {cells['one FE case, misalignment [s]']}")
+        expect(cells["FE rolling study [s]"][0] == "33", f"rolling within 1.5x: {cells['FE rolling study [s]']}")
+        expect(cells["whole pipeline [s]"][0].startswith("⚠ 449") and "1.7× the figure" in cells["whole pipeline [s]"][0],
+               f"the pipeline 1.7x slower than its figure flagged: {cells['whole pipeline [s]']}")
+        expect(cells["FE impact sweep [s]"][0].startswith("⚠ 40") and "0.39× the figure" in cells["FE impact sweep [s]"][0],
+               f"a figure 2.6x too high flagged too: {cells['FE impact sweep [s]']}")
+        expect(not cells["one FE curve [s]"][0].startswith("⚠"), "20 s against 19.2 s is no stale figure")
+    expect("Stale preset figures" in text and "2 of the preset" in text
+           and "bench/measure_presets.py --presets standard" in text,
+           "a warning naming the stale figures and the command that refreshes them")
+    # reused tasks measure nothing: no flag, the whole pipeline not compared
+    for tk in run["tasks"]:
+        if tk["stage"] == "fe_impact":
+            tk["outcome"] = "reused"
+    run["tasks"][0]["outcome"] = "reused"
+    text = preset_section(run)
+    t = parse(text)
+    this = [r for r in t.rows[1:] if r[0][0] == "this run"]
+    if this:
+        cells = dict(zip(heads, this[0]))
+        expect(cells["FE impact sweep [s]"][0] == "reused", f"a reused impact: {cells['FE impact sweep [s]']}")
+        expect(cells["whole pipeline [s]"][0] == "reused", f"a run with reused tasks: {cells['whole pipeline [s]']}")
+        expect(cells["one FE curve [s]"][0] == "21", f"only the case that ran: {cells['one FE curve [s]']}")
+    expect("Stale preset figures" not in text, "nothing stale when the slow and fast ones were reused")
+
     if bad:
         print("FAILED:\n  " + "\n  ".join(bad))
         return 1

@@ -1,0 +1,583 @@
+#!/usr/bin/env python3
+"""Measures the presets' cost and error and writes pipeline.yaml's `measured` blocks (issue 32
+item 2), so that no figure there is typed by hand.
+
+    bench/measure_presets.py [--pipeline pipeline.yaml] [--plan bench/measure_presets.yaml]
+        [--presets fast standard accurate] [--studies thickness misalignment impact rolling pipeline]
+        [--times-only] [--tiny] [--set KEY=VALUE ...] [--build-dir build]
+        [--run-pipeline build/pipeline/run_pipeline] [--work /tmp/clearjoint-measure]
+        [--no-plots] [--dry-run] [--no-check]
+
+For each preset and study asked for, the plan (bench/measure_presets.yaml; its header says every
+key) names the study's reference case and its reference. Every run goes through run_pipeline on
+a generated pipeline file holding that one case with the pipeline's own presets, so whatever a
+preset sets — uniform levels, adaptive cycles, a target error — is what gets measured:
+
+- time [s]: the run_pipeline task's wall time (what run_pipeline prints beside the figure; with
+  plots unless --no-plots), of the preset's own run, which always runs (--force), one task at
+  a time; `pipeline` is the whole run_pipeline process on the pipeline file with --preset P;
+- DoFs: the case's manifest (extra.n_dofs; an impact sweep's first case);
+- error [%]: |q − ref| / |ref| of the study's quantity against the plan's reference (Richardson
+  over three runs, a single finer run, or a sum of parts such as time step + mesh), its `where`
+  written out with the values, the order p and the date. Reference runs are reused from --work
+  when their inputs are unchanged (run_pipeline's reuse), so a second preset costs only its own
+  run. A reference that does not converge (not monotone) gives percent: null and says why;
+- machine (CPU model, cores), date and the load average before and after, in the block.
+
+Only the asked presets' blocks change, and in them only the figures measured (the rest is kept
+and the note says which figures this run wrote); the rest of the file — comments, order — is
+untouched. The file is read back (yaml) and, unless --no-check, checked with `run_pipeline
+--check`. --times-only measures times and DoFs and keeps the error entries (no reference runs).
+
+--tiny uses bench/measure_presets_tiny.yaml: presets of 1.4-18 k DoFs (level 0, contact
+refinements 0-2), three increments, one impact velocity — a smoke case of the machinery in
+minutes with the real fe_stage, in seconds with the tests' stand-in stages. Its figures are not
+the presets': it refuses to write the repository's own pipeline.yaml. --set KEY=VALUE adds a
+scene key (YAML value) to every run.
+--dry-run prints the new blocks without writing.
+"""
+import argparse
+import csv
+import datetime
+import hashlib
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PRESETS = ["fast", "standard", "accurate"]
+QUANTITY_TEXT = {"force_at_delta_max": ("F(δ_max)", "N"), "peak_force": ("peak force", "N"),
+                 "plastic_dissipation": ("plastic dissipation at the end", "J")}
+# The keys of `measured` this command writes, in the order written (error_F_max last).
+ORDER = ["note", "date", "machine", "fe_dofs", "fe_case_time", "case_times", "dofs",
+         "pipeline_time", "impact_time", "rolling_time", "error_F_max"]
+UNITS = {"fe_dofs": "[1] DoFs of the thickness study's reference case",
+         "fe_case_time": "[s] run_pipeline's task: the thickness study's reference case",
+         "case_times": "[s] one FE case of these studies (run_pipeline's task)",
+         "dofs": "[1] DoFs of these studies' reference cases",
+         "pipeline_time": "[s] the whole run_pipeline run",
+         "impact_time": "[s] run_pipeline's task: the FE impact sweep",
+         "rolling_time": "[s] run_pipeline's task: the FE rolling study"}
+
+
+class MeasureError(Exception):
+    pass
+
+
+def significant(x, digits=3):
+    """x rounded to `digits` significant digits, as a float (or an int when whole)."""
+    if x == 0 or not math.isfinite(x):
+        return x
+    r = round(x, digits - 1 - int(math.floor(math.log10(abs(x)))))
+    return int(r) if float(r).is_integer() and abs(r) >= 10 ** (digits - 1) else r
+
+
+def machine():
+    cpu = "unknown"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return {"cpu": cpu, "cores": os.cpu_count() or 1}
+
+
+def load_average():
+    try:
+        return os.getloadavg()[0]
+    except OSError:
+        return float("nan")
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = [r for r in csv.reader(l for l in f if not l.startswith("#"))]
+    return rows[0], rows[1:]
+
+
+def richardson(values, ratio):
+    """(ref, p) from three values, coarse to fine, each refined `ratio` times the last."""
+    q1, q2, q3 = values
+    d1, d2 = q1 - q2, q2 - q3
+    if d2 == 0 or d1 / d2 <= 1:
+        raise MeasureError(f"the three values {q1:.6g}, {q2:.6g}, {q3:.6g} do not converge "
+                           f"(differences {d1:.3g}, {d2:.3g}: not of one sign and shrinking): "
+                           f"no Richardson value")
+    p = math.log(d1 / d2) / math.log(ratio)
+    return q3 - d2 / (ratio ** p - 1), p
+
+
+class Measurer:
+    def __init__(self, args, pipeline, plan):
+        self.args, self.pipeline, self.plan = args, pipeline, plan
+        self.cwd = os.path.dirname(os.path.abspath(args.pipeline))
+        self.results = {}  # run key → result
+        self.forced = set()
+        os.makedirs(os.path.join(args.work, "pipelines"), exist_ok=True)
+
+    def preset_fe(self, preset):
+        if "presets" in self.plan:
+            return dict(self.plan["presets"][preset])
+        return dict(((self.pipeline["presets"][preset] or {}).get("fe")) or {})
+
+    def presets_block(self):
+        return {p: {"fe": self.preset_fe(p) or None,
+                    "mbd": (self.pipeline["presets"][p] or {}).get("mbd")} for p in PRESETS}
+
+    def study_set(self, study):
+        s = dict(self.plan["studies"][study].get("set") or {})
+        s.update(self.args.set)
+        return s
+
+    @staticmethod
+    def describe(spec):
+        s = spec["preset"]
+        if spec.get("set"):
+            s += " with " + ", ".join(f"{k} = {json.dumps(v)}" for k, v in spec["set"].items())
+        return s
+
+    def pipeline_for(self, study, spec):
+        """A pipeline file (as a dict) that runs `study`'s reference case as `spec` says."""
+        entry = self.plan["studies"][study]
+        extra = {**self.study_set(study), **(spec.get("set") or {})}
+        presets = self.presets_block()
+        p = {"schema": "clearjoint.pipeline/1", "output_root": os.path.join(self.args.work, "out"),
+             "preset": spec["preset"], "mpi_ranks": self.pipeline.get("mpi_ranks", 1),
+             "presets": presets, "fe_studies": [], "fit": self.pipeline.get("fit", {"weighting": "absolute"}),
+             "mbd_runs": [], "report": False}
+        kind = entry["kind"]
+        if kind == "fe_study":
+            matching = [s for s in self.pipeline["fe_studies"] if s["name"] == study]
+            if not matching:
+                raise MeasureError(f"the pipeline has no FE study '{study}'")
+            s = json.loads(json.dumps(matching[0]))
+            s["values"] = [entry["value"]]
+            s["overrides"] = {**(s.get("overrides") or {}), **extra}
+            p["fe_studies"] = [s]
+        elif kind == "impact":
+            if "impact" not in self.pipeline:
+                raise MeasureError("the pipeline has no impact study")
+            fe = dict(presets[spec["preset"]]["fe"] or {})
+            fe.update(extra)  # the impact study has no overrides of its own: after the preset
+            presets[spec["preset"]]["fe"] = fe
+            p["impact"] = {"scene": self.pipeline["impact"]["scene"],
+                           "law": {"file": os.path.join(ROOT, "laws", "paper_tB4.json")}}
+        elif kind == "rolling":
+            if "rolling" not in self.pipeline:
+                raise MeasureError("the pipeline has no rolling study")
+            r = json.loads(json.dumps(self.pipeline["rolling"]))
+            r["overrides"] = {**(r.get("overrides") or {}), **extra}
+            p["rolling"] = r
+        else:
+            raise MeasureError(f"study '{study}': kind '{kind}' has no reference case")
+        return p
+
+    def run(self, study, spec, own):
+        """One run of `study` as `spec` says: {seconds, outcome, value, dofs}. `own`: the
+        preset's own run, whose time is measured now (--force)."""
+        p = self.pipeline_for(study, spec)
+        text = json.dumps(p, sort_keys=True)
+        key = hashlib.sha256(text.encode()).hexdigest()[:10]
+        # a reference run that is also a preset's own run measured here is run as such
+        own = own or (not spec.get("set") and spec["preset"] in self.args.presets
+                      and study in self.studies)
+        if key in self.results and (not own or key in self.forced):
+            return self.results[key]
+        name = f"{study}-{spec['preset']}-{key}"
+        p["run"] = name
+        path = os.path.join(self.args.work, "pipelines", name + ".yaml")
+        with open(path, "w") as f:
+            json.dump(p, f, indent=1)
+        cmd = [self.args.run_pipeline, path, "--build-dir", self.args.build_dir, "--jobs", "1"]
+        if own:
+            cmd.append("--force")
+        if self.args.no_plots:
+            cmd.append("--no-plots")
+        print(f"  {'run  ' if own else 'ref  '} {study}, {self.describe(spec)}: {' '.join(cmd)}",
+              flush=True)
+        done = subprocess.run(cmd, cwd=self.cwd, capture_output=True, text=True)
+        if done.returncode != 0:
+            raise MeasureError(f"run_pipeline failed ({done.returncode}) for {study}, "
+                               f"{self.describe(spec)}:\n{done.stderr[-3000:]}")
+        with open(os.path.join(self.args.work, "out", name, "pipeline_summary.json")) as f:
+            summary = json.load(f)
+        stage = {"fe_study": "fe_stage", "impact": "fe_impact", "rolling": "fe_rolling"}[
+            self.plan["studies"][study]["kind"]]
+        tasks = [t for t in summary["tasks"] if t["stage"] == stage]
+        if len(tasks) != 1:
+            raise MeasureError(f"{name}: expected one {stage} task, found {len(tasks)}")
+        t = tasks[0]
+        try:
+            result = {"seconds": t["wall_time"]["value"], "outcome": t["outcome"],
+                      "value": self.quantity(study, t["output_dir"]),
+                      "dofs": self.dofs(t["output_dir"]), "name": name}
+        except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
+            raise MeasureError(f"{name}: cannot read the result in {t['output_dir']}: {e!r}")
+        print(f"        {t['outcome']} in {result['seconds']:.1f} s: {result['value']!r}"
+              + (f", {result['dofs']} DoFs" if result["dofs"] else ""), flush=True)
+        self.results[key] = result
+        if own:
+            self.forced.add(key)
+        return result
+
+    def quantity(self, study, out):
+        entry = self.plan["studies"][study]
+        q = entry["quantity"]
+        if q == "force_at_delta_max":
+            head, rows = read_csv(os.path.join(out, "force_penetration.csv"))
+            return float(rows[-1][head.index("force")])
+        if q == "peak_force":
+            head, rows = read_csv(os.path.join(out, "impact_sweep.csv"))
+            v = float(entry["velocity"])
+            for r in rows:
+                if abs(float(r[head.index("v_in_m_per_s")]) - v) <= 1e-9 * max(1.0, abs(v)):
+                    return float(r[head.index("peak_force_N")])
+            raise MeasureError(f"{out}/impact_sweep.csv has no velocity {v} m/s")
+        if q == "plastic_dissipation":
+            head, rows = read_csv(os.path.join(out, "rolling_history.csv"))
+            return float(rows[-1][head.index("plastic_dissipation")])
+        raise MeasureError(f"study '{study}': unknown quantity '{q}'")
+
+    @staticmethod
+    def dofs(out):
+        try:
+            with open(os.path.join(out, "manifest.json")) as f:
+                m = json.load(f)
+        except (OSError, ValueError):
+            return None
+        if "n_dofs" in m.get("extra", {}):
+            return int(m["extra"]["n_dofs"])
+        for o in m.get("outputs", []):  # a sweep: its cases' manifests ({path, sha256})
+            o = o.get("path", "") if isinstance(o, dict) else o
+            if o.endswith("manifest.json") and os.path.isfile(o):
+                with open(o) as f:
+                    n = json.load(f).get("extra", {}).get("n_dofs")
+                if n:
+                    return int(n)
+        return None
+
+    def spec(self, s, preset):
+        return {"preset": (s or {}).get("preset", preset), "set": dict((s or {}).get("set") or {})}
+
+    def error(self, study, preset, own_value):
+        """(percent or None, where)"""
+        entry = self.plan["studies"][study]
+        what, unit = QUANTITY_TEXT[entry["quantity"]]
+        case = ""
+        if entry["kind"] == "fe_study":
+            s = [x for x in self.pipeline["fe_studies"] if x["name"] == study][0]
+            case = f"{s['parameter']['name']} = {entry['value']} {s['parameter']['unit']}, "
+        elif entry["kind"] == "impact":
+            case = f"v = {entry['velocity']} m/s, "
+        ref = entry["reference"]
+        parts = ref["parts"] if "parts" in ref else [dict(ref, name="")]
+        total, texts = 0.0, []
+        for part in parts:
+            of = self.run(study, self.spec(part.get("of"), preset), False)["value"] \
+                if "of" in part else own_value
+            try:
+                if "richardson" in part:
+                    specs = [self.spec(s, preset) for s in part["richardson"]]
+                    values = [self.run(study, s, False)["value"] for s in specs]
+                    ratio = float(part.get("ratio", 2))
+                    r, order = richardson(values, ratio)
+                    how = (f"the Richardson value over {'; '.join(self.describe(s) for s in specs)} "
+                           f"({', '.join(f'{v:.6g}' for v in values)} {unit}; p = {order:.3g})")
+                elif "run" in part:
+                    s = self.spec(part["run"], preset)
+                    r = self.run(study, s, False)["value"]
+                    how = f"the finer run {self.describe(s)}"
+                else:
+                    raise MeasureError(f"study '{study}': a reference needs richardson, run or parts")
+            except MeasureError as e:
+                return None, (f"{what}, {case}preset {preset}: not measurable — {e}; "
+                              f"bench/measure_presets.py, {self.date}")
+            e = 100.0 * abs(of - r) / abs(r)
+            total += e
+            name = f"{significant(e)} % from {part['name']}: " if part.get("name") else ""
+            of_text = f" ({self.describe(self.spec(part['of'], preset))})" if "of" in part else ""
+            texts.append(f"{name}{of:.6g} {unit}{of_text} against {r:.6g} {unit}, {how}")
+        if total >= 100.0:
+            return None, (f"{what}, {case}preset {preset}: {total:.3g} % — 100 % or more is no "
+                          f"estimate; " + "; ".join(texts))
+        return significant(total), (f"{what}, {case}preset {preset}: " + " plus ".join(texts) +
+                                    f"; bench/measure_presets.py, {self.date}")
+
+    def measure(self, preset, study, block, wrote):
+        entry = self.plan["studies"][study]
+        print(f"{preset} / {study}", flush=True)
+        if entry["kind"] == "pipeline":
+            seconds = self.whole_pipeline(preset)
+            set_key(block, entry["time_key"], significant(seconds))
+            wrote.append(entry["time_key"])
+            return
+        own = self.run(study, {"preset": preset, "set": {}}, True)
+        set_key(block, entry["time_key"], significant(own["seconds"]))
+        wrote.append(entry["time_key"])
+        if own["dofs"] and entry.get("dofs_key"):
+            set_key(block, entry["dofs_key"], own["dofs"])
+            wrote.append(entry["dofs_key"])
+        if not self.args.times_only:
+            percent, where = self.error(study, preset, own["value"])
+            block.setdefault("error_F_max", {})[study] = {"percent": percent, "where": where}
+            wrote.append("error_F_max." + study)
+
+    def whole_pipeline(self, preset):
+        path = os.path.abspath(self.args.pipeline)
+        if "presets" in self.plan:  # the tiny presets: a copy of the pipeline with them
+            p = yaml.safe_load(open(path))
+            p["presets"] = self.presets_block()
+            path = os.path.join(self.args.work, "pipelines", f"whole-{preset}.yaml")
+            with open(path, "w") as f:
+                json.dump(p, f, indent=1)
+        out = os.path.join(self.args.work, f"pipeline-{preset}")
+        cmd = [self.args.run_pipeline, path, "--preset", preset, "--force", "--build-dir",
+               self.args.build_dir, "--output-root", out]
+        if self.args.no_plots:
+            cmd.append("--no-plots")
+        print("  run   " + " ".join(cmd), flush=True)
+        start = time.monotonic()
+        done = subprocess.run(cmd, cwd=self.cwd, capture_output=True, text=True)
+        seconds = time.monotonic() - start
+        if done.returncode != 0:
+            raise MeasureError(f"the whole pipeline failed ({done.returncode}):\n{done.stderr[-3000:]}")
+        print(f"        ran in {seconds:.1f} s", flush=True)
+        return seconds
+
+
+def set_key(block, dotted, value):
+    keys = dotted.split(".")
+    d = block
+    for k in keys[:-1]:
+        if not isinstance(d.get(k), dict):
+            d[k] = {}
+        d = d[k]
+    d[keys[-1]] = value
+
+
+# --- writing the measured blocks into the pipeline file's text ------------------------------
+
+def scalar(v):
+    if v is None:
+        return "null"
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    return json.dumps(v, ensure_ascii=False)  # a YAML double-quoted scalar
+
+
+def flow(d):
+    return "{" + ", ".join(f"{k}: {flow(v) if isinstance(v, dict) else scalar(v)}"
+                           for k, v in d.items()) + "}"
+
+
+def block_text(block, indent):
+    pad = " " * indent
+    lines = [pad + "measured:  # written by bench/measure_presets.py (docs/benchmarks.md "
+                   "\"Preset figures\"): do not edit by hand"]
+    keys = [k for k in ORDER if k in block] + [k for k in block if k not in ORDER]
+    for k in keys:
+        v = block[k]
+        if k == "error_F_max":
+            lines.append(f"{pad}  error_F_max:")
+            for study, e in v.items():
+                lines.append(f"{pad}    {study}: {flow(e)}")
+            continue
+        text = f"{pad}  {k}: {flow(v) if isinstance(v, dict) else scalar(v)}"
+        if k in UNITS:
+            text = text.ljust(indent + 30) + "  # " + UNITS[k]
+        lines.append(text)
+    return lines
+
+
+def find_block(lines, preset):
+    """(start, end, indent) of presets.<preset>.measured in the file's lines, end exclusive;
+    start None when the preset has no measured block (then end is where one goes)."""
+    def indent_of(line):
+        return len(line) - len(line.lstrip(" "))
+
+    def content(line):
+        s = line.strip()
+        return s and not s.startswith("#")
+
+    top = next((i for i, l in enumerate(lines) if l.startswith("presets:")), None)
+    if top is None:
+        raise MeasureError("no top-level 'presets:' block (a block mapping) in the pipeline file")
+    i, child = top + 1, None
+    while i < len(lines) and not (content(lines[i]) and indent_of(lines[i]) == 0):
+        if content(lines[i]):
+            child = indent_of(lines[i]) if child is None else child
+            if indent_of(lines[i]) == child and lines[i].strip().startswith(preset + ":"):
+                break
+        i += 1
+    else:
+        raise MeasureError(f"no 'presets: {preset}:' block mapping in the pipeline file")
+    p_indent = indent_of(lines[i])
+    if lines[i].strip() != preset + ":":
+        raise MeasureError(f"presets.{preset} is not a block mapping ('{preset}:' on a line of its own)")
+    j, last = i + 1, i
+    while j < len(lines) and not (content(lines[j]) and indent_of(lines[j]) <= p_indent):
+        if content(lines[j]):
+            last = j
+            if lines[j].strip().startswith("measured:"):
+                m_indent = indent_of(lines[j])
+                k, end = j + 1, j + 1
+                while k < len(lines) and not (content(lines[k]) and indent_of(lines[k]) <= m_indent):
+                    if content(lines[k]):
+                        end = k + 1
+                    k += 1
+                return j, end, m_indent
+        j += 1
+    return None, last + 1, p_indent + 2
+
+
+def write_blocks(path, blocks, dry_run):
+    with open(path) as f:
+        lines = f.read().split("\n")
+    for preset in PRESETS:  # in the file's order, one at a time (line numbers move)
+        if preset not in blocks:
+            continue
+        start, end, indent = find_block(lines, preset)
+        new = block_text(blocks[preset], indent)
+        if start is None:
+            lines[end:end] = new
+        else:
+            lines[start:end] = new
+        if dry_run:
+            print("\n".join(new))
+    text = "\n".join(lines)
+    parsed = yaml.safe_load(text)  # read back: the blocks must be what was meant
+    for preset, block in blocks.items():
+        back = parsed["presets"][preset]["measured"]
+        if json.loads(json.dumps(back, default=str)) != json.loads(json.dumps(block, default=str)):
+            raise MeasureError(f"presets.{preset}.measured does not read back as written")
+    if not dry_run:
+        tmp = path + ".measure.tmp"
+        with open(tmp, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+
+
+def parse_set(items):
+    out = {}
+    for item in items:
+        if "=" not in item:
+            raise SystemExit(f"--set {item}: expected KEY=VALUE")
+        k, v = item.split("=", 1)
+        out[k] = yaml.safe_load(v)
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--pipeline", default=os.path.join(ROOT, "pipeline.yaml"))
+    ap.add_argument("--plan", default=None, help="default bench/measure_presets.yaml")
+    ap.add_argument("--presets", nargs="+", choices=PRESETS, default=PRESETS)
+    ap.add_argument("--studies", nargs="+", default=None,
+                    help="default: every study of the plan (a smoke plan: all but pipeline)")
+    ap.add_argument("--times-only", action="store_true",
+                    help="times and DoFs only; keep the error entries (no reference runs)")
+    ap.add_argument("--tiny", action="store_true", help="the smoke plan bench/measure_presets_tiny.yaml")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a scene key for every run (YAML value)")
+    ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--run-pipeline", default=None, help="default BUILD_DIR/pipeline/run_pipeline")
+    ap.add_argument("--work", default="/tmp/clearjoint-measure")
+    ap.add_argument("--no-plots", action="store_true", help="tasks without their plots (not what a default run does)")
+    ap.add_argument("--dry-run", action="store_true", help="print the blocks, write nothing")
+    ap.add_argument("--no-check", action="store_true", help="skip run_pipeline --check afterwards")
+    args = ap.parse_args(argv)
+    args.set = parse_set(args.set)
+    args.build_dir = os.path.abspath(args.build_dir)
+    args.work = os.path.abspath(args.work)
+    args.run_pipeline = os.path.abspath(args.run_pipeline or os.path.join(args.build_dir, "pipeline", "run_pipeline"))
+    plan_path = args.plan or os.path.join(ROOT, "bench", "measure_presets_tiny.yaml" if args.tiny
+                                          else "measure_presets.yaml")
+    with open(plan_path) as f:
+        plan = yaml.safe_load(f)
+    smoke = bool(plan.get("smoke"))
+    pipeline_path = os.path.abspath(args.pipeline)
+    if smoke and not args.dry_run and pipeline_path == os.path.join(ROOT, "pipeline.yaml"):
+        raise SystemExit("measure_presets: --tiny figures are not the presets'; it does not write "
+                         "the repository's pipeline.yaml: give a copy with --pipeline")
+    with open(pipeline_path) as f:
+        pipeline = yaml.safe_load(f)
+    if args.studies:  # the thickness study runs fe_stage's radial scene
+        args.studies = ["thickness" if s == "radial" and "radial" not in plan["studies"] else s
+                        for s in args.studies]
+    studies = args.studies or [s for s in plan["studies"] if not (smoke and s == "pipeline")]
+    for s in studies:
+        if s not in plan["studies"]:
+            raise SystemExit(f"measure_presets: --studies {s}: not in {plan_path} "
+                             f"({', '.join(plan['studies'])})")
+        kind = plan["studies"][s]["kind"]
+        present = {"fe_study": any(x["name"] == s for x in pipeline.get("fe_studies") or []),
+                   "impact": "impact" in pipeline, "rolling": "rolling" in pipeline,
+                   "pipeline": True}[kind]
+        if not present and args.studies:
+            raise SystemExit(f"measure_presets: --studies {s}: {pipeline_path} has no such study")
+    studies = [s for s in studies if plan["studies"][s]["kind"] == "pipeline"
+               or (plan["studies"][s]["kind"] == "fe_study"
+                   and any(x["name"] == s for x in pipeline.get("fe_studies") or []))
+               or (plan["studies"][s]["kind"] != "fe_study" and plan["studies"][s]["kind"] in pipeline)]
+
+    m = Measurer(args, pipeline, plan)
+    m.studies = studies
+    now = datetime.datetime.now(datetime.timezone.utc)
+    m.date = now.strftime("%Y-%m-%d %H:%M UTC")
+    where_machine = machine()
+    load_before = load_average()
+    blocks, failures = {}, []
+    for preset in args.presets:
+        old = ((pipeline["presets"].get(preset) or {}).get("measured")) or {}
+        block = json.loads(json.dumps(old, default=str))
+        block.setdefault("error_F_max", {})
+        wrote = []
+        for study in studies:
+            try:
+                m.measure(preset, study, block, wrote)
+            except MeasureError as e:
+                failures.append(f"{preset} / {study}: {e}")
+                print(f"  FAILED: {e}", file=sys.stderr, flush=True)
+        if not wrote:
+            continue
+        load_after = load_average()
+        block["date"] = m.date
+        block["machine"] = where_machine
+        kept = sorted(k for k in old if k not in ("note", "date", "machine", "error_F_max")
+                      and not any(w == k or w.startswith(k + ".") for w in wrote))
+        kept += sorted("error_F_max." + s for s in old.get("error_F_max") or {}
+                       if "error_F_max." + s not in wrote)
+        note = (f"bench/measure_presets.py{' --tiny (smoke run: NOT the presets figures)' if smoke else ''}"
+                f" on {m.date}, load average {load_before:.1f} before and {load_after:.1f} after: "
+                f"{', '.join(wrote)}")
+        if kept:
+            note += f"; from earlier: {', '.join(kept)}"
+        block["note"] = note
+        blocks[preset] = block
+    if blocks:
+        write_blocks(pipeline_path, blocks, args.dry_run)
+        print(("would write" if args.dry_run else "wrote") + f" presets {', '.join(blocks)} of {pipeline_path}")
+        if not args.dry_run and not args.no_check:
+            check = subprocess.run([args.run_pipeline, pipeline_path, "--check", "--build-dir",
+                                    args.build_dir], cwd=os.path.dirname(pipeline_path),
+                                   capture_output=True, text=True)
+            if check.returncode != 0:
+                failures.append(f"run_pipeline --check of the written file failed:\n{check.stderr[-3000:]}")
+    for f in failures:
+        print("measure_presets: " + f, file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
