@@ -75,6 +75,230 @@ namespace clearjoint::fe::detail
     return rs;
   }
 
+  namespace
+  {
+    /// The paper's tracked points (Fig. 9) by their DoFs: N_B the bore node at the bottom of
+    /// the mid-plane (it touches the journal at t = 0; the generated ring has a vertex there),
+    /// N_J the deformable journal's surface node under it at t = 0 (the same point as
+    /// meshed). Each is owned by one rank. By DoFs, not contact-node index: a deformable
+    /// journal's search rebuilds the contact nodes at every step.
+    struct PaperNodes
+    {
+      bool bore = false, journal = false;  // owned by this rank
+      std::array<types::global_dof_index, dim> bore_dofs{}, journal_dofs{};
+    };
+
+    PaperNodes find_paper_nodes(const FeScene &scene, const DofSpace &dofs,
+                                const ContactProblem &contact, const bool deformable_journal,
+                                MPI_Comm comm)
+    {
+      const double R_B = scene.geometry.R_B;
+      PaperNodes p;
+      for (const auto &cn : contact.nodes())
+        if (cn.owned && std::abs(cn.X[0]) < 1e-9 * R_B && std::abs(cn.X[1] + R_B) < 1e-9 * R_B &&
+            std::abs(cn.X[2]) < 1e-9 * R_B)
+          p.bore = true, p.bore_dofs = cn.dofs;
+      if (deformable_journal)
+        {
+          for (const auto &cell : dofs.handler().active_cell_iterators())
+            if (cell->is_locally_owned() && cell->material_id() == 1)
+              for (const auto v : cell->vertex_indices())
+                if (cell->vertex(v).distance(Point<dim>(0.0, -R_B, 0.0)) < 1e-9 * R_B &&
+                    dofs.owned().is_element(cell->vertex_dof_index(v, 0)))
+                  {
+                    p.journal = true;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      p.journal_dofs[c] = cell->vertex_dof_index(v, c);
+                  }
+          if (Utilities::MPI::sum(p.journal ? 1u : 0u, comm) != 1)
+            throw NumericalError("fe_stage: the rolling study found no single journal node at "
+                                 "the bottom of the mid-plane to track");
+        }
+      if (Utilities::MPI::sum(p.bore ? 1u : 0u, comm) != 1)
+        throw NumericalError("fe_stage: the rolling study found no single bore node at the "
+                             "bottom of the mid-plane to track");
+      return p;
+    }
+
+    /// A tracked node's displacement [m] (all ranks; 0 where no rank owns it).
+    Vec3 tracked_displacement(const bool owned,
+                              const std::array<types::global_dof_index, dim> &node_dofs,
+                              const TrilinosWrappers::MPI::Vector &u, MPI_Comm comm)
+    {
+      Vec3 d{0.0, 0.0, 0.0};
+      if (owned)
+        for (unsigned int c = 0; c < dim; ++c)
+          d[c] = u[node_dofs[c]];
+      for (auto &c : d)
+        c = Utilities::MPI::sum(c, comm);
+      return d;
+    }
+
+    /// The bearing's balance in its frame: the contact forces' work on it, node by node (by
+    /// the node's x-DoF: a deformable journal's search rebuilds the contact nodes at every
+    /// step), by the trapezoidal rule between converged steps.
+    struct FrameWork
+    {
+      std::map<types::global_dof_index, Tensor<1, dim>> force_before, u_before;
+      double work = 0.0;  // [J] full body
+    };
+
+    /// What a converged step's contact did, summed over the ranks (full body where a force
+    /// or a work): friction's slip work, the contact force on the bearing in its frame, the
+    /// drive's torque on it, the active and slipping nodes (this rank's).
+    struct ContactStep
+    {
+      double friction_work = 0.0, torque_bearing = 0.0;
+      Tensor<1, dim> force_frame;
+      unsigned int n_active = 0, n_slip = 0;
+    };
+
+    /// The converged step's contact sums, the frame's work advanced, and the contact's
+    /// reference state (relative displacement, obstacle motion) moved to this step.
+    ContactStep close_contact_step(ContactProblem &contact, const TrilinosWrappers::MPI::Vector &u,
+                                   const double symmetry_factor, FrameWork &frame, MPI_Comm comm)
+    {
+      ContactStep s;
+      double fr = 0.0, torque_bearing = 0.0;
+      for (const auto &cn : contact.nodes())
+        if (cn.owned && cn.active)
+          {
+            const Tensor<1, dim> tr = contact.traction(cn);
+            fr -= tangential(tr, cn.n) * contact.slip_increment(cn);
+            s.force_frame += tr;
+            Tensor<1, dim> x = cn.X;
+            for (unsigned int c = 0; c < dim; ++c)
+              x[c] += u[cn.dofs[c]];
+            torque_bearing += x[0] * tr[1] - x[1] * tr[0];
+            ++s.n_active;
+            if (contact.friction() && !cn.stick)
+              ++s.n_slip;
+          }
+      for (unsigned int c = 0; c < dim; ++c)
+        s.force_frame[c] = Utilities::MPI::sum(s.force_frame[c], comm);
+      s.friction_work = symmetry_factor * Utilities::MPI::sum(fr, comm);
+      s.torque_bearing = symmetry_factor * Utilities::MPI::sum(torque_bearing, comm);
+      double dw = 0.0;
+      for (auto &cn : contact.nodes())
+        {
+          if (cn.owned)  // (every node: a deformable journal's search may rebuild the nodes)
+            {
+              const Tensor<1, dim> f = cn.active ? contact.traction(cn) : Tensor<1, dim>();
+              Tensor<1, dim> un;
+              for (unsigned int c = 0; c < dim; ++c)
+                un[c] = u[cn.dofs[c]];
+              const auto key = cn.dofs[0];
+              dw += 0.5 * (frame.force_before[key] + f) * (un - frame.u_before[key]);
+              frame.force_before[key] = f;
+              frame.u_before[key] = un;
+            }
+          cn.relative_converged = cn.relative;
+          cn.obstacle_u_converged = cn.obstacle_u;
+        }
+      frame.work += symmetry_factor * Utilities::MPI::sum(dw, comm);
+      return s;
+    }
+
+    /// The deformable journal's contact radii: both surfaces give way, so the contact is not
+    /// at R_B + δ from the bearing's axis and R_J from the journal's. At the active node
+    /// carrying the largest normal force (all ranks), from each axis to where the node is now
+    /// (the contact closed: the journal's surface is there too). False without contact.
+    bool contact_radii(const ContactProblem &contact, const TrilinosWrappers::MPI::Vector &u,
+                       const std::array<double, 3> &journal_centre, double &r_bearing,
+                       double &r_journal, MPI_Comm comm)
+    {
+      std::vector<double> mine{-1.0, 0.0, 0.0};
+      for (const auto &cn : contact.nodes())
+        if (cn.owned && cn.active && cn.lambda > mine[0])
+          {
+            const double x = cn.X[0] + u[cn.dofs[0]];
+            const double y = cn.X[1] + u[cn.dofs[1]];
+            mine = {cn.lambda, std::hypot(x, y),
+                    std::hypot(x - journal_centre[0], y - journal_centre[1])};
+          }
+      std::array<double, 3> best{-1.0, 0.0, 0.0};
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+        if (part[0] > best[0])
+          best = {part[0], part[1], part[2]};
+      r_bearing = best[1];
+      r_journal = best[2];
+      return best[0] > 0.0;
+    }
+
+    /// The run's energy balance, paper §3.4: the drive's and the push's work against the
+    /// elastic energy, plastic and friction dissipation and the journal's kinetic energy (the
+    /// works by the trapezoidal rule between converged steps); and the bearing's own balance
+    /// in its frame (the contact's work on it against its elastic energy and plastic work).
+    struct RollingBalance
+    {
+      double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction = 0.0;  // [J]
+      double bearing_plastic = 0.0;                                             // [J]
+      double torque_drive_prev = 0.0, force_prev = 0.0;
+
+      /// Adds the step from (φ0, δ0) to the record's φ, δ with its torque and force, the
+      /// step's plastic and friction work, and writes the record's energies [J].
+      void close_step(RollingStepRecord &rec, const double phi0, const double delta0,
+                      const double plastic_step, const double bearing_plastic_step,
+                      const double elastic_energy, const double bearing_elastic_energy,
+                      const double friction_step, const double frame_work,
+                      const double kinetic_energy)
+      {
+        work_drive += 0.5 * (torque_drive_prev + rec.torque_drive) * (rec.phi - phi0);
+        work_push += 0.5 * (force_prev + rec.force_normal) * (rec.delta - delta0);
+        plastic += plastic_step;
+        friction += friction_step;
+        rec.work_drive = work_drive;
+        rec.work_push = work_push;
+        rec.elastic_energy = elastic_energy;
+        rec.plastic_dissipation = plastic;
+        rec.friction_dissipation = friction;
+        rec.kinetic_energy = kinetic_energy;
+        rec.energy_balance_error =
+          work_drive + work_push - rec.elastic_energy - plastic - friction - rec.kinetic_energy;
+        rec.work_frame = frame_work;
+        bearing_plastic += bearing_plastic_step;
+        rec.frame_balance_error = frame_work - bearing_elastic_energy - bearing_plastic;
+        torque_drive_prev = rec.torque_drive;
+        force_prev = rec.force_normal;
+      }
+    };
+
+    /// The progress line of a converged step, with the time left [s] at this step's pace.
+    void log_step(const RollingStepRecord &rec, const double seconds_left)
+    {
+      log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(rec.time) +
+                " s, delta " + format_value(rec.delta) + " m, F " + format_value(rec.force_normal) +
+                " N, spin " + format_value(rec.gamma_rate) + " rad/s (slip " +
+                format_value(rec.slip_speed) + " m/s), eps_p max " +
+                format_value(rec.max_plastic_strain) + ", " + std::to_string(rec.spin_iterations) +
+                " spin / " + std::to_string(rec.contact_iterations) + " contact iterations" +
+                (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") + ", ETA " +
+                log::format_duration(seconds_left));
+    }
+
+    /// The run's summary from its steps: the slip stages (rolling::slip_stages on the slip
+    /// speed's history), the largest strains and the balance's error at the end.
+    void summarise(RollingSummary &S, const std::vector<double> &times,
+                   const std::vector<double> &slips, const std::vector<RollingStepRecord> &steps)
+    {
+      const auto stages = rolling::slip_stages(times, slips);
+      S.stages_found = stages.found;
+      S.slip_speed_max = stages.v_max;
+      S.end_of_slip = stages.end_of_slip;
+      S.settled = stages.settled;
+      S.slip_speed_final = stages.v_final;
+      if (!steps.empty())
+        {
+          const auto &last = steps.back();
+          S.max_plastic_strain = last.max_plastic_strain;
+          S.max_strain = last.max_strain;
+          const double work_in = std::abs(last.work_drive) + std::abs(last.work_push);
+          S.energy_balance_error =
+            work_in > 0.0 ? std::abs(last.energy_balance_error) / work_in : 0.0;
+        }
+    }
+  }  // namespace
+
   RunResult ContactModel::run_rolling()
   {
     RunResult result;
@@ -117,39 +341,8 @@ namespace clearjoint::fe::detail
                 log::format_duration(result.setup_time));
 
     start_from_rest();
-    // the bore node at the bottom of the mid-plane: it touches the journal at t = 0 (paper
-    // Fig. 9's N_B); the generated ring has a vertex there
-    // (kept by its DoFs: a deformable journal's search rebuilds contact_.nodes() at every step)
-    int tracked = -1;
-    std::array<types::global_dof_index, dim> tracked_dofs{};
-    for (unsigned int i = 0; i < contact_.nodes().size(); ++i)
-      if (contact_.nodes()[i].owned && std::abs(contact_.nodes()[i].X[0]) < 1e-9 * G.R_B &&
-          std::abs(contact_.nodes()[i].X[1] + G.R_B) < 1e-9 * G.R_B &&
-          std::abs(contact_.nodes()[i].X[2]) < 1e-9 * G.R_B)
-        tracked = int(i), tracked_dofs = contact_.nodes()[i].dofs;
-    // the deformable journal's surface node under it at t = 0 (paper Fig. 9's N_J, the same
-    // point as meshed; owned by one rank)
-    bool journal_tracked = false;
-    std::array<types::global_dof_index, dim> journal_dofs{};
-    if (rolling_deformable_journal())
-      {
-        for (const auto &cell : dofs_.handler().active_cell_iterators())
-          if (cell->is_locally_owned() && cell->material_id() == 1)
-            for (const auto v : cell->vertex_indices())
-              if (cell->vertex(v).distance(Point<dim>(0.0, -G.R_B, 0.0)) < 1e-9 * G.R_B &&
-                  dofs_.owned().is_element(cell->vertex_dof_index(v, 0)))
-                {
-                  journal_tracked = true;
-                  for (unsigned int c = 0; c < dim; ++c)
-                    journal_dofs[c] = cell->vertex_dof_index(v, c);
-                }
-        if (Utilities::MPI::sum(journal_tracked ? 1u : 0u, comm_) != 1)
-          throw NumericalError("fe_stage: the rolling study found no single journal node at "
-                               "the bottom of the mid-plane to track");
-      }
-    if (Utilities::MPI::sum(tracked >= 0 ? 1u : 0u, comm_) != 1)
-      throw NumericalError("fe_stage: the rolling study found no single bore node at the "
-                           "bottom of the mid-plane to track");
+    const PaperNodes paper =
+      find_paper_nodes(scene_, dofs_, contact_, rolling_deformable_journal(), comm_);
 
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     unsigned int field_counter = 0;
@@ -165,13 +358,8 @@ namespace clearjoint::fe::detail
         write_fields(field_counter++, 0.0);
       }
 
-    // the bearing's balance in its frame: the contact forces' work on it, node by node
-    // (by the node's x-DoF: a deformable journal's search rebuilds contact_.nodes() at every step)
-    std::map<types::global_dof_index, Tensor<1, dim>> force_before, u_before;
-    double work_frame = 0.0;
-    double work_drive = 0.0, work_push = 0.0, plastic = 0.0, friction_work = 0.0;
-    double bearing_plastic = 0.0;  // [J] the bearing's own, for its balance in its frame
-    double torque_drive_prev = 0.0, force_prev = 0.0;
+    FrameWork frame_work;
+    RollingBalance ledger;
     std::vector<double> times, slips;
     const double wall_steps_start = elapsed();
     unsigned int step = 0;
@@ -189,61 +377,14 @@ namespace clearjoint::fe::detail
         // the converged step: friction's slip work, the contact forces (frame → fixed), the
         // torques; then commit the material and the contact's reference state
         const double t1 = t + dt;
-        double fr = 0.0, torque_bearing = 0.0;
-        Tensor<1, dim> force_frame;
-        unsigned int n_active = 0, n_slip = 0;
-        for (const auto &cn : contact_.nodes())
-          if (cn.owned && cn.active)
-            {
-              const Tensor<1, dim> tr = contact_.traction(cn);
-              fr -= tangential(tr, cn.n) * contact_.slip_increment(cn);
-              force_frame += tr;
-              Tensor<1, dim> x = cn.X;
-              for (unsigned int c = 0; c < dim; ++c)
-                x[c] += solution_[cn.dofs[c]];
-              torque_bearing += x[0] * tr[1] - x[1] * tr[0];
-              ++n_active;
-              if (contact_.friction() && !cn.stick)
-                ++n_slip;
-            }
-        for (unsigned int c = 0; c < dim; ++c)
-          force_frame[c] = Utilities::MPI::sum(force_frame[c], comm_);
-        fr = bodies_.symmetry_factor() * Utilities::MPI::sum(fr, comm_);
-        torque_bearing = bodies_.symmetry_factor() * Utilities::MPI::sum(torque_bearing, comm_);
+        const ContactStep cs =
+          close_contact_step(contact_, solution_, bodies_.symmetry_factor(), frame_work, comm_);
         const auto on_journal =
-          rolling::rotate_z({-force_frame[0], -force_frame[1], 0.0}, motion.phi(t1));
-        Vec3 u_tracked{0.0, 0.0, 0.0};
-        if (tracked >= 0)
-          for (unsigned int c = 0; c < dim; ++c)
-            u_tracked[c] = solution_[tracked_dofs[c]];
-        for (auto &c : u_tracked)
-          c = Utilities::MPI::sum(c, comm_);
-        Vec3 u_journal{0.0, 0.0, 0.0};  // in the journal's frame (0: rigid)
-        if (journal_tracked)
-          for (unsigned int c = 0; c < dim; ++c)
-            u_journal[c] = solution_[journal_dofs[c]];
-        for (auto &c : u_journal)
-          c = Utilities::MPI::sum(c, comm_);
-        double dw = 0.0;
-        for (unsigned int i = 0; i < contact_.nodes().size(); ++i)
-          {
-            auto &cn = contact_.nodes()[i];
-            if (
-              cn.owned)  // (every node: a deformable journal's search may rebuild contact_.nodes())
-              {
-                const Tensor<1, dim> f = cn.active ? contact_.traction(cn) : Tensor<1, dim>();
-                Tensor<1, dim> u;
-                for (unsigned int c = 0; c < dim; ++c)
-                  u[c] = solution_[cn.dofs[c]];
-                const auto key = cn.dofs[0];
-                dw += 0.5 * (force_before[key] + f) * (u - u_before[key]);
-                force_before[key] = f;
-                u_before[key] = u;
-              }
-            cn.relative_converged = cn.relative;
-            cn.obstacle_u_converged = cn.obstacle_u;
-          }
-        work_frame += bodies_.symmetry_factor() * Utilities::MPI::sum(dw, comm_);
+          rolling::rotate_z({-cs.force_frame[0], -cs.force_frame[1], 0.0}, motion.phi(t1));
+        const Vec3 u_tracked = tracked_displacement(paper.bore, paper.bore_dofs, solution_, comm_);
+        // in the journal's frame (0: rigid)
+        const Vec3 u_journal =
+          tracked_displacement(paper.journal, paper.journal_dofs, solution_, comm_);
         frame_.psi_converged += frame_.delta_psi;
         frame_.delta_psi = 0.0;
         const PlasticEnergies pe = commit_plasticity();
@@ -260,50 +401,21 @@ namespace clearjoint::fe::detail
         rec.gamma_rate = rate_new;
         rec.gamma = gamma + rate_new * dt;
         rec.slip_speed = motion.slip_speed(t1, rate_new);
-        if (rolling_deformable_journal())
-          {
-            // Both surfaces give way, so the contact is not at R_B + δ from the bearing's axis
-            // and R_J from the journal's: the radii at the active node carrying the largest
-            // normal force, from each axis to where the node is now (the contact closed:
-            // the journal's surface is there too), ω_B r_B − γ̇ r_J
-            std::vector<double> mine{-1.0, 0.0, 0.0};
-            for (const auto &cn : contact_.nodes())
-              if (cn.owned && cn.active && cn.lambda > mine[0])
-                {
-                  const double x = cn.X[0] + solution_[cn.dofs[0]];
-                  const double y = cn.X[1] + solution_[cn.dofs[1]];
-                  mine = {cn.lambda, std::hypot(x, y),
-                          std::hypot(x - frame_.centre[0], y - frame_.centre[1])};
-                }
-            std::array<double, 3> best{-1.0, 0.0, 0.0};
-            for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
-              if (part[0] > best[0])
-                best = {part[0], part[1], part[2]};
-            if (best[0] > 0.0)
-              rec.slip_speed = R.omega_B * best[1] - rate_new * best[2];
-          }
+        double r_bearing = 0.0, r_journal = 0.0;  // ω_B r_B − γ̇ r_J where both give way
+        if (rolling_deformable_journal() &&
+            contact_radii(contact_, solution_, frame_.centre, r_bearing, r_journal, comm_))
+          rec.slip_speed = R.omega_B * r_bearing - rate_new * r_journal;
         rec.torque_journal = rs.torque_journal;
-        rec.torque_drive = -torque_bearing;
-        work_drive += 0.5 * (torque_drive_prev + rec.torque_drive) * (rec.phi - motion.phi(t));
-        work_push += 0.5 * (force_prev + rec.force_normal) * (rec.delta - motion.delta(t));
-        plastic += pe.plastic_work_step;
-        friction_work += fr;
-        rec.work_drive = work_drive;
-        rec.work_push = work_push;
-        rec.elastic_energy = pe.elastic_energy;
-        rec.plastic_dissipation = plastic;
-        rec.friction_dissipation = friction_work;
-        rec.kinetic_energy = 0.5 * inertia * rate_new * rate_new;
-        rec.energy_balance_error = work_drive + work_push - rec.elastic_energy - plastic -
-                                   friction_work - rec.kinetic_energy;
-        rec.work_frame = work_frame;
-        bearing_plastic += pe.bearing_plastic_work_step;
-        rec.frame_balance_error = work_frame - pe.bearing_elastic_energy - bearing_plastic;
+        rec.torque_drive = -cs.torque_bearing;
+        ledger.close_step(rec, motion.phi(t), motion.delta(t), pe.plastic_work_step,
+                          pe.bearing_plastic_work_step, pe.elastic_energy,
+                          pe.bearing_elastic_energy, cs.friction_work, frame_work.work,
+                          0.5 * inertia * rate_new * rate_new);
         rec.max_plastic_strain = pe.max_plastic_strain;
         rec.max_strain = pe.max_strain;
         rec.plastic_volume = pe.plastic_volume;
-        rec.n_active = Utilities::MPI::sum(n_active, comm_);
-        rec.n_slip = Utilities::MPI::sum(n_slip, comm_);
+        rec.n_active = Utilities::MPI::sum(cs.n_active, comm_);
+        rec.n_slip = Utilities::MPI::sum(cs.n_slip, comm_);
         rec.spin_iterations = solved.spin_evaluations;
         rec.newton_iterations = rs.newton_iterations;
         rec.contact_iterations = rs.contact_iterations;
@@ -322,8 +434,6 @@ namespace clearjoint::fe::detail
         rec.phi_rate_paper = rec.phi_paper / t1;
         rec.gamma_rate_paper = rec.gamma_paper / t1;
         rec.wall_time = elapsed();
-        torque_drive_prev = rec.torque_drive;
-        force_prev = rec.force_normal;
         stepper.accept(solved);
         times.push_back(t1);
         slips.push_back(rec.slip_speed);
@@ -339,18 +449,7 @@ namespace clearjoint::fe::detail
         inc.wall_time = rec.wall_time;
         result.increments.push_back(inc);
         if (rank_ == 0)
-          {
-            const double per_second = (elapsed() - wall_steps_start) / t1;
-            log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(t1) +
-                      " s, delta " + format_value(rec.delta) + " m, F " +
-                      format_value(rec.force_normal) + " N, spin " + format_value(rec.gamma_rate) +
-                      " rad/s (slip " + format_value(rec.slip_speed) + " m/s), eps_p max " +
-                      format_value(rec.max_plastic_strain) + ", " +
-                      std::to_string(rec.spin_iterations) + " spin / " +
-                      std::to_string(rec.contact_iterations) + " contact iterations" +
-                      (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") + ", ETA " +
-                      log::format_duration(per_second * (t_end - t1)));
-          }
+          log_step(rec, (elapsed() - wall_steps_start) / t1 * (t_end - t1));
         if (options_.on_increment)
           options_.on_increment(inc);
         if (options_.on_rolling_step)
@@ -368,21 +467,7 @@ namespace clearjoint::fe::detail
     if (rolling_deformable_journal())
       for (const auto &p : strain_profile(1, stepper.gamma(), 30.0 * units::deg))
         result.strain_profile.push_back(p);
-    const auto stages = rolling::slip_stages(times, slips);
-    S.stages_found = stages.found;
-    S.slip_speed_max = stages.v_max;
-    S.end_of_slip = stages.end_of_slip;
-    S.settled = stages.settled;
-    S.slip_speed_final = stages.v_final;
-    if (!result.rolling_steps.empty())
-      {
-        const auto &last = result.rolling_steps.back();
-        S.max_plastic_strain = last.max_plastic_strain;
-        S.max_strain = last.max_strain;
-        const double work_in = std::abs(last.work_drive) + std::abs(last.work_push);
-        S.energy_balance_error =
-          work_in > 0.0 ? std::abs(last.energy_balance_error) / work_in : 0.0;
-      }
+    summarise(S, times, slips, result.rolling_steps);
     result.sliding_rebuilds = n_sliding_rebuilds_;
     if (rolling_deformable_journal() && rank_ == 0)
       log::info("fe_stage: the deformable journal's coupling: " +
