@@ -191,7 +191,7 @@ def _spin_figure(run):
     _plot_columns(ax, t, h, [("phi_rate", "C0-", "φ̇ bearing (driven), exact"),
                              ("phi_rate_paper", "C0--", "φ̇ by the paper's Eqs. 4–5, 7"),
                              ("gamma_rate", "C1-", "γ̇ journal (torque balance), exact"),
-                             ("gamma_rate_paper", "C1--", "γ̇ by the paper's Eqs. 6, 8")])
+                             ("gamma_rate_paper", "C1--", "γ̇ by the paper's Eqs. 6, 7")])
     rate = value_of(get(run.summary, "rolling_rate"))
     if rate:
         ax.axhline(rate, color="k", ls=":", lw=1,
@@ -307,7 +307,7 @@ def _final_table(run):
         ("contact force at the end, tangential", _fmt(_last(h, "force_tangential"), "{:.5g}", "N")),
         ("bearing spin rate φ̇", _fmt(_last(h, "phi_rate"), "{:.5g}", "rad/s")),
         ("journal spin rate γ̇", _fmt(gamma, "{:.5g}", "rad/s") + share),
-        ("journal spin rate by the paper's Eq. 8", _fmt(_last(h, "gamma_rate_paper"), "{:.5g}", "rad/s")),
+        ("journal spin rate by the paper's Eq. 7", _fmt(_last(h, "gamma_rate_paper"), "{:.5g}", "rad/s")),
         ("slip speed at the contact", _fmt(_last(h, "slip_speed"), "{:.4g}", "m/s")),
         ("largest equivalent plastic strain", _fmt(run.max_of("max_plastic_strain", "max_plastic_strain"),
                                                    "{:.4g}", "[1]")),

@@ -70,7 +70,7 @@ def main(argv):
     ax.plot(t_ms, h["phi_rate"], "C0-", label="φ̇ bearing (driven)")
     ax.plot(t_ms, h["phi_rate_paper"], "C0--", label="φ̇ by Eqs. 4–5, 7")
     ax.plot(t_ms, h["gamma_rate"], "C1-", label="γ̇ journal (torque balance)")
-    ax.plot(t_ms, h["gamma_rate_paper"], "C1--", label="γ̇ by Eqs. 6, 8")
+    ax.plot(t_ms, h["gamma_rate_paper"], "C1--", label="γ̇ by Eqs. 6, 7")
     ax.set_xlabel("t [ms]")
     ax.set_ylabel("spin rate [rad/s]")
     ax.set_title("spin rates (paper Fig. 10)")

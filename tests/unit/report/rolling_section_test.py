@@ -144,7 +144,7 @@ def main():
                      "12346 N",            # contact force at the end
                      "3703.7 N",           # tangential
                      "13.1 rad/s (99.1 % of the rolling rate 13.22 rad/s)",  # journal spin
-                     "12.9 rad/s",         # by Eq. 8
+                     "12.9 rad/s",         # by Eq. 7
                      "0.0042 m/s",         # slip speed
                      "0.0123 [1]",         # largest plastic strain
                      "0.02 [1]",           # largest strain
