@@ -6,6 +6,117 @@
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    using NodeDofs = std::array<types::global_dof_index, dim>;
+
+    /// The master surface as every rank sees it: its faces (nodes by x-DoF, at the positions
+    /// searched), and per node its DoFs, whether its y-DoF is driven by the load (the
+    /// journal's rim under end-face loading), its displacement (0 in the reference search)
+    /// and where it was meshed.
+    struct MasterSurface
+    {
+      std::vector<mortar::Face> faces;
+      std::map<long, std::pair<NodeDofs, bool>> dofs;
+      std::map<long, Tensor<1, dim>> u;
+      std::map<long, Point<dim>> X;
+    };
+
+    /// Master faces from every rank (the face facing a slave node is often on no cell this
+    /// rank sees): per face its node count, then per node 3 DoFs, the position searched
+    /// (position(dofs)), the driven flag, its displacement and its mesh position.
+    template <typename Position>
+    MasterSurface gather_master_surface(
+      const DofSpace &dofs, const std::map<types::global_dof_index, Point<dim>> &support,
+      const types::boundary_id master_id, const TrilinosWrappers::MPI::Vector *u,
+      const Position &position, MPI_Comm comm)
+    {
+      std::vector<types::global_dof_index> face_dofs(dofs.fe().n_dofs_per_face());
+      std::vector<double> mine;
+      for (const auto &cell : dofs.handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == master_id)
+              {
+                const auto nodes = face_node_dofs(cell, f, face_dofs);
+                mine.push_back(double(nodes.size()));
+                for (const auto &d : nodes)
+                  {
+                    const Point<dim> x = position(d);
+                    const Point<dim> &X = support.at(d[0]);
+                    const bool driven = dofs.is_loaded_y_dof(d[1]);
+                    mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0], x[1],
+                                             x[2], driven ? 1.0 : 0.0});
+                    for (unsigned int c = 0; c < dim; ++c)
+                      mine.push_back(u ? (*u)[d[c]] : 0.0);
+                    mine.insert(mine.end(), {X[0], X[1], X[2]});
+                  }
+              }
+      MasterSurface m;
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+        for (std::size_t i = 0; i < part.size();)
+          {
+            const unsigned int nn = static_cast<unsigned int>(part[i++]);
+            mortar::Face face;
+            for (unsigned int k = 0; k < nn; ++k, i += 13)
+              {
+                m.X[static_cast<long>(part[i])] =
+                  Point<dim>(part[i + 10], part[i + 11], part[i + 12]);
+                NodeDofs d;
+                for (unsigned int c = 0; c < dim; ++c)
+                  d[c] = static_cast<types::global_dof_index>(part[i + c]);
+                face.nodes.push_back(static_cast<long>(d[0]));
+                face.X.push_back({part[i + 3], part[i + 4], part[i + 5]});
+                m.dofs[static_cast<long>(d[0])] = {d, part[i + 6] != 0.0};
+                m.u[static_cast<long>(d[0])] =
+                  Tensor<1, dim>({part[i + 7], part[i + 8], part[i + 9]});
+              }
+            m.faces.push_back(std::move(face));
+          }
+      return m;
+    }
+
+    /// The slave surface: faces of this rank's owned and ghost cells (every cell holding a
+    /// DoF of an owned cell is among them, so owned and ghost nodes of owned cells see all
+    /// their faces), at the positions searched; a joint's faces with a node beyond |z| >
+    /// z_end are left out. Per node (by x-DoF) its DoFs.
+    struct SlaveSurface
+    {
+      std::vector<mortar::Face> faces;
+      std::map<long, NodeDofs> dofs;
+    };
+
+    template <typename Position>
+    SlaveSurface collect_slave_surface(const DofSpace &dofs,
+                                       const std::map<types::global_dof_index, Point<dim>> &support,
+                                       const types::boundary_id slave_id, const bool joint,
+                                       const double z_end, const Position &position)
+    {
+      std::vector<types::global_dof_index> face_dofs(dofs.fe().n_dofs_per_face());
+      SlaveSurface sl;
+      for (const auto &cell : dofs.handler().active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == slave_id)
+              {
+                const auto nodes = face_node_dofs(cell, f, face_dofs);
+                if (joint && std::any_of(nodes.begin(), nodes.end(), [&](const NodeDofs &d) {
+                      return std::abs(support.at(d[0])[2]) > z_end;
+                    }))
+                  continue;
+                mortar::Face face;
+                for (const auto &d : nodes)
+                  {
+                    const Point<dim> x = position(d);
+                    face.nodes.push_back(static_cast<long>(d[0]));
+                    face.X.push_back({x[0], x[1], x[2]});
+                    sl.dofs[static_cast<long>(d[0])] = d;
+                  }
+                sl.faces.push_back(std::move(face));
+              }
+      return sl;
+    }
+  }  // namespace
   /// Two deformable bodies coupled by dual mortar (mortar.h). Each slave node gets
   /// ĝ = g̃0 + n·(u − Σ_m C_sm u_m) with the weighted gap g̃0 and the mortar coefficients C_sm
   /// of the master surface's nodes; an active node's constraint is then the same kind of line
@@ -74,82 +185,13 @@ namespace clearjoint::fe::detail
     const double z_end = joint && !journal_slave ? plan_.obstacle.half_length * (1.0 + 1e-9) :
                                                    std::numeric_limits<double>::infinity();
 
-    std::vector<types::global_dof_index> face_dofs(dofs_.fe().n_dofs_per_face());
-    using NodeDofs = std::array<types::global_dof_index, dim>;
-    // Master faces from every rank (the face facing a slave node is often on no cell this
-    // rank sees): per face its node count, then per node 3 DoFs, the position searched, whether
-    // its y-DoF is driven by the load (the journal's rim under end-face loading) and its
-    // displacement (0 in the reference search).
-    std::vector<double> mine;
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == master_id)
-            {
-              const auto nodes = face_node_dofs(cell, f, face_dofs);
-              mine.push_back(double(nodes.size()));
-              for (const auto &d : nodes)
-                {
-                  const Point<dim> x = position(d, true);
-                  const Point<dim> &X = support.at(d[0]);
-                  const bool driven = dofs_.is_loaded_y_dof(d[1]);
-                  mine.insert(mine.end(), {double(d[0]), double(d[1]), double(d[2]), x[0], x[1],
-                                           x[2], driven ? 1.0 : 0.0});
-                  for (unsigned int c = 0; c < dim; ++c)
-                    mine.push_back(u ? (*u)[d[c]] : 0.0);
-                  mine.insert(mine.end(), {X[0], X[1], X[2]});
-                }
-            }
-    std::vector<mortar::Face> master;
-    std::map<long, std::pair<NodeDofs, bool>> master_dofs;
-    std::map<long, Tensor<1, dim>> master_u;
-    std::map<long, Point<dim>> master_X;  // as meshed
-    for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
-      for (std::size_t i = 0; i < part.size();)
-        {
-          const unsigned int nn = static_cast<unsigned int>(part[i++]);
-          mortar::Face face;
-          for (unsigned int k = 0; k < nn; ++k, i += 13)
-            {
-              master_X[static_cast<long>(part[i])] =
-                Point<dim>(part[i + 10], part[i + 11], part[i + 12]);
-              NodeDofs d;
-              for (unsigned int c = 0; c < dim; ++c)
-                d[c] = static_cast<types::global_dof_index>(part[i + c]);
-              face.nodes.push_back(static_cast<long>(d[0]));
-              face.X.push_back({part[i + 3], part[i + 4], part[i + 5]});
-              master_dofs[static_cast<long>(d[0])] = {d, part[i + 6] != 0.0};
-              master_u[static_cast<long>(d[0])] =
-                Tensor<1, dim>({part[i + 7], part[i + 8], part[i + 9]});
-            }
-          master.push_back(std::move(face));
-        }
-    // Slave faces: this rank's owned and ghost cells (every cell holding a DoF of an owned
-    // cell is among them, so owned and ghost nodes of owned cells see all their faces).
-    std::vector<mortar::Face> slave;
-    std::map<long, NodeDofs> slave_dofs;
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
-      if (cell->is_locally_owned() || cell->is_ghost())
-        for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == slave_id)
-            {
-              const auto nodes = face_node_dofs(cell, f, face_dofs);
-              if (joint && std::any_of(nodes.begin(), nodes.end(), [&](const NodeDofs &d) {
-                    return std::abs(support.at(d[0])[2]) > z_end;
-                  }))
-                continue;
-              mortar::Face face;
-              for (const auto &d : nodes)
-                {
-                  const Point<dim> x = position(d);
-                  face.nodes.push_back(static_cast<long>(d[0]));
-                  face.X.push_back({x[0], x[1], x[2]});
-                  slave_dofs[static_cast<long>(d[0])] = d;
-                }
-              slave.push_back(std::move(face));
-            }
+    const MasterSurface master = gather_master_surface(
+      dofs_, support, master_id, u, [&](const NodeDofs &d) { return position(d, true); }, comm_);
+    const SlaveSurface slave =
+      collect_slave_surface(dofs_, support, slave_id, joint, z_end,
+                            [&](const NodeDofs &d) { return position(d); });
     std::vector<mortar::SlaveNode> slave_nodes;
-    for (const auto &[id, d] : slave_dofs)
+    for (const auto &[id, d] : slave.dofs)
       {
         const Tensor<1, dim> n = slave_normal(turning_journal ? position(d) : support.at(d[0]));
         slave_nodes.push_back({id, {n[0], n[1], n[2]}});
@@ -166,9 +208,9 @@ namespace clearjoint::fe::detail
     options.max_distance = joint ? 2.0 * scene_.geometry.c_r + 4.0 * scene_.loading.delta_max :
                                    4.0 * scene_.loading.delta_max;
     const double window_gap = 2.0 * scene_.loading.delta_max;
-    for (const auto &cp : mortar::couple(slave, slave_nodes, master, options))
+    for (const auto &cp : mortar::couple(slave.faces, slave_nodes, master.faces, options))
       {
-        const NodeDofs &dofs = slave_dofs.at(cp.node);
+        const NodeDofs &dofs = slave.dofs.at(cp.node);
         if (!cp.complete || cp.weight <= 0.0)
           continue;  // out of reach
         ContactNode cn;
@@ -196,10 +238,10 @@ namespace clearjoint::fe::detail
             relative[c] = (*u)[dofs[c]];
         for (const auto &[m, w] : cp.masters)
           {
-            const auto &[mdofs, driven] = master_dofs.at(m);
+            const auto &[mdofs, driven] = master.dofs.at(m);
             cn.partners.push_back({mdofs, w, driven});
-            relative -= w * master_u.at(m);
-            cn.partner_X += w * master_X.at(m);
+            relative -= w * master.u.at(m);
+            cn.partner_X += w * master.X.at(m);
             cn.partner_weight += w;
           }
         // (the turning journal: g0 and n are set at each iterate by set_obstacle_position)

@@ -6,6 +6,133 @@
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// A point's ray and axial position, exact to round-off: the journal's surface nodes lie
+    /// on the same rays as the bearing's (RayChart), so pairing is an exact lookup.
+    using RayKey = std::pair<long, long>;
+    RayKey ray_key(const Point<dim> &p)
+    {
+      return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9), std::lround(p[2] / 1e-11));
+    }
+
+    struct JournalNode
+    {
+      std::array<types::global_dof_index, dim> dofs;
+      Point<dim> X;
+      bool driven_y = false;
+    };
+
+    /// Every journal surface node on every rank (a few thousand): with several ranks the
+    /// journal cell facing a bearing node is often neither owned nor a ghost, so the owner of
+    /// each journal node contributes it (DoFs, position, whether its y-DoF is driven).
+    std::map<RayKey, JournalNode> gather_journal_surface(
+      const DofSpace &dofs, const std::map<types::global_dof_index, Point<dim>> &support,
+      MPI_Comm comm)
+    {
+      std::vector<types::global_dof_index> face_dofs(dofs.fe().n_dofs_per_face());
+      std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag
+      std::set<types::global_dof_index> seen;
+      for (const auto &cell : dofs.handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == bid_journal_surface)
+              for (const auto &node : face_node_dofs(cell, f, face_dofs))
+                if (dofs.owned().is_element(node[0]) && seen.insert(node[0]).second)
+                  {
+                    const Point<dim> &X = support.at(node[0]);
+                    const auto key = ray_key(X);
+                    mine.insert(mine.end(), {double(key.first), double(key.second), double(node[0]),
+                                             double(node[1]), double(node[2]), X[0], X[1], X[2],
+                                             dofs.is_loaded_y_dof(node[1]) ? 1.0 : 0.0});
+                  }
+      std::map<RayKey, JournalNode> journal_nodes;
+      for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+        for (std::size_t i = 0; i + 9 <= part.size(); i += 9)
+          {
+            JournalNode jn;
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                jn.dofs[c] = static_cast<types::global_dof_index>(part[i + 2 + c]);
+                jn.X[c] = part[i + 5 + c];
+              }
+            jn.driven_y = part[i + 8] != 0.0;
+            journal_nodes[{std::lround(part[i]), std::lround(part[i + 1])}] = jn;
+          }
+      return journal_nodes;
+    }
+
+    /// Partner DoFs this rank does not see yet become ghosts (solution values, constraint
+    /// lines), and then the masters of partners that hang (a journal face refined on one
+    /// side): closed lines have no chains, so two rounds suffice. After each round the fixed
+    /// constraints are rebuilt on the enlarged set and made consistent across ranks.
+    void ghost_partners(DofSpace &dofs, const std::vector<ContactNode> &nodes, MPI_Comm comm)
+    {
+      auto add_ghosts = [&](const auto &dofs_of_partner) {
+        IndexSet extra(dofs.handler().n_dofs());
+        for (const auto &cn : nodes)
+          for (const auto &partner : cn.partners)
+            for (const auto p : partner.dofs)
+              for (const auto d : dofs_of_partner(p))
+                if (!dofs.relevant().is_element(d))
+                  extra.add_index(d);
+        extra.compress();
+        if (Utilities::MPI::max(extra.n_elements(), comm) == 0)
+          return;  // collective: every rank takes the same branch
+        dofs.add_relevant(extra);
+      };
+      add_ghosts(
+        [](const types::global_dof_index p) { return std::vector<types::global_dof_index>{p}; });
+      add_ghosts([&](const types::global_dof_index p) {
+        std::vector<types::global_dof_index> masters;
+        if (const auto *e = dofs.fixed().get_constraint_entries(p))
+          for (const auto &entry : *e)
+            masters.push_back(entry.first);
+        return masters;
+      });
+    }
+
+    /// Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
+    /// contributions change with the active set (a hanging node's share moves on through the
+    /// contact line of its master); all other cells go into the static part once. Per active
+    /// cell its index among them or −1; returns their number.
+    unsigned int mark_contact_cells(const DofSpace &dofs, const std::vector<ContactNode> &nodes,
+                                    const unsigned int n_active_cells,
+                                    std::vector<int> &contact_cell_of)
+    {
+      IndexSet candidate_dofs(dofs.handler().n_dofs());
+      for (const auto &cn : nodes)
+        if (cn.candidate)
+          for (const auto d : cn.dofs)
+            candidate_dofs.add_index(d);
+      candidate_dofs.compress();
+      IndexSet hanging_on_candidates(dofs.handler().n_dofs());
+      for (const auto &line : dofs.fixed().get_lines())
+        for (const auto &entry : line.entries)
+          if (candidate_dofs.is_element(entry.first))
+            {
+              hanging_on_candidates.add_index(line.index);
+              break;
+            }
+      candidate_dofs.add_indices(hanging_on_candidates);
+      candidate_dofs.compress();
+      contact_cell_of.assign(n_active_cells, -1);
+      std::vector<types::global_dof_index> cell_dofs(dofs.fe().n_dofs_per_cell());
+      unsigned int n = 0;
+      for (const auto &cell : dofs.handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(cell_dofs);
+            for (const auto d : cell_dofs)
+              if (candidate_dofs.is_element(d))
+                {
+                  contact_cell_of[cell->active_cell_index()] = n++;
+                  break;
+                }
+          }
+      return n;
+    }
+  }  // namespace
   /// The rolling study: the journal passes under a bore point X when the frame angle −φ
   /// reaches it; its gap then, at δ_max, decides whether X is a contact candidate (off the
   /// arc the journal travels, at the arc's nearer end).
@@ -37,54 +164,11 @@ namespace clearjoint::fe::detail
     std::map<types::global_dof_index, ContactNode> by_x_dof;
     std::vector<types::global_dof_index> face_dofs(dofs_.fe().n_dofs_per_face());
 
-    // Two bodies: the journal's surface nodes, keyed by (φ, z) — they lie on the same rays as
-    // the bearing's (RayChart), so pairing is an exact lookup.
-    auto key_of = [](const Point<dim> &p) {
-      return std::make_pair(std::lround(std::atan2(p[0], -p[1]) / 1e-9), std::lround(p[2] / 1e-11));
-    };
-    // Every rank gets every journal surface node (a few thousand): with several ranks the
-    // journal cell facing a bearing node is often neither owned nor a ghost, so the owner of
-    // each journal node contributes it (DoFs, position, whether its y-DoF is driven).
-    struct JournalNode
-    {
-      std::array<types::global_dof_index, dim> dofs;
-      Point<dim> X;
-      bool driven_y = false;
-    };
-    std::map<std::pair<long, long>, JournalNode> journal_nodes;
+    // Two bodies on common rays: the journal's surface nodes, keyed by (φ, z)
     const bool mortar = plan_.pairing == StudyPlan::Pairing::mortar;
+    std::map<RayKey, JournalNode> journal_nodes;
     if (plan_.deformable_partner && !mortar)
-      {
-        std::vector<double> mine;  // per node: key φ, key z, 3 DoFs, X, driven flag
-        std::set<types::global_dof_index> seen;
-        for (const auto &cell : dofs_.handler().active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const auto f : cell->face_indices())
-              if (cell->face(f)->at_boundary() &&
-                  cell->face(f)->boundary_id() == bid_journal_surface)
-                for (const auto &dofs : face_node_dofs(cell, f, face_dofs))
-                  if (dofs_.owned().is_element(dofs[0]) && seen.insert(dofs[0]).second)
-                    {
-                      const Point<dim> &X = support.at(dofs[0]);
-                      const auto key = key_of(X);
-                      mine.insert(mine.end(),
-                                  {double(key.first), double(key.second), double(dofs[0]),
-                                   double(dofs[1]), double(dofs[2]), X[0], X[1], X[2],
-                                   dofs_.is_loaded_y_dof(dofs[1]) ? 1.0 : 0.0});
-                    }
-        for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
-          for (std::size_t i = 0; i + 9 <= part.size(); i += 9)
-            {
-              JournalNode jn;
-              for (unsigned int c = 0; c < dim; ++c)
-                {
-                  jn.dofs[c] = static_cast<types::global_dof_index>(part[i + 2 + c]);
-                  jn.X[c] = part[i + 5 + c];
-                }
-              jn.driven_y = part[i + 8] != 0.0;
-              journal_nodes[{std::lround(part[i]), std::lround(part[i + 1])}] = jn;
-            }
-      }
+      journal_nodes = gather_journal_surface(dofs_, support, comm_);
     if (mortar)
       find_mortar_contact_nodes(support, by_x_dof, search_displacement_);
     else
@@ -118,7 +202,7 @@ namespace clearjoint::fe::detail
                       continue;
                     if (plan_.deformable_partner)
                       {
-                        const auto it = journal_nodes.find(key_of(cn.X));
+                        const auto it = journal_nodes.find(ray_key(cn.X));
                         if (it == journal_nodes.end())
                           throw NumericalError(
                             "fe_stage: no journal node faces the bearing node at (" +
@@ -138,69 +222,11 @@ namespace clearjoint::fe::detail
     for (auto &[d, cn] : by_x_dof)
       contact_.nodes().push_back(cn);
 
-    // Partner DoFs this rank does not see yet become ghosts (solution values, constraint
-    // lines), and then the masters of partners that hang (a journal face refined on one
-    // side): closed lines have no chains, so two rounds suffice. After each round the fixed
-    // constraints are rebuilt on the enlarged set and made consistent across ranks.
     if (plan_.deformable_partner && n_ranks_ > 1)
-      {
-        auto add_ghosts = [&](const auto &dofs_of_partner) {
-          IndexSet extra(dofs_.handler().n_dofs());
-          for (const auto &cn : contact_.nodes())
-            for (const auto &partner : cn.partners)
-              for (const auto p : partner.dofs)
-                for (const auto d : dofs_of_partner(p))
-                  if (!dofs_.relevant().is_element(d))
-                    extra.add_index(d);
-          extra.compress();
-          if (Utilities::MPI::max(extra.n_elements(), comm_) == 0)
-            return;  // collective: every rank takes the same branch
-          dofs_.add_relevant(extra);
-        };
-        add_ghosts(
-          [](const types::global_dof_index p) { return std::vector<types::global_dof_index>{p}; });
-        add_ghosts([&](const types::global_dof_index p) {
-          std::vector<types::global_dof_index> masters;
-          if (const auto *e = dofs_.fixed().get_constraint_entries(p))
-            for (const auto &entry : *e)
-              masters.push_back(entry.first);
-          return masters;
-        });
-      }
-
-    // Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
-    // contributions change with the active set (a hanging node's share moves on through the
-    // contact line of its master); all other cells go into A_static once.
-    IndexSet candidate_dofs(dofs_.handler().n_dofs());
-    for (const auto &cn : contact_.nodes())
-      if (cn.candidate)
-        for (const auto d : cn.dofs)
-          candidate_dofs.add_index(d);
-    candidate_dofs.compress();
-    IndexSet hanging_on_candidates(dofs_.handler().n_dofs());
-    for (const auto &line : dofs_.fixed().get_lines())
-      for (const auto &entry : line.entries)
-        if (candidate_dofs.is_element(entry.first))
-          {
-            hanging_on_candidates.add_index(line.index);
-            break;
-          }
-    candidate_dofs.add_indices(hanging_on_candidates);
-    candidate_dofs.compress();
-    contact_cell_of_.assign(bodies_.triangulation().n_active_cells(), -1);
-    std::vector<types::global_dof_index> cell_dofs(dofs_.fe().n_dofs_per_cell());
-    unsigned int n = 0;
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(cell_dofs);
-          for (const auto d : cell_dofs)
-            if (candidate_dofs.is_element(d))
-              {
-                contact_cell_of_[cell->active_cell_index()] = n++;
-                break;
-              }
-        }
+      ghost_partners(dofs_, contact_.nodes(), comm_);
+    const unsigned int n =
+      mark_contact_cells(dofs_, contact_.nodes(), bodies_.triangulation().n_active_cells(),
+                         contact_cell_of_);
     contact_cell_matrices_.resize(n);
     contact_cell_dofs_.resize(n);
   }

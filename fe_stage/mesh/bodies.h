@@ -10,6 +10,7 @@
 #pragma once
 
 #include "fe_stage/core/dim.h"
+#include "fe_stage/mesh/charts.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/study_plan.h"
 
@@ -52,6 +53,8 @@ namespace clearjoint::fe::detail
     /// inverse).
     Point<dim> journal_world(const Point<dim> &x) const;
     void make_radial_grid();
+    void set_joint_manifold_ids(Triangulation<dim> &serial, const RayChart &journal_chart) const;
+    void set_joint_boundary_ids(Triangulation<dim> &serial, bool full, bool full_z) const;
     void make_gmsh_grid();
     void make_block_grid();
     void refine_joint_mesh();

@@ -25,209 +25,258 @@
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// The joint's vertices on common rays: φ is measured from −y toward +x, a point at radius
+    /// r is (r sin φ, −r cos φ); vertex i sits at φ_i, and the full ring closes at φ = ±π
+    /// (vertex index modulo n_phi_vertices).
+    struct RayLayout
+    {
+      bool full = false;    // no x = 0 symmetry plane (φ over 360°)
+      bool full_z = false;  // no z = 0 plane (the whole length)
+      unsigned int n_phi = 0, n_phi_vertices = 0;
+      double phi0 = 0.0, dphi = 0.0;
+      double phi_of(const unsigned int i) const { return phi0 + (i % n_phi_vertices) * dphi; }
+    };
+
+    RayLayout ray_layout(const FeScene &scene, const StudyPlan &plan)
+    {
+      RayLayout l;
+      // the rolling study: the whole ring (the contact travels round it), the mid-plane kept;
+      // the tilted journal of the misalignment study breaks the axial symmetry
+      l.full = scene.full_model || plan.rolling;
+      l.full_z = scene.full_model || plan.full_length;
+      const unsigned int n = scene.mesh.n_circumferential;
+      l.n_phi = l.full ? 2 * n : n;
+      l.n_phi_vertices = l.full ? l.n_phi : l.n_phi + 1;
+      l.phi0 = l.full ? -units::pi : 0.0;
+      l.dphi = (l.full ? 2.0 * units::pi : units::pi) / l.n_phi;
+      return l;
+    }
+
+    /// The bearing's cross-section: a 2D (r, φ) grid of n_r layers from R_B to R_o, local x
+    /// along r (outward), local y along φ.
+    void make_bearing_section(const RayLayout &l, const unsigned int n_r, const double R_B,
+                              const double R_o, Triangulation<2> &section)
+    {
+      std::vector<Point<2>> vertices;
+      std::vector<CellData<2>> cells;
+      auto bid = [&](unsigned int i, unsigned int j) {
+        return (i % l.n_phi_vertices) * (n_r + 1) + j;
+      };
+      for (unsigned int i = 0; i < l.n_phi_vertices; ++i)
+        for (unsigned int j = 0; j <= n_r; ++j)
+          {
+            const double r = R_B + (R_o - R_B) * j / n_r;
+            vertices.emplace_back(r * std::sin(l.phi_of(i)), -r * std::cos(l.phi_of(i)));
+          }
+      for (unsigned int i = 0; i < l.n_phi; ++i)
+        for (unsigned int j = 0; j < n_r; ++j)
+          {
+            CellData<2> c;
+            c.vertices[0] = bid(i, j);
+            c.vertices[1] = bid(i, j + 1);
+            c.vertices[2] = bid(i + 1, j);
+            c.vertices[3] = bid(i + 1, j + 1);
+            c.material_id = 0;
+            c.manifold_id = 0;
+            cells.push_back(c);
+          }
+      section.create_triangulation(vertices, cells, SubCellData());
+    }
+
+    /// The axial slices [m] of the bearing and of the deformable journal (as meshed).
+    struct AxialSlices
+    {
+      std::vector<double> bearing, journal;
+    };
+
+    /// The journal's end L_J/2 is a mesh plane. The misalignment study's journal is rigid;
+    /// there the plane goes through its first touch point P1 at z = −((L_J/2) cos θ − R_J sin θ)
+    /// (and the mirrored plane through the diagonally opposite rim point, which touches at
+    /// θ_max), so a node sits where contact starts. A placed deformable journal (tilted, or
+    /// moved axially) is meshed aligned over its own length ±L_J/2 (the same number of
+    /// slices) and then moved by its pose.
+    AxialSlices axial_slices(const FeScene &scene, const StudyPlan &plan, const bool full_z,
+                             const bool journal)
+    {
+      const auto &G = scene.geometry;
+      const auto &M = scene.mesh;
+      const double theta = plan.tilted ? scene.misalignment.theta_deg * units::deg : 0.0;
+      const double zJ = 0.5 * G.L_J() * std::cos(theta) - G.R_J() * std::sin(theta);
+      const double zB = 0.5 * G.L_B;
+      const unsigned int n_in = std::max(1u, M.n_axial > 1 ? M.n_axial - 1 : 1u);
+      std::vector<double> half_slices;
+      for (unsigned int k = 0; k <= n_in; ++k)
+        half_slices.push_back(zJ * k / n_in);
+      const unsigned int n_out =
+        std::max(1u, static_cast<unsigned int>(std::lround((zB - zJ) / (zJ / n_in))));
+      auto mirror = [&](const std::vector<double> &half) {
+        std::vector<double> sl;
+        if (full_z)
+          for (auto it = half.rbegin(); it != half.rend(); ++it)
+            if (*it > 0.0)
+              sl.push_back(-*it);
+        sl.insert(sl.end(), half.begin(), half.end());
+        return sl;
+      };
+      std::vector<double> journal_half_slices = half_slices;
+      if (!plan.journal_pose.identity() && journal)
+        for (unsigned int k = 0; k <= n_in; ++k)
+          journal_half_slices[k] = 0.5 * G.L_J() * k / n_in;
+      AxialSlices slices;
+      slices.journal = mirror(journal_half_slices);
+      for (unsigned int k = 1; k <= n_out; ++k)
+        half_slices.push_back(zJ + (zB - zJ) * k / n_out);
+      slices.bearing = mirror(half_slices);
+      return slices;
+    }
+
+    /// The deformable journal's cross-section: one ring layer s ∈ [s0, 1] on the rays of the
+    /// bearing's vertices, and a structured core whose boundary lies on s = s0 (Coons patch).
+    /// n: cells over 180°; the journal's axis at (0, −c_r).
+    void make_journal_section(const RayLayout &l, const RayChart &journal_chart,
+                              const unsigned int n, const double c_r, Triangulation<2> &section)
+    {
+      const double s0 = 0.6;
+      const bool full = l.full;
+      const unsigned int n_phi = l.n_phi, n_phi_vertices = l.n_phi_vertices;
+      const unsigned int Nx = full ? n / 2 : n / 4, Ny = n / 2;
+      std::vector<Point<2>> jv;
+      std::vector<CellData<2>> jc;
+      auto ring_point = [&](unsigned int i, double s) {
+        const Point<dim> p = journal_chart.push_forward(Point<dim>(l.phi_of(i), s, 0.0));
+        return Point<2>(p[0], p[1]);
+      };
+      // ring vertices: (i, l), l = 0 (s0), 1 (surface)
+      auto rid = [&](unsigned int i, unsigned int k) { return (i % n_phi_vertices) * 2 + k; };
+      for (unsigned int i = 0; i < n_phi_vertices; ++i)
+        {
+          jv.push_back(ring_point(i, s0));
+          jv.push_back(ring_point(i, 1.0));
+        }
+      for (unsigned int i = 0; i < n_phi; ++i)
+        {
+          CellData<2> c;
+          c.vertices[0] = rid(i, 0);
+          c.vertices[1] = rid(i, 1);
+          c.vertices[2] = rid(i + 1, 0);
+          c.vertices[3] = rid(i + 1, 1);
+          c.material_id = 1;
+          c.manifold_id = 1;
+          jc.push_back(c);
+        }
+      // core boundary: ring index of boundary node (a, b), or −1 on the symmetry line
+      // (half model) where the points run straight through the journal's centre.
+      auto ring_index = [&](unsigned int a, unsigned int b) -> int {
+        if (full)
+          {
+            // counter-clockwise from the bottom-left corner (φ = −3π/4 ↔ i = n/2)
+            if (b == 0)
+              return int(n / 2 + a);
+            if (a == Nx)
+              return int(n / 2 + Nx + b);
+            if (b == Ny)
+              return int((n / 2 + Nx + Ny + (Nx - a)) % n_phi);
+            if (a == 0)
+              return int((n / 2 + 2 * Nx + Ny + (Ny - b)) % n_phi);
+            return -1;
+          }
+        if (b == 0)
+          return int(a);
+        if (a == Nx)
+          return int(Nx + b);
+        if (b == Ny)
+          return int(Nx + Ny + (Nx - a));
+        return -1;
+      };
+      const Point<2> centre(0.0, -c_r);
+      auto boundary_point = [&](unsigned int a, unsigned int b) -> Point<2> {
+        const int i = ring_index(a, b);
+        if (i >= 0)
+          return ring_point(i, s0);
+        // half model, a = 0: bottom → centre → top, linear in each half
+        const Point<2> bot = ring_point(0, s0), top = ring_point(n, s0);
+        const double t = double(b) / Ny;
+        return t <= 0.5 ? bot + (centre - bot) * (2.0 * t) :
+                          centre + (top - centre) * (2.0 * t - 1.0);
+      };
+      std::vector<int> core_id((Nx + 1) * (Ny + 1), -1);
+      for (unsigned int b = 0; b <= Ny; ++b)
+        for (unsigned int a = 0; a <= Nx; ++a)
+          {
+            const int i = ring_index(a, b);
+            if (i >= 0)
+              {
+                core_id[b * (Nx + 1) + a] = rid(i, 0);
+                continue;
+              }
+            Point<2> p;
+            if (a == 0 || a == Nx || b == 0 || b == Ny)
+              p = boundary_point(a, b);
+            else
+              {
+                const double u = double(a) / Nx, v = double(b) / Ny;
+                const Point<2> B = boundary_point(a, 0), T = boundary_point(a, Ny),
+                               Lp = boundary_point(0, b), R = boundary_point(Nx, b);
+                const Point<2> P00 = boundary_point(0, 0), P10 = boundary_point(Nx, 0),
+                               P01 = boundary_point(0, Ny), P11 = boundary_point(Nx, Ny);
+                p = Point<2>(
+                  (1 - v) * B + v * T + (1 - u) * Lp + u * R -
+                  ((1 - u) * (1 - v) * P00 + u * (1 - v) * P10 + (1 - u) * v * P01 + u * v * P11));
+              }
+            core_id[b * (Nx + 1) + a] = jv.size();
+            jv.push_back(p);
+          }
+      for (unsigned int b = 0; b < Ny; ++b)
+        for (unsigned int a = 0; a < Nx; ++a)
+          {
+            CellData<2> c;
+            c.vertices[0] = core_id[b * (Nx + 1) + a];
+            c.vertices[1] = core_id[b * (Nx + 1) + a + 1];
+            c.vertices[2] = core_id[(b + 1) * (Nx + 1) + a];
+            c.vertices[3] = core_id[(b + 1) * (Nx + 1) + a + 1];
+            c.material_id = 1;
+            c.manifold_id = numbers::flat_manifold_id;
+            jc.push_back(c);
+          }
+      GridTools::consistently_order_cells(jc);
+      section.create_triangulation(jv, jc, SubCellData());
+    }
+  }  // namespace
+
   /// The bearing ring (and, unless the journal is rigid, the journal) as hexahedra on the
-  /// RayChart manifolds; φ is measured from −y toward +x: point = (r sin φ, −r cos φ).
+  /// RayChart manifolds (RayLayout: the rays both bodies share).
   void Bodies::make_radial_grid()
   {
     const auto &G = scene_.geometry;
     const auto &M = scene_.mesh;
-    // full: no x = 0 symmetry plane (φ over 360°); full_z: no z = 0 plane (the whole length:
-    // the tilted journal of the misalignment study breaks the axial symmetry).
-    const bool misaligned = plan_.tilted;
-    // the rolling study: the whole ring (the contact travels round it), the mid-plane kept
-    const bool full = scene_.full_model || plan_.rolling;
-    const bool full_z = scene_.full_model || plan_.full_length;
+    const RayLayout layout = ray_layout(scene_, plan_);
+    const bool full = layout.full, full_z = layout.full_z;
     const bool journal = scene_.loading.journal != JournalLoading::rigid;
-    const unsigned int n_phi = full ? 2 * M.n_circumferential : M.n_circumferential;
     const unsigned int n_r = M.n_radial > 0 ?
                                M.n_radial :
                                std::max(1u, static_cast<unsigned int>(std::lround(G.t_B / 2.0e-3)));
     const double R_o = G.R_B + G.t_B;
     const RayChart bearing_chart(G.c_r, G.R_J(), false), journal_chart(G.c_r, G.R_J(), true);
+    const AxialSlices slices = axial_slices(scene_, plan_, full_z, journal);
 
-    // φ of vertex i; the full ring closes at φ = ±π (vertex index modulo n_phi).
-    const unsigned int n_phi_vertices = full ? n_phi : n_phi + 1;
-    const double phi0 = full ? -units::pi : 0.0;
-    const double dphi = (full ? 2.0 * units::pi : units::pi) / n_phi;
-    auto phi_of = [&](unsigned int i) { return phi0 + (i % n_phi_vertices) * dphi; };
-
-    // --- bearing: 2D (r, φ) grid, local x along r (outward), local y along φ -------------
-    std::vector<Point<2>> vertices;
-    std::vector<CellData<2>> cells;
-    auto bid = [&](unsigned int i, unsigned int j) { return (i % n_phi_vertices) * (n_r + 1) + j; };
-    for (unsigned int i = 0; i < n_phi_vertices; ++i)
-      for (unsigned int j = 0; j <= n_r; ++j)
-        {
-          const double r = G.R_B + (R_o - G.R_B) * j / n_r;
-          vertices.emplace_back(r * std::sin(phi_of(i)), -r * std::cos(phi_of(i)));
-        }
-    for (unsigned int i = 0; i < n_phi; ++i)
-      for (unsigned int j = 0; j < n_r; ++j)
-        {
-          CellData<2> c;
-          c.vertices[0] = bid(i, j);
-          c.vertices[1] = bid(i, j + 1);
-          c.vertices[2] = bid(i + 1, j);
-          c.vertices[3] = bid(i + 1, j + 1);
-          c.material_id = 0;
-          c.manifold_id = 0;
-          cells.push_back(c);
-        }
     Triangulation<2> bearing2d;
-    bearing2d.create_triangulation(vertices, cells, SubCellData());
-
-    // Axial slices: the journal's end L_J/2 is a mesh plane. The misalignment study's
-    // journal is rigid; there the plane goes through its first touch point P1 at
-    // z = −((L_J/2) cos θ − R_J sin θ) (and the mirrored plane through the diagonally
-    // opposite rim point, which touches at θ_max), so a node sits where contact starts.
-    const double theta = misaligned ? scene_.misalignment.theta_deg * units::deg : 0.0;
-    const double zJ = 0.5 * G.L_J() * std::cos(theta) - G.R_J() * std::sin(theta);
-    const double zB = 0.5 * G.L_B;
-    const unsigned int n_in = std::max(1u, M.n_axial > 1 ? M.n_axial - 1 : 1u);
-    std::vector<double> half_slices;
-    for (unsigned int k = 0; k <= n_in; ++k)
-      half_slices.push_back(zJ * k / n_in);
-    const unsigned int n_out =
-      std::max(1u, static_cast<unsigned int>(std::lround((zB - zJ) / (zJ / n_in))));
-    auto mirror = [&](const std::vector<double> &half) {
-      std::vector<double> sl;
-      if (full_z)
-        for (auto it = half.rbegin(); it != half.rend(); ++it)
-          if (*it > 0.0)
-            sl.push_back(-*it);
-      sl.insert(sl.end(), half.begin(), half.end());
-      return sl;
-    };
-    // A placed deformable journal (tilted, or moved axially) is meshed aligned over its own
-    // length ±L_J/2 (the same number of slices) and then moved by plan_.journal_pose.
-    std::vector<double> journal_half_slices = half_slices;
-    if (!plan_.journal_pose.identity() && journal)
-      for (unsigned int k = 0; k <= n_in; ++k)
-        journal_half_slices[k] = 0.5 * G.L_J() * k / n_in;
-    const std::vector<double> journal_slices = mirror(journal_half_slices);
-    for (unsigned int k = 1; k <= n_out; ++k)
-      half_slices.push_back(zJ + (zB - zJ) * k / n_out);
-    const std::vector<double> bearing_slices = mirror(half_slices);
-
+    make_bearing_section(layout, n_r, G.R_B, R_o, bearing2d);
     Triangulation<dim> bearing3d;
-    GridGenerator::extrude_triangulation(bearing2d, bearing_slices, bearing3d);
+    GridGenerator::extrude_triangulation(bearing2d, slices.bearing, bearing3d);
     auto [all_vertices, all_cells, subcells] = GridTools::get_coarse_mesh_description(bearing3d);
     for (auto &c : all_cells)
       {
         c.material_id = 0;
         c.manifold_id = 0;
       }
-
     if (journal)
       {
-        // --- journal cross-section: one ring layer s ∈ [s0, 1] on the rays of the bearing's
-        // vertices, and a structured core whose boundary lies on s = s0 (Coons patch). -----
-        const double s0 = 0.6;
-        const unsigned int n = M.n_circumferential;  // cells over 180°
-        const unsigned int Nx = full ? n / 2 : n / 4, Ny = n / 2;
-        std::vector<Point<2>> jv;
-        std::vector<CellData<2>> jc;
-        auto ring_point = [&](unsigned int i, double s) {
-          const Point<dim> p = journal_chart.push_forward(Point<dim>(phi_of(i), s, 0.0));
-          return Point<2>(p[0], p[1]);
-        };
-        // ring vertices: (i, l), l = 0 (s0), 1 (surface)
-        auto rid = [&](unsigned int i, unsigned int l) { return (i % n_phi_vertices) * 2 + l; };
-        for (unsigned int i = 0; i < n_phi_vertices; ++i)
-          {
-            jv.push_back(ring_point(i, s0));
-            jv.push_back(ring_point(i, 1.0));
-          }
-        for (unsigned int i = 0; i < n_phi; ++i)
-          {
-            CellData<2> c;
-            c.vertices[0] = rid(i, 0);
-            c.vertices[1] = rid(i, 1);
-            c.vertices[2] = rid(i + 1, 0);
-            c.vertices[3] = rid(i + 1, 1);
-            c.material_id = 1;
-            c.manifold_id = 1;
-            jc.push_back(c);
-          }
-        // core boundary: ring index of boundary node (a, b), or −1 on the symmetry line
-        // (half model) where the points run straight through the journal's centre.
-        auto ring_index = [&](unsigned int a, unsigned int b) -> int {
-          if (full)
-            {
-              // counter-clockwise from the bottom-left corner (φ = −3π/4 ↔ i = n/2)
-              if (b == 0)
-                return int(n / 2 + a);
-              if (a == Nx)
-                return int(n / 2 + Nx + b);
-              if (b == Ny)
-                return int((n / 2 + Nx + Ny + (Nx - a)) % n_phi);
-              if (a == 0)
-                return int((n / 2 + 2 * Nx + Ny + (Ny - b)) % n_phi);
-              return -1;
-            }
-          if (b == 0)
-            return int(a);
-          if (a == Nx)
-            return int(Nx + b);
-          if (b == Ny)
-            return int(Nx + Ny + (Nx - a));
-          return -1;
-        };
-        const Point<2> centre(0.0, -G.c_r);
-        auto boundary_point = [&](unsigned int a, unsigned int b) -> Point<2> {
-          const int i = ring_index(a, b);
-          if (i >= 0)
-            return ring_point(i, s0);
-          // half model, a = 0: bottom → centre → top, linear in each half
-          const Point<2> bot = ring_point(0, s0), top = ring_point(n, s0);
-          const double t = double(b) / Ny;
-          return t <= 0.5 ? bot + (centre - bot) * (2.0 * t) :
-                            centre + (top - centre) * (2.0 * t - 1.0);
-        };
-        std::vector<int> core_id((Nx + 1) * (Ny + 1), -1);
-        for (unsigned int b = 0; b <= Ny; ++b)
-          for (unsigned int a = 0; a <= Nx; ++a)
-            {
-              const int i = ring_index(a, b);
-              if (i >= 0)
-                {
-                  core_id[b * (Nx + 1) + a] = rid(i, 0);
-                  continue;
-                }
-              Point<2> p;
-              if (a == 0 || a == Nx || b == 0 || b == Ny)
-                p = boundary_point(a, b);
-              else
-                {
-                  const double u = double(a) / Nx, v = double(b) / Ny;
-                  const Point<2> B = boundary_point(a, 0), T = boundary_point(a, Ny),
-                                 Lp = boundary_point(0, b), R = boundary_point(Nx, b);
-                  const Point<2> P00 = boundary_point(0, 0), P10 = boundary_point(Nx, 0),
-                                 P01 = boundary_point(0, Ny), P11 = boundary_point(Nx, Ny);
-                  p = Point<2>((1 - v) * B + v * T + (1 - u) * Lp + u * R -
-                               ((1 - u) * (1 - v) * P00 + u * (1 - v) * P10 + (1 - u) * v * P01 +
-                                u * v * P11));
-                }
-              core_id[b * (Nx + 1) + a] = jv.size();
-              jv.push_back(p);
-            }
-        for (unsigned int b = 0; b < Ny; ++b)
-          for (unsigned int a = 0; a < Nx; ++a)
-            {
-              CellData<2> c;
-              c.vertices[0] = core_id[b * (Nx + 1) + a];
-              c.vertices[1] = core_id[b * (Nx + 1) + a + 1];
-              c.vertices[2] = core_id[(b + 1) * (Nx + 1) + a];
-              c.vertices[3] = core_id[(b + 1) * (Nx + 1) + a + 1];
-              c.material_id = 1;
-              c.manifold_id = numbers::flat_manifold_id;
-              jc.push_back(c);
-            }
         Triangulation<2> journal2d;
-        GridTools::consistently_order_cells(jc);
-        journal2d.create_triangulation(jv, jc, SubCellData());
+        make_journal_section(layout, journal_chart, M.n_circumferential, G.c_r, journal2d);
         Triangulation<dim> journal3d;
-        GridGenerator::extrude_triangulation(journal2d, journal_slices, journal3d, true);
+        GridGenerator::extrude_triangulation(journal2d, slices.journal, journal3d, true);
         if (!plan_.journal_pose.identity())
           GridTools::transform([&](const Point<dim> &p) { return journal_world(p); }, journal3d);
         append_body(journal3d, 1, all_vertices, all_cells);
@@ -236,8 +285,24 @@ namespace clearjoint::fe::detail
     // One coarse mesh without vertex merging: the bodies touch at φ = 0 but stay separate.
     Triangulation<dim> serial;
     serial.create_triangulation(all_vertices, all_cells, SubCellData());
+    set_joint_manifold_ids(serial, journal_chart);
+    set_joint_boundary_ids(serial, full, full_z);
 
-    const double tol = 1e-8 * G.R_B;
+    tria_.copy_triangulation(serial);
+    tria_.set_manifold(0, bearing_chart);
+    if (plan_.journal_pose.identity())
+      tria_.set_manifold(1, journal_chart);
+    else
+      tria_.set_manifold(1, PlacedChart(journal_chart, plan_.journal_pose));
+
+    refine_joint_mesh();
+    symmetry_factor_ = (full ? 1.0 : 2.0) * (full_z ? 1.0 : 2.0);
+  }
+
+  /// The bearing on its chart (0); the journal's ring layer on its chart (1), its core flat.
+  void Bodies::set_joint_manifold_ids(Triangulation<dim> &serial,
+                                      const RayChart &journal_chart) const
+  {
     for (const auto &cell : serial.active_cell_iterators())
       {
         const bool is_journal = cell->material_id() == 1;
@@ -257,7 +322,17 @@ namespace clearjoint::fe::detail
     for (const auto &cell : serial.active_cell_iterators())
       if (cell->material_id() == 1 && cell->manifold_id() == 1)
         cell->set_all_manifold_ids(1);
+  }
 
+  /// The joint's boundary ids (mesh/boundary_ids.h): the bore (contact), the outer surface
+  /// (supported on its upper half, or all round for the rolling study's outer support), the
+  /// journal's surface and end faces, and the symmetry planes the model has.
+  void Bodies::set_joint_boundary_ids(Triangulation<dim> &serial, const bool full,
+                                      const bool full_z) const
+  {
+    const auto &G = scene_.geometry;
+    const double R_o = G.R_B + G.t_B;
+    const double tol = 1e-8 * G.R_B;
     for (const auto &cell : serial.active_cell_iterators())
       for (const auto f : cell->face_indices())
         if (cell->face(f)->at_boundary())
@@ -301,16 +376,6 @@ namespace clearjoint::fe::detail
               id = bid_sym_z;
             face->set_boundary_id(id);
           }
-
-    tria_.copy_triangulation(serial);
-    tria_.set_manifold(0, bearing_chart);
-    if (plan_.journal_pose.identity())
-      tria_.set_manifold(1, journal_chart);
-    else
-      tria_.set_manifold(1, PlacedChart(journal_chart, plan_.journal_pose));
-
-    refine_joint_mesh();
-    symmetry_factor_ = (full ? 1.0 : 2.0) * (full_z ? 1.0 : 2.0);
   }
 
   /// True if the bore (r = R_B) within the cell's angular and axial extent comes closer than

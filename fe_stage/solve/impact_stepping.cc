@@ -45,6 +45,114 @@ namespace clearjoint::fe::detail
         }
       return 0.0;
     }
+
+    /// When the journal has left the bearing: out of contact for a tenth of the contact period
+    /// (a momentary opening of the contact inside the impact does not end it) and moving away;
+    /// and when the contact ended.
+    class SeparationWatch
+    {
+    public:
+      /// After each converged step (steps: all so far, the last this one, ending at t after
+      /// dt_step; dt the next step's Δt [s]): whether this step completes the separation.
+      bool update(const std::vector<DynamicStepRecord> &steps, const double t, const double dt_step,
+                  const double dt, const double contact_period, const bool separated)
+      {
+        const DynamicStepRecord &rec = steps.back();
+        if (rec.n_active > 0)
+          {
+            in_contact_ = true;
+            free_steps_ = 0;
+          }
+        else if (in_contact_)
+          {
+            if (free_steps_ == 0)
+              {
+                // the contact ended inside this step: where the line through the last two
+                // forces reaches zero, within this step
+                contact_end_ = t - dt_step;
+                if (steps.size() >= 3)
+                  {
+                    const auto &p1 = steps[steps.size() - 2], &p0 = steps[steps.size() - 3];
+                    const double slope = (p1.force - p0.force) / (p1.time - p0.time);
+                    if (slope < 0.0)
+                      contact_end_ = std::min(t, p1.time - p1.force / slope);
+                  }
+              }
+            ++free_steps_;
+          }
+        // (in whole steps, with a margin: T_c/dt differs between rank counts by round-off)
+        const double free_needed = std::max(2.0, std::ceil(0.1 * contact_period / dt - 1e-6));
+        return !separated && in_contact_ && rec.n_active == 0 && rec.delta_rate < 0.0 &&
+               free_steps_ >= free_needed;
+      }
+      /// [s] when the contact last ended.
+      double contact_end() const { return contact_end_; }
+
+    private:
+      bool in_contact_ = false;
+      unsigned int free_steps_ = 0;  // steps without contact since the contact last ended
+      double contact_end_ = 0.0;
+    };
+
+    /// The progress line of a step. ETA: the simulated time still to go at the wall time per
+    /// simulated second so far. Without an end time the run ends when the journal has left:
+    /// about 0.6 T_c for a linear contact (T_c/2 and the T_c/10 out of contact), later if the
+    /// contact lasts.
+    void log_step(const DynamicStepRecord &rec, const double t, const double dt,
+                  const double end_time, const double t_end, const double contact_period,
+                  const double wall_start)
+    {
+      const double t_expected =
+        end_time > 0.0 ? t_end : std::min(t_end, std::max(0.6 * contact_period, t));
+      const double per_second = (rec.wall_time - wall_start) / t;
+      std::string eta = "";
+      if (t_expected > t)
+        eta = "  ETA " + log::format_duration(per_second * (t_expected - t)) +
+              (end_time > 0.0 ? "" : " (if the journal leaves at 0.6 T_c)");
+      char buf[360];
+      std::snprintf(buf, sizeof(buf),
+                    "fe_stage: step %u  t %.4g us  dt %.3g us  delta %.4g um  rate %.4g "
+                    "m/s  F %.6g N  journal its %u  contact its %u  active %u  %s%s",
+                    rec.step, t * 1e6, dt * 1e6, rec.delta * 1e6, rec.delta_rate, rec.force,
+                    rec.journal_iterations, rec.contact_iterations, rec.n_active,
+                    log::format_duration(rec.wall_time).c_str(), eta.c_str());
+      log::info(buf);
+    }
+
+    /// The impact's summary after its steps: restitution, the energies left, and the peak
+    /// against the quasi-static curve at the same δ (the dynamic gap).
+    void summarise(ImpactSummary &S, const std::vector<DynamicStepRecord> &steps,
+                   const std::vector<IncrementRecord> &curve, const double velocity_in,
+                   const double numerical_dissipation, const double work_contact)
+    {
+      S.n_steps = static_cast<unsigned int>(steps.size());
+      if (S.separated)
+        S.restitution = S.velocity_out / velocity_in;
+      S.numerical_dissipation = numerical_dissipation;
+      S.work_contact = work_contact;
+      if (!steps.empty())
+        {
+          const auto &e = steps.back();
+          S.bearing_energy_left = e.kinetic_bearing + e.strain_bearing;
+        }
+      S.quasi_static_force_at_peak_delta = interpolate_curve(curve, S.delta_at_peak);
+      S.dynamic_gap = S.quasi_static_force_at_peak_delta > 0.0 ?
+                        S.peak_force / S.quasi_static_force_at_peak_delta - 1.0 :
+                        0.0;
+    }
+
+    void log_summary(const ImpactSummary &S)
+    {
+      log::info("fe_stage: impact: peak force " + format_value(S.peak_force) +
+                " N at t = " + format_value(S.time_of_peak) + " s, delta_max " +
+                format_value(S.delta_max) + " m, " +
+                (S.separated ? "contact duration " + format_value(S.contact_duration) +
+                                 " s, restitution " + format_value(S.restitution) :
+                               std::string("still in contact at the end time")) +
+                "; quasi-static F at the peak's delta " +
+                format_value(S.quasi_static_force_at_peak_delta) + " N (dynamic " +
+                format_value(100.0 * S.dynamic_gap) + " % above)");
+    }
   }  // namespace
 
   RunResult ContactModel::run_impact()
@@ -146,9 +254,8 @@ namespace clearjoint::fe::detail
                 " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
     TrilinosWrappers::MPI::Vector u_peak(dofs_.owned(), comm_);
-    bool in_contact = false, have_peak = false;
-    unsigned int free_steps = 0;  // steps without contact since the contact last ended
-    double contact_end = 0.0;     // [s] when it last ended
+    bool have_peak = false;
+    SeparationWatch watch;
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
       std::filesystem::create_directories(options_.output_dir + "/fields");
@@ -188,61 +295,15 @@ namespace clearjoint::fe::detail
         if (options_.on_dynamic_step)
           options_.on_dynamic_step(rec);
         if (rank_ == 0)
-          {
-            // ETA: the simulated time still to go at the wall time per simulated second so far.
-            // Without an end time the run ends when the journal has left: about 0.6 T_c for a
-            // linear contact (T_c/2 and the T_c/10 out of contact), later if the contact lasts.
-            const double t_expected =
-              I.end_time > 0.0 ? t_end : std::min(t_end, std::max(0.6 * S.contact_period, t));
-            const double per_second = (rec.wall_time - wall_dynamic_start) / t;
-            std::string eta = "";
-            if (t_expected > t)
-              eta = "  ETA " + log::format_duration(per_second * (t_expected - t)) +
-                    (I.end_time > 0.0 ? "" : " (if the journal leaves at 0.6 T_c)");
-            char buf[360];
-            std::snprintf(buf, sizeof(buf),
-                          "fe_stage: step %u  t %.4g us  dt %.3g us  delta %.4g um  rate %.4g "
-                          "m/s  F %.6g N  journal its %u  contact its %u  active %u  %s%s",
-                          rec.step, t * 1e6, dt * 1e6, d * 1e6, d_rate, F, rec.journal_iterations,
-                          rec.contact_iterations, rec.n_active,
-                          log::format_duration(rec.wall_time).c_str(), eta.c_str());
-            log::info(buf);
-          }
-        // Separation: out of contact for a tenth of the contact period (a momentary opening
-        // of the contact inside the impact does not end it) and moving away.
-        if (rec.n_active > 0)
-          {
-            in_contact = true;
-            free_steps = 0;
-          }
-        else if (in_contact)
-          {
-            if (free_steps == 0)
-              {
-                // the contact ended inside this step: where the line through the last two
-                // forces reaches zero, within this step
-                const auto &steps = result.dynamic_steps;
-                contact_end = t - dt_step;
-                if (steps.size() >= 3)
-                  {
-                    const auto &p1 = steps[steps.size() - 2], &p0 = steps[steps.size() - 3];
-                    const double slope = (p1.force - p0.force) / (p1.time - p0.time);
-                    if (slope < 0.0)
-                      contact_end = std::min(t, p1.time - p1.force / slope);
-                  }
-              }
-            ++free_steps;
-          }
-        // (in whole steps, with a margin: T_c/dt differs between rank counts by round-off)
-        const double free_needed = std::max(2.0, std::ceil(0.1 * S.contact_period / dt - 1e-6));
-        const bool last = !S.separated && in_contact && rec.n_active == 0 && d_rate < 0.0 &&
-                          free_steps >= free_needed;
+          log_step(rec, t, dt, I.end_time, t_end, S.contact_period, wall_dynamic_start);
+        const bool last =
+          watch.update(result.dynamic_steps, t, dt_step, dt, S.contact_period, S.separated);
         if (fields && (rec.step % I.field_stride == 0 || last))
           write_fields(rec.step, t);
         if (last && !S.separated)
           {
             S.separated = true;
-            S.contact_duration = contact_end;
+            S.contact_duration = watch.contact_end();
             S.velocity_out = -d_rate;
             if (I.end_time == 0.0)  // a given end time is run to (the bearing's vibration)
               break;
@@ -257,30 +318,10 @@ namespace clearjoint::fe::detail
         result.field_files = field_files_;
         return result;
       }
-    S.n_steps = static_cast<unsigned int>(result.dynamic_steps.size());
-    if (S.separated)
-      S.restitution = S.velocity_out / I.velocity;
-    S.numerical_dissipation = stepper.numerical_dissipation();
-    S.work_contact = stepper.work_contact();
-    if (!result.dynamic_steps.empty())
-      {
-        const auto &e = result.dynamic_steps.back();
-        S.bearing_energy_left = e.kinetic_bearing + e.strain_bearing;
-      }
-    S.quasi_static_force_at_peak_delta = interpolate_curve(result.increments, S.delta_at_peak);
-    S.dynamic_gap = S.quasi_static_force_at_peak_delta > 0.0 ?
-                      S.peak_force / S.quasi_static_force_at_peak_delta - 1.0 :
-                      0.0;
+    summarise(S, result.dynamic_steps, result.increments, I.velocity,
+              stepper.numerical_dissipation(), stepper.work_contact());
     if (rank_ == 0)
-      log::info("fe_stage: impact: peak force " + format_value(S.peak_force) +
-                " N at t = " + format_value(S.time_of_peak) + " s, delta_max " +
-                format_value(S.delta_max) + " m, " +
-                (S.separated ? "contact duration " + format_value(S.contact_duration) +
-                                 " s, restitution " + format_value(S.restitution) :
-                               std::string("still in contact at the end time")) +
-                "; quasi-static F at the peak's delta " +
-                format_value(S.quasi_static_force_at_peak_delta) + " N (dynamic " +
-                format_value(100.0 * S.dynamic_gap) + " % above)");
+      log_summary(S);
     // the yield check where the force peaked
     if (have_peak)
       {
