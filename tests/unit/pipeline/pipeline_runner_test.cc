@@ -141,7 +141,7 @@ TEST(RunPipeline, BadPipelineFile)
 
 namespace
 {
-  /// A pipeline with a misalignment study (θ in deg, theta_max among the values) and an MBD run
+  /// A pipeline with a misalignment sweep (θ in deg, theta_max among the values) and an MBD run
   /// that takes its law family; `mbd_scene` and `mbd_overrides` describe that run.
   std::string misalignment_yaml(const std::string &dir, const std::string &mbd_scene,
                                 const std::string &mbd_key, const std::string &mbd_overrides)
@@ -152,23 +152,23 @@ namespace
     return "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir + "/out\npreset: fast\n"
            "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
            "accurate: {fe: null, mbd: null}}\n"
-           "fe_studies:\n  - name: misalignment\n    scene: " + dir + "/mis.yaml\n"
+           "fe_sweeps:\n  - name: misalignment\n    scene: " + dir + "/mis.yaml\n"
            "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
            "    values: [1.0, 2.0, theta_max]\n"
            "fit: {weighting: absolute, family_out_of_range: clamp}\n"
            "mbd_runs:\n"
            "  - name: tilted\n    scene: " + mbd_scene + "\n"
            "    overrides: " + mbd_overrides + "\n"
-           "    laws: [{key: " + mbd_key + ", study: misalignment}]\n"
+           "    laws: [{key: " + mbd_key + ", sweep: misalignment}]\n"
            "  - {name: at_max, scene: " + mbd_scene + ", laws: [{key: " + mbd_key +
-           ", study: misalignment, value: theta_max}]}\n"
+           ", sweep: misalignment, value: theta_max}]}\n"
            "report: false\n";
   }
 
   const double theta_max_deg = geometry::degrees(*geometry::theta_max(geometry::JointGeometry{}));
 } // namespace
 
-TEST(RunPipeline, MisalignmentStudyRunsThetaMaxAtFullPrecisionAndItsFamilyInRadians)
+TEST(RunPipeline, MisalignmentSweepRunsThetaMaxAtFullPrecisionAndItsFamilyInRadians)
 {
   test_support::ScratchDir dir("pipeline_misalignment");
   FakeBuild build(dir);
@@ -280,14 +280,14 @@ TEST(RunPipeline, TwoGeometriesKeepTheirLawsApart)
   FakeBuild build(dir);
   test_support::write_text(dir.file("flanged.msh"), "another bearing\n");
   std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
-  const std::string second_study =
+  const std::string second_sweep =
     "  - name: thickness_flanged\n    scene: " + dir.file("fe.yaml") + "\n"
     "    overrides: {geometry.mesh: " + dir.file("flanged.msh") + "}\n"
     "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004]\n";
-  yaml.insert(yaml.find("fit:"), second_study);
+  yaml.insert(yaml.find("fit:"), second_sweep);
   yaml.insert(yaml.find("report:"),
               "  - {name: flanged, scene: " + dir.file("mbd.yaml") +
-                ", laws: [{key: joint.law_file, study: thickness_flanged, value: 0.002}]}\n");
+                ", laws: [{key: joint.law_file, sweep: thickness_flanged, value: 0.002}]}\n");
   test_support::write_text(dir.file("p.yaml"), yaml);
   const Outcome o = run(dir, build);
   ASSERT_EQ(o.exit_code, 0) << o.log;
@@ -299,7 +299,7 @@ TEST(RunPipeline, TwoGeometriesKeepTheirLawsApart)
   EXPECT_EQ(law_b.scene["geometry"]["mesh"], dir.file("flanged.msh")) << "the law names its mesh";
   EXPECT_EQ(read_json_file(dir.file("out/r/mbd/flanged/scene_used.json"))["joint"]["law_file"], b);
   EXPECT_EQ(read_json_file(dir.file("out/r/mbd/fitted/scene_used.json"))["joint"]["law_file"], a);
-  // Same parameter value, two geometries: two families, each from its own study's cases.
+  // Same parameter value, two geometries: two families, each from its own sweep's cases.
   EXPECT_TRUE(fs::exists(dir.file("out/r/fit/thickness/family/family.json")));
   EXPECT_TRUE(fs::exists(dir.file("out/r/fit/thickness_flanged/family/family.json")));
 }
@@ -312,9 +312,9 @@ TEST(RunPipeline, AGeoIsMeshedInItsOwnTaskSharedAndReused)
   FakeBuild build(dir);
   const std::string geo = std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/default_joint.geo";
   std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.006]");
-  const std::string study_keys = "    overrides: {geometry.mesh: " + geo + "}\n"
+  const std::string sweep_keys = "    overrides: {geometry.mesh: " + geo + "}\n"
                                  "    mesh_parameters: {h: 0.004}\n";
-  yaml.insert(yaml.find("    parameter:"), study_keys);
+  yaml.insert(yaml.find("    parameter:"), sweep_keys);
   test_support::write_text(dir.file("p.yaml"), yaml);
   const Outcome first = run(dir, build);
   ASSERT_EQ(first.exit_code, 0) << first.log;
@@ -563,7 +563,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     "         pipeline_time: 60.0, error_F_max: {thickness: {percent: 4.8, where: made up},\n"
     "         misalignment: {percent: null, where: not measured}}}}\n"
     "  standard: {fe: null, mbd: null}\n  accurate: {fe: null, mbd: null}\n"
-    "fe_studies:\n"
+    "fe_sweeps:\n"
     "  - name: thickness\n    scene: " + src + "/fe_stage/scenes/radial.yaml\n"
     "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004, 0.006]\n"
     // frictionless, fields as fe_stage wrote them before issue 15, and its own yield stress
@@ -574,11 +574,11 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     "    overrides: {contact.mu: 0.0, fake_old_contact_fields: true, material.yield_stress: 1.0e9}\n"
     "fit: {weighting: absolute, family_out_of_range: clamp}\n"
     "mbd_runs:\n"
-    "  - {name: fe_law, scene: " + mbd + "fe_law.yaml, laws: [{key: clearance_joints.0.normal.law_file, study: thickness, value: 0.004}], band: true}\n"
+    "  - {name: fe_law, scene: " + mbd + "fe_law.yaml, laws: [{key: clearance_joints.0.normal.law_file, sweep: thickness, value: 0.004}], band: true}\n"
     "  - {name: paper_law, scene: " + mbd + "fe_law_damped.yaml, laws: [{key: clearance_joints.0.normal.law_file, file: " + src + "/laws/paper_tB4.json}]}\n"
     "  - {name: johnson, scene: " + mbd + "johnson.yaml}\n"
     "  - {name: ideal, scene: " + mbd + "ideal.yaml}\n"
-    "  - {name: tilted_1deg, scene: " + mbd + "tilted_1deg.yaml, overrides: {clearance_joints.0.normal.model: law_family}, laws: [{key: clearance_joints.0.normal.law_file, study: misalignment}]}\n"
+    "  - {name: tilted_1deg, scene: " + mbd + "tilted_1deg.yaml, overrides: {clearance_joints.0.normal.model: law_family}, laws: [{key: clearance_joints.0.normal.law_file, sweep: misalignment}]}\n"
     // issue 13 item 5: the rolling study's own section (the stand-in's outputs: a clean run)
     "rolling: {scene: " + src + "/fe_stage/scenes/rolling.yaml}\n"
     "report: true\n");
