@@ -379,7 +379,7 @@ namespace clearjoint::pipeline
                 {"presets", presets_summary(config_)},
                 {"pipeline_file", fs::absolute(config_.source).string()},
                 {"tasks", nlohmann::json::array()},
-                {"studies", nlohmann::json::array()},
+                {"sweeps", nlohmann::json::array()},
                 {"mbd_runs", nlohmann::json::array()}};
 
     // Every FE case's scene is composed and checked before any task runs, so a bad scene key
@@ -476,7 +476,7 @@ namespace clearjoint::pipeline
         families[sweep.name] = {fam.output_dir + "/family.json", add(fam, "fit", family_deps)};
         s["family"] = fam.output_dir + "/family.json";
       }
-      summary_["studies"].push_back(s);
+      summary_["sweeps"].push_back(s);
     }
 
     if (config_.impact)

@@ -216,8 +216,8 @@ TEST(RunPipeline, MisalignmentSweepRunsThetaMaxAtFullPrecisionAndItsFamilyInRadi
   EXPECT_TRUE(with(second, "ran").empty()) << second.log;
   // The summary tells the report the family's unit and each case's keyword.
   const auto summary = read_json_file(dir.file("out/r/pipeline_summary.json"));
-  EXPECT_EQ(summary["studies"][0]["family_unit"], "rad");
-  EXPECT_EQ(summary["studies"][0]["cases"][2]["keyword"], "theta_max");
+  EXPECT_EQ(summary["sweeps"][0]["family_unit"], "rad");
+  EXPECT_EQ(summary["sweeps"][0]["cases"][2]["keyword"], "theta_max");
   EXPECT_EQ(summary["presets"].size(), 3u);
 }
 
@@ -595,9 +595,9 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     return p;
   };
 
-  // Item 1: summary, then contents, then one section per study, then the multibody part.
-  const auto summary = at("id='summary'"), contents = at("<nav>"), thickness = at("id='study-thickness'"),
-             misalignment = at("id='study-misalignment'"), rolling = at("id='rolling'"),
+  // Item 1: summary, then contents, then one section per FE sweep, then the multibody part.
+  const auto summary = at("id='summary'"), contents = at("<nav>"), thickness = at("id='sweep-thickness'"),
+             misalignment = at("id='sweep-misalignment'"), rolling = at("id='rolling'"),
              multibody = at("id='mbd'");
   EXPECT_LT(summary, contents);
   EXPECT_LT(contents, thickness);
