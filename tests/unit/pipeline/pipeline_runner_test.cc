@@ -543,8 +543,8 @@ namespace
 // writes fields (CLEARJOINT_FAKE_FIELDS=1: von Mises above the yield stress near the contact,
 // contact fields in Abaqus's meaning), the real fit and MBD stages run on its laws, and the report
 // must lead with the answer: summary (what ran, our t_B = 4 mm law beside the paper's, trends
-// beside the paper's claims, MBD headline numbers, every warning), contents, one section per
-// study with VTK pictures, the yield check against the yield stress the scene names, contact-field
+// beside the paper's claims, MBD headline numbers, every warning), contents, one section per FE
+// sweep with VTK pictures, the yield check against the yield stress the scene names, contact-field
 // checks (fe_stage's old fields — shear and 'stick' without friction, slip off contact — are
 // flagged), all models overlaid, the band split into regression and mesh with the dominant part
 // named, per-run plots folded away and captioned by what they show; and in headless Chromium
@@ -567,7 +567,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     "  - name: thickness\n    scene: " + src + "/fe_stage/scenes/radial.yaml\n"
     "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004, 0.006]\n"
     // frictionless, fields as fe_stage wrote them before issue 15, and its own yield stress
-    // (above the stand-in's 600 MPa: no yield warning for this study)
+    // (above the stand-in's 600 MPa: no yield warning for this sweep)
     "  - name: misalignment\n    scene: " + src + "/fe_stage/scenes/misalignment.yaml\n"
     "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
     "    values: [1.0, 2.5, theta_max]\n"
@@ -634,7 +634,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
   at("against the yield stress 1000 MPa (the scene's material.yield_stress)");
 
   // Items 2 and 3: the paper's law over our curves, F_ref (not K) over the parameter, the
-  // paper's claims beside ours, the fields rendered with VTK for each study.
+  // paper's claims beside ours, the fields rendered with VTK for each sweep.
   at("with the paper's t_B = 4 mm law (dashed)");
   at("K is not plotted");
   at("The paper's claims beside ours");
@@ -646,7 +646,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
   at("id='band'");
 
   // Per-run plots folded away and captioned by what they show, not by their file name. Unfolded:
-  // per study F–δ, F_ref and n, the fields picture; for the multibody runs the two overlays and
+  // per sweep F–δ, F_ref and n, the fields picture; for the multibody runs the two overlays and
   // the band.
   // ... and the rolling study's three: spin rates (Fig. 10), energy split, strain profile (Fig. 12)
   EXPECT_EQ(count_of(unfolded_only(report), "<img"), 3u * 2u + 2u + 1u + 3u);
