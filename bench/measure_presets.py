@@ -56,9 +56,9 @@ QUANTITY_TEXT = {"force_at_delta_max": ("F(δ_max)", "N"), "peak_force": ("peak 
 # The keys of `measured` this command writes, in the order written (error_F_max last).
 ORDER = ["note", "date", "machine", "fe_dofs", "fe_case_time", "case_times", "dofs",
          "pipeline_time", "impact_time", "rolling_time", "error_F_max"]
-UNITS = {"fe_dofs": "[1] DoFs of the thickness study's reference case",
-         "fe_case_time": "[s] run_pipeline's task: the thickness study's reference case",
-         "case_times": "[s] one FE case of these studies (run_pipeline's task)",
+UNITS = {"fe_dofs": "[1] DoFs of the thickness sweep's reference case",
+         "fe_case_time": "[s] run_pipeline's task: the thickness sweep's reference case",
+         "case_times": "[s] one FE case of these sweeps (run_pipeline's task)",
          "dofs": "[1] DoFs of these studies' reference cases",
          "pipeline_time": "[s] the whole run_pipeline run",
          "impact_time": "[s] run_pipeline's task: the FE impact sweep",
@@ -115,6 +115,12 @@ def richardson(values, ratio):
     return q3 - d2 / (ratio ** p - 1), p
 
 
+def fe_sweeps(pipeline):
+    """The pipeline's FE sweeps: `fe_sweeps`, or `fe_studies` as files written before issue 29
+    call them (run_pipeline reads both, with a warning)."""
+    return pipeline.get("fe_sweeps") or pipeline.get("fe_studies") or []
+
+
 class Measurer:
     def __init__(self, args, pipeline, plan):
         self.args, self.pipeline, self.plan = args, pipeline, plan
@@ -151,17 +157,17 @@ class Measurer:
         presets = self.presets_block()
         p = {"schema": "clearjoint.pipeline/1", "output_root": os.path.join(self.args.work, "out"),
              "preset": spec["preset"], "mpi_ranks": self.pipeline.get("mpi_ranks", 1),
-             "presets": presets, "fe_studies": [], "fit": self.pipeline.get("fit", {"weighting": "absolute"}),
+             "presets": presets, "fe_sweeps": [], "fit": self.pipeline.get("fit", {"weighting": "absolute"}),
              "mbd_runs": [], "report": False}
         kind = entry["kind"]
-        if kind == "fe_study":
-            matching = [s for s in self.pipeline["fe_studies"] if s["name"] == study]
+        if kind == "fe_sweep":
+            matching = [s for s in fe_sweeps(self.pipeline) if s["name"] == study]
             if not matching:
-                raise MeasureError(f"the pipeline has no FE study '{study}'")
+                raise MeasureError(f"the pipeline has no FE sweep '{study}'")
             s = json.loads(json.dumps(matching[0]))
             s["values"] = [entry["value"]]
             s["overrides"] = {**(s.get("overrides") or {}), **extra}
-            p["fe_studies"] = [s]
+            p["fe_sweeps"] = [s]
         elif kind == "impact":
             if "impact" not in self.pipeline:
                 raise MeasureError("the pipeline has no impact study")
@@ -209,7 +215,7 @@ class Measurer:
                                f"{self.describe(spec)}:\n{done.stderr[-3000:]}")
         with open(os.path.join(self.args.work, "out", name, "pipeline_summary.json")) as f:
             summary = json.load(f)
-        stage = {"fe_study": "fe_stage", "impact": "fe_impact", "rolling": "fe_rolling"}[
+        stage = {"fe_sweep": "fe_stage", "impact": "fe_impact", "rolling": "fe_rolling"}[
             self.plan["studies"][study]["kind"]]
         tasks = [t for t in summary["tasks"] if t["stage"] == stage]
         if len(tasks) != 1:
@@ -272,8 +278,8 @@ class Measurer:
         entry = self.plan["studies"][study]
         what, unit = QUANTITY_TEXT[entry["quantity"]]
         case = ""
-        if entry["kind"] == "fe_study":
-            s = [x for x in self.pipeline["fe_studies"] if x["name"] == study][0]
+        if entry["kind"] == "fe_sweep":
+            s = [x for x in fe_sweeps(self.pipeline) if x["name"] == study][0]
             case = f"{s['parameter']['name']} = {entry['value']} {s['parameter']['unit']}, "
         elif entry["kind"] == "impact":
             case = f"v = {entry['velocity']} m/s, "
@@ -505,6 +511,9 @@ def main(argv=None):
                                           else "measure_presets.yaml")
     with open(plan_path) as f:
         plan = yaml.safe_load(f)
+    for entry in (plan.get("studies") or {}).values():  # the kind's name before issue 29
+        if entry.get("kind") == "fe_study":
+            entry["kind"] = "fe_sweep"
     smoke = bool(plan.get("smoke"))
     pipeline_path = os.path.abspath(args.pipeline)
     if smoke and not args.dry_run and pipeline_path == os.path.join(ROOT, "pipeline.yaml"):
@@ -521,15 +530,15 @@ def main(argv=None):
             raise SystemExit(f"measure_presets: --studies {s}: not in {plan_path} "
                              f"({', '.join(plan['studies'])})")
         kind = plan["studies"][s]["kind"]
-        present = {"fe_study": any(x["name"] == s for x in pipeline.get("fe_studies") or []),
+        present = {"fe_sweep": any(x["name"] == s for x in fe_sweeps(pipeline)),
                    "impact": "impact" in pipeline, "rolling": "rolling" in pipeline,
                    "pipeline": True}[kind]
         if not present and args.studies:
             raise SystemExit(f"measure_presets: --studies {s}: {pipeline_path} has no such study")
     studies = [s for s in studies if plan["studies"][s]["kind"] == "pipeline"
-               or (plan["studies"][s]["kind"] == "fe_study"
-                   and any(x["name"] == s for x in pipeline.get("fe_studies") or []))
-               or (plan["studies"][s]["kind"] != "fe_study" and plan["studies"][s]["kind"] in pipeline)]
+               or (plan["studies"][s]["kind"] == "fe_sweep"
+                   and any(x["name"] == s for x in fe_sweeps(pipeline)))
+               or (plan["studies"][s]["kind"] != "fe_sweep" and plan["studies"][s]["kind"] in pipeline)]
 
     m = Measurer(args, pipeline, plan)
     m.studies = studies

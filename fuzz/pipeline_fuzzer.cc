@@ -3,7 +3,7 @@
 // seeds' scenes exist.
 #include "fuzz/fuzz_support.h"
 #include "pipeline/pipeline_config.h"
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 
 #include <unistd.h>
 

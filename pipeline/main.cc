@@ -7,7 +7,7 @@
 #include "common/plot_script.h"
 #include "pipeline/pipeline_runner.h"
 #include "pipeline/presets.h"
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 
 #include <CLI/CLI.hpp>
 

@@ -151,7 +151,7 @@ namespace clearjoint::pipeline
       error = "gmsh exited with status " +
               std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     throw InputError(where, "geometry.mesh", geo,
-                     "a .geo file Gmsh reads (with the scene's joint dimensions and the study's "
+                     "a .geo file Gmsh reads (with the scene's joint dimensions and the sweep's "
                      "mesh_parameters)",
                      "gmsh -0: " + error);
   }

@@ -2,7 +2,7 @@
 // run would generate is composed and handed to its stage's own reader (STAGE SCENE --check),
 // in a scratch folder outside the output root, so that a bad value stops the run before
 // anything exists under the output root — reported as an input error naming the pipeline key
-// that produced it (a study value, an override, a preset key, a law) rather than as a stage
+// that produced it (a sweep value, an override, a preset key, a law) rather than as a stage
 // failure half-way through the run.
 #include "pipeline/pipeline_runner.h"
 #include "pipeline/slurm_executor.h"
@@ -15,7 +15,7 @@
 #include "pipeline/scene_builder.h"
 #include "pipeline/stage_check.h"
 #include "pipeline/stand_in_laws.h"
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 
 #include <unistd.h>
 
@@ -71,13 +71,14 @@ namespace clearjoint::pipeline
     }
 
     /// Every FE case gets its own folder: names the file system accepts, and no two values of
-    /// one study with the same label.
-    void check_fe_study_names(const std::string &src, const std::vector<FeStudy> &studies)
+    /// one sweep with the same label.
+    void check_fe_sweep_names(const PipelineConfig &config)
     {
-      for (std::size_t i = 0; i < studies.size(); ++i)
+      const std::string &src = config.source;
+      for (std::size_t i = 0; i < config.fe_sweeps.size(); ++i)
       {
-        const FeStudy &s = studies[i];
-        const std::string key = "fe_studies[" + std::to_string(i) + "]";
+        const FeSweep &s = config.fe_sweeps[i];
+        const std::string key = config.fe_sweeps_key + "[" + std::to_string(i) + "]";
         check_name(src, key + ".name", s.name);
         std::set<std::string> labels;
         for (std::size_t v = 0; v < s.values.size(); ++v)
@@ -87,7 +88,7 @@ namespace clearjoint::pipeline
           if (!labels.insert(label).second)
             throw InputError(src, key + ".values[" + std::to_string(v) + "]",
                              value_label(s.values[v]), "values that differ from each other",
-                             "two cases of study '" + s.name + "' would share the folder " +
+                             "two cases of sweep '" + s.name + "' would share the folder " +
                                label);
         }
       }
@@ -137,7 +138,7 @@ namespace clearjoint::pipeline
                        "cannot create folders in " + p.string());
     // The longest path the run writes must fit PATH_MAX (with room for the suffixes above).
     std::size_t longest = 0;
-    for (const auto &s : config_.fe_studies)
+    for (const auto &s : config_.fe_sweeps)
       for (const double v : s.values)
         longest = std::max(longest, std::string("/scenes/fe_" + s.name + "_" + s.parameter +
                                                 "=" + value_label(v) + ".yaml")
@@ -163,36 +164,36 @@ namespace clearjoint::pipeline
       : runner_(runner)
       , config_(runner.config_)
       , src_(runner.config_.source)
-      , stand_ins_(scratch_.path(), runner.config_.fe_studies)
+      , stand_ins_(scratch_.path(), runner.config_.fe_sweeps)
     {
     }
 
     /// Each FE case's scene: base + preset + overrides + its value.
     void fe_cases()
     {
-      for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+      for (std::size_t i = 0; i < config_.fe_sweeps.size(); ++i)
       {
-        const FeStudy &study = config_.fe_studies[i];
-        const std::string key = "fe_studies[" + std::to_string(i) + "]";
-        for (std::size_t v = 0; v < study.values.size(); ++v)
+        const FeSweep &sweep = config_.fe_sweeps[i];
+        const std::string key = config_.fe_sweeps_key + "[" + std::to_string(i) + "]";
+        for (std::size_t v = 0; v < sweep.values.size(); ++v)
         {
           std::vector<int> unused;
-          nlohmann::json scene = runner_.fe_case_scene(study, study.values[v], true, unused);
+          nlohmann::json scene = runner_.fe_case_scene(sweep, sweep.values[v], true, unused);
           // A mesh a mesh task will make does not exist yet: check the rest of the scene (the
           // mesh is checked against the scene when the FE case runs).
           const nlohmann::json *mesh = find_key_path(scene, "geometry.mesh");
           if (mesh && mesh->is_string() && !fs::exists(mesh->get<std::string>()))
             scene["geometry"].erase("mesh");
-          const std::string label = study.parameter + "=" + value_label(study.values[v]);
-          const std::string file = write_scene("fe_" + study.name + "_" + label + ".yaml", scene);
+          const std::string label = sweep.parameter + "=" + value_label(sweep.values[v]);
+          const std::string file = write_scene("fe_" + sweep.name + "_" + label + ".yaml", scene);
           std::vector<Origin> origins = preset_origins("fe");
-          for (const auto &[k, val] : study.overrides)
+          for (const auto &[k, val] : sweep.overrides)
             origins.push_back({k, key + ".overrides." + k, val});
-          origins.push_back({study.key, key + ".values[" + std::to_string(v) + "]",
-                             study.keywords[v].empty() ? nlohmann::json(study.values[v])
-                                                       : nlohmann::json(study.keywords[v])});
+          origins.push_back({sweep.key, key + ".values[" + std::to_string(v) + "]",
+                             sweep.keywords[v].empty() ? nlohmann::json(sweep.values[v])
+                                                       : nlohmann::json(sweep.keywords[v])});
           run_scene_check("fe_stage", file, origins, key + ".scene",
-                          "FE case " + study.name + " " + label + " (scene " + study.scene + ")");
+                          "FE case " + sweep.name + " " + label + " (scene " + sweep.scene + ")");
         }
       }
     }
@@ -203,34 +204,34 @@ namespace clearjoint::pipeline
     /// family's parameter and values).
     void fit_commands()
     {
-      for (std::size_t i = 0; i < config_.fe_studies.size(); ++i)
+      for (std::size_t i = 0; i < config_.fe_sweeps.size(); ++i)
       {
-        const FeStudy &study = config_.fe_studies[i];
-        const std::string key = "fe_studies[" + std::to_string(i) + "]";
-        const std::vector<std::string> mesh_error = runner_.discretisation_error_args(study.name);
-        const std::vector<Origin> origins = fit_origins(study, key, mesh_error);
-        std::vector<std::string> fit_args = {scratch_.file("fe_" + study.name + ".csv"),
+        const FeSweep &sweep = config_.fe_sweeps[i];
+        const std::string key = config_.fe_sweeps_key + "[" + std::to_string(i) + "]";
+        const std::vector<std::string> mesh_error = runner_.discretisation_error_args(sweep.name);
+        const std::vector<Origin> origins = fit_origins(sweep, key, mesh_error);
+        std::vector<std::string> fit_args = {scratch_.file("fe_" + sweep.name + ".csv"),
                                              "--output", scratch_.file("law.json"), "--weighting",
                                              config_.fit_weighting, "--no-plots"};
         fit_args.insert(fit_args.end(), mesh_error.begin(), mesh_error.end());
-        run_stage_check("fit_stage", fit_args, scratch_.file("fit_" + study.name + ".log"),
-                        origins, key, "the fit of study " + study.name);
-        if (study.values.size() < 2)
+        run_stage_check("fit_stage", fit_args, scratch_.file("fit_" + sweep.name + ".log"),
+                        origins, key, "the fit of sweep " + sweep.name);
+        if (sweep.values.size() < 2)
           continue;
-        std::vector<std::string> family_args = {"--family", study.parameter};
-        for (std::size_t v = 0; v < study.values.size(); ++v)
+        std::vector<std::string> family_args = {"--family", sweep.parameter};
+        for (std::size_t v = 0; v < sweep.values.size(); ++v)
           family_args.push_back(
-            scratch_.file("fe_" + study.name + "_" + std::to_string(v) + ".csv") + "=" +
-            value_label(to_si(study.values[v], study.unit).value));
+            scratch_.file("fe_" + sweep.name + "_" + std::to_string(v) + ".csv") + "=" +
+            value_label(to_si(sweep.values[v], sweep.unit).value));
         for (const auto &a : std::vector<std::string>{
-               "--parameter-unit", to_si(1.0, study.unit).unit, "--family-out-of-range",
+               "--parameter-unit", to_si(1.0, sweep.unit).unit, "--family-out-of-range",
                config_.family_out_of_range, "--output", scratch_.file("family.json"),
                "--weighting", config_.fit_weighting, "--no-plots"})
           family_args.push_back(a);
         family_args.insert(family_args.end(), mesh_error.begin(), mesh_error.end());
         run_stage_check("fit_stage", family_args,
-                        scratch_.file("family_" + study.name + ".log"), origins, key,
-                        "the law family of study " + study.name);
+                        scratch_.file("family_" + sweep.name + ".log"), origins, key,
+                        "the law family of sweep " + sweep.name);
       }
     }
 
@@ -310,7 +311,7 @@ namespace clearjoint::pipeline
           overrides.emplace_back(m.laws[l].key, law);
           origins.push_back({m.laws[l].key, key + ".laws[" + std::to_string(l) + "]",
                              m.laws[l].file ? nlohmann::json(*m.laws[l].file)
-                                            : nlohmann::json("study " + *m.laws[l].study)});
+                                            : nlohmann::json("sweep " + *m.laws[l].sweep)});
         }
         const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
         const std::string file = write_scene("mbd_" + m.name + ".yaml", scene);
@@ -343,18 +344,18 @@ namespace clearjoint::pipeline
       return origins;
     }
 
-    /// The pipeline keys behind the options of a study's fit commands.
-    std::vector<Origin> fit_origins(const FeStudy &study, const std::string &key,
+    /// The pipeline keys behind the options of a sweep's fit commands.
+    std::vector<Origin> fit_origins(const FeSweep &sweep, const std::string &key,
                                     const std::vector<std::string> &mesh_error) const
     {
       return {{"--weighting", "fit.weighting", config_.fit_weighting},
               {"--family-out-of-range", "fit.family_out_of_range", config_.family_out_of_range},
               {"--discretisation-error",
-               "presets." + config_.preset + ".measured.error_F_max." + study.name + ".percent",
+               "presets." + config_.preset + ".measured.error_F_max." + sweep.name + ".percent",
                mesh_error.size() > 1 ? nlohmann::json(std::stod(mesh_error[1]))
                                      : nlohmann::json()},
-              {"--family", key + ".parameter.name", study.parameter},
-              {"--parameter-unit", key + ".parameter.unit", study.unit}};
+              {"--family", key + ".parameter.name", sweep.parameter},
+              {"--parameter-unit", key + ".parameter.unit", sweep.unit}};
     }
 
     void run_scene_check(const std::string &stage, const std::string &scene_file,
@@ -385,7 +386,7 @@ namespace clearjoint::pipeline
     // The Slurm commands and a controller that answers, before anything is written.
     if (options_.executor.value_or(config_.executor.kind) == "slurm")
       SlurmExecutor::check_available(config_.executor.slurm, config_.source);
-    check_fe_study_names(config_.source, config_.fe_studies);
+    check_fe_sweep_names(config_);
     check_mbd_run_names(config_.source, config_.mbd_runs);
     Checker checker(*this);
     checker.fe_cases();

@@ -1,6 +1,7 @@
 #include "pipeline/pipeline_config.h"
 
 #include "common/error.h"
+#include "common/log.h"
 #include "common/strict_reader.h"
 
 #include <cmath>
@@ -80,7 +81,8 @@ namespace clearjoint::pipeline
       r.rolling_time = optional_number(m, "rolling_time", Range::positive("s"));
       const auto &map = m.raw("error_F_max");
       if (!map.is_object())
-        m.fail("error_F_max", map.dump(), "a mapping of FE study names to {percent, where}");
+        m.fail("error_F_max", map.dump(),
+               "a mapping of FE sweep names (and impact, rolling) to {percent, where}");
       auto errors = m.object("error_F_max");
       for (auto it = map.begin(); it != map.end(); ++it)
       {
@@ -95,7 +97,8 @@ namespace clearjoint::pipeline
         r.error_F_max[it.key()] = pe;
       }
       errors.finish();
-      // Per-study figures (bench/measure_presets.py writes them): {study: number}.
+      // Per-sweep (and impact, rolling) figures (bench/measure_presets.py writes them):
+      // {name: number}.
       for (const auto &[key, target, range] :
            {std::tuple{"case_times", &r.case_times, Range::positive("s")},
             std::tuple{"dofs", &r.dofs, Range::positive("1")}})
@@ -107,11 +110,11 @@ namespace clearjoint::pipeline
         }
         const auto &raw = m.raw(key);
         if (!raw.is_object())
-          m.fail(key, raw.dump(), "a mapping of study names to numbers");
-        auto per_study = m.object(key);
+          m.fail(key, raw.dump(), "a mapping of FE sweep names (and impact, rolling) to numbers");
+        auto per_name = m.object(key);
         for (auto it = raw.begin(); it != raw.end(); ++it)
-          (*target)[it.key()] = per_study.number(it.key(), range);
-        per_study.finish();
+          (*target)[it.key()] = per_name.number(it.key(), range);
+        per_name.finish();
       }
       if (m.has("date"))
         r.date = m.string("date");
@@ -130,7 +133,7 @@ namespace clearjoint::pipeline
       return r;
     }
 
-    /// One element of a study's `values` or a law's `value`: a number or a keyword.
+    /// One element of a sweep's `values` or a law's `value`: a number or a keyword.
     void read_value(const nlohmann::json &v, StrictObject &o, const std::string &key,
                     const std::string &unit, double &number, std::string &keyword)
     {
@@ -148,12 +151,12 @@ namespace clearjoint::pipeline
       }
       else
         o.fail(key, v.dump(), std::string("a number in ") + unit + " or the keyword " +
-                                theta_max_keyword + " (paper Eq. 3 for the study's geometry)");
+                                theta_max_keyword + " (paper Eq. 3 for the sweep's geometry)");
     }
 
-    FeStudy read_study(StrictObject &s, const std::vector<FeStudy> &others)
+    FeSweep read_sweep(StrictObject &s, const std::vector<FeSweep> &others)
     {
-      FeStudy f;
+      FeSweep f;
       f.name = s.string("name");
       if (f.name.empty() || f.name.find('/') != std::string::npos || f.name[0] == '.')
         s.fail("name", f.name, "a folder name without '/' that does not start with '.'");
@@ -178,7 +181,7 @@ namespace clearjoint::pipeline
         f.values.push_back(v);
         f.keywords.push_back(keyword);
       }
-      // The numbers must increase; keywords are checked once resolved (study_values.h).
+      // The numbers must increase; keywords are checked once resolved (sweep_values.h).
       double previous = -std::numeric_limits<double>::infinity();
       for (const double v : f.values)
         if (!std::isnan(v))
@@ -189,7 +192,7 @@ namespace clearjoint::pipeline
         }
       for (const auto &other : others)
         if (other.name == f.name)
-          s.fail("name", f.name, "a name not used by another study");
+          s.fail("name", f.name, "a name not used by another sweep");
       f.overrides = read_overrides(s, "overrides");
       for (const auto &[key, value] : f.overrides)
         if (key == f.key)
@@ -214,60 +217,99 @@ namespace clearjoint::pipeline
       return f;
     }
 
+    /// Reads the key `key`, or the deprecated `old_key` that it replaced, whichever the object
+    /// gives: both → InputError naming both; the old one → its path is added to `deprecated`.
+    /// Returns the key given ("" when neither).
+    std::string renamed_key(StrictObject &o, const std::string &key, const std::string &old_key,
+                            std::vector<std::string> &deprecated)
+    {
+      const bool has_new = o.has(key), has_old = o.has(old_key);
+      if (has_new && has_old)
+        o.fail(old_key, json_excerpt(o.raw(old_key), 60),
+               "only '" + key + "' (the new name of '" + old_key + "')",
+               "'" + o.path_of(key) + "' and '" + o.path_of(old_key) +
+                 "' are both given, the new and the old name of one key: keep only '" + key +
+                 "'");
+      o.allow(old_key);
+      if (has_old)
+      {
+        deprecated.push_back(o.path_of(old_key));
+        return old_key;
+      }
+      o.allow(key);
+      return has_new ? key : "";
+    }
+
+    /// One warning line for the places that use `old_key` (renamed to `key`).
+    void warn_deprecated(const std::string &file, const std::string &old_key,
+                         const std::string &key, const std::vector<std::string> &paths)
+    {
+      if (paths.empty())
+        return;
+      std::string where;
+      for (std::size_t i = 0; i < paths.size() && i < 3; ++i)
+        where += (i ? ", " : "") + paths[i];
+      if (paths.size() > 3)
+        where += " and " + std::to_string(paths.size() - 3) + " more";
+      log::warning(file + ": '" + old_key + "' is deprecated, rename it to '" + key + "' (" +
+                   where + ")");
+    }
+
     /// `with_key`: the law goes into a scene at `key` (MBD runs); the impact comparison takes
-    /// the law file itself.
-    LawChoice read_law_choice(StrictObject &l, const std::vector<FeStudy> &studies,
-                              const bool with_key = true)
+    /// the law file itself. A fitted law names its sweep with `sweep` (formerly `study`).
+    LawChoice read_law_choice(StrictObject &l, const PipelineConfig &c,
+                              std::vector<std::string> &deprecated, const bool with_key = true)
     {
       LawChoice choice;
       if (with_key)
         choice.key = l.string("key");
       if (l.has("file"))
         choice.file = l.string("file");
-      if (l.has("study"))
+      const std::string sweep_key = renamed_key(l, "sweep", "study", deprecated);
+      if (!sweep_key.empty())
       {
-        choice.study = l.string("study");
-        const FeStudy *study = nullptr;
+        choice.sweep = l.string(sweep_key);
+        const FeSweep *sweep = nullptr;
         std::string names;
-        for (const auto &f : studies)
+        for (const auto &f : c.fe_sweeps)
         {
           names += (names.empty() ? "" : "|") + f.name;
-          if (f.name == *choice.study)
-            study = &f;
+          if (f.name == *choice.sweep)
+            sweep = &f;
         }
-        if (!study)
-          l.fail("study", *choice.study, "one of the fe_studies: " + names);
+        if (!sweep)
+          l.fail(sweep_key, *choice.sweep, "one of the " + c.fe_sweeps_key + ": " + names);
         if (l.has("value"))
         {
           double v;
-          read_value(l.raw("value"), l, "value", study->unit, v, choice.value_keyword);
+          read_value(l.raw("value"), l, "value", sweep->unit, v, choice.value_keyword);
           bool found = false;
           std::string values;
-          for (std::size_t i = 0; i < study->values.size(); ++i)
+          for (std::size_t i = 0; i < sweep->values.size(); ++i)
           {
-            const double s = study->values[i];
+            const double s = sweep->values[i];
             if (choice.value_keyword.empty())
               found = found || std::abs(s - v) <= 1e-12 * std::abs(s);
             else
-              found = found || study->keywords[i] == choice.value_keyword;
+              found = found || sweep->keywords[i] == choice.value_keyword;
             values += (values.empty() ? "" : ", ") +
-                      (study->keywords[i].empty() ? value_label(s) : study->keywords[i]);
+                      (sweep->keywords[i].empty() ? value_label(s) : sweep->keywords[i]);
           }
           if (!found)
             l.fail("value", choice.value_keyword.empty() ? value_label(v) : choice.value_keyword,
-                   "one of the values of study '" + study->name + "': " + values);
+                   "one of the values of sweep '" + sweep->name + "': " + values);
           if (choice.value_keyword.empty())
             choice.value = v;
         }
-        else if (study->values.size() < 2)
-          l.fail("study", study->name, "a study with >= 2 values for a law family",
+        else if (sweep->values.size() < 2)
+          l.fail(sweep_key, sweep->name, "a sweep with >= 2 values for a law family",
                  "or give 'value' to use one law");
       }
       else if (l.has("value"))
-        l.fail("value", l.raw("value").dump(), "only together with 'study'");
-      if (choice.file.has_value() == choice.study.has_value())
+        l.fail("value", l.raw("value").dump(), "only together with 'sweep'");
+      if (choice.file.has_value() == choice.sweep.has_value())
         l.fail("file", choice.file.value_or("(none)"),
-               "exactly one of 'file' (a law file) or 'study' (a fitted law)");
+               "exactly one of 'file' (a law file) or 'sweep' (a fitted law)");
       l.finish();
       return choice;
     }
@@ -317,8 +359,12 @@ namespace clearjoint::pipeline
     }
     presets.finish();
 
-    for (auto &s : top.object_array("fe_studies"))
-      c.fe_studies.push_back(read_study(s, c.fe_studies));
+    std::vector<std::string> old_sweeps_key, old_law_key;  // deprecated keys, where given
+    c.fe_sweeps_key = renamed_key(top, "fe_sweeps", "fe_studies", old_sweeps_key);
+    if (c.fe_sweeps_key.empty())
+      c.fe_sweeps_key = "fe_sweeps";  // absent: object_array reports the missing key
+    for (auto &s : top.object_array(c.fe_sweeps_key))
+      c.fe_sweeps.push_back(read_sweep(s, c.fe_sweeps));
 
     auto fit = top.object("fit");
     c.fit_weighting = fit.string_or("weighting", "absolute", {"absolute", "relative"});
@@ -335,14 +381,14 @@ namespace clearjoint::pipeline
       r.scene = m.string("scene");
       if (m.has("laws"))
         for (auto &l : m.object_array("laws"))
-          r.laws.push_back(read_law_choice(l, c.fe_studies));
+          r.laws.push_back(read_law_choice(l, c, old_law_key));
       else
         m.allow("laws");
       r.overrides = read_overrides(m, "overrides");
       r.band = m.boolean_or("band", false);
-      if (r.band && !(r.laws.size() == 1 && r.laws[0].study &&
+      if (r.band && !(r.laws.size() == 1 && r.laws[0].sweep &&
                       (r.laws[0].value || !r.laws[0].value_keyword.empty())))
-        m.fail("band", "true", "false, or exactly one law given by 'study' and 'value'",
+        m.fail("band", "true", "false, or exactly one law given by 'sweep' and 'value'",
                "a confidence band varies one fitted law");
       m.finish();
       c.mbd_runs.push_back(r);
@@ -353,9 +399,10 @@ namespace clearjoint::pipeline
       ImpactStudy impact;
       impact.scene = m.string("scene");
       auto law = m.object("law");
-      impact.law = read_law_choice(law, c.fe_studies, false);
-      if (impact.law.study && !impact.law.value && impact.law.value_keyword.empty())
-        law.fail("study", *impact.law.study, "one law: give 'value' too",
+      impact.law = read_law_choice(law, c, old_law_key, false);
+      if (impact.law.sweep && !impact.law.value && impact.law.value_keyword.empty())
+        law.fail(law.has("study") ? "study" : "sweep", *impact.law.sweep,
+                 "one law: give 'value' too",
                  "the impact comparison uses the law of one geometry");
       m.finish();
       c.impact = impact;
@@ -371,55 +418,59 @@ namespace clearjoint::pipeline
       m.finish();
       c.rolling = rolling;
     }
-    // A preset's errors are per FE study: each name must be one of them (or `impact`, the
+    // A preset's errors are per FE sweep: each name must be one of them (or `impact`, the
     // impact study's peak force, when there is one; or `rolling`, when there is one).
-    auto check_study_name = [&](const std::string &key, const std::string &study,
-                                const bool fe_only) {
+    auto check_measured_name = [&](const std::string &key, const std::string &name,
+                                   const bool fe_only) {
       std::string names;
-      bool found = !fe_only && ((study == "impact" && c.impact.has_value()) ||
-                                (study == "rolling" && c.rolling.has_value()));
-      for (const auto &f : c.fe_studies)
+      bool found = !fe_only && ((name == "impact" && c.impact.has_value()) ||
+                                (name == "rolling" && c.rolling.has_value()));
+      for (const auto &f : c.fe_sweeps)
       {
         names += (names.empty() ? "" : "|") + f.name;
-        found = found || f.name == study;
+        found = found || f.name == name;
       }
       if (c.impact && !fe_only)
         names += "|impact";
       if (c.rolling && !fe_only)
         names += "|rolling";
       if (!found)
-        throw InputError(path, key, study,
-                         (fe_only ? "one of the quasi-static fe_studies: " : "one of the studies: ") +
+        throw InputError(path, key, name,
+                         (fe_only ? "one of the quasi-static " + c.fe_sweeps_key + ": "
+                                  : "one of the " + c.fe_sweeps_key + ", impact or rolling: ") +
                            names);
     };
     for (const auto &[preset, measured] : c.preset_measured)
     {
-      for (const auto &[study, seconds] : measured.case_times)
-        check_study_name("presets." + preset + ".measured.case_times." + study, study, true);
-      for (const auto &[study, n] : measured.dofs)
-        check_study_name("presets." + preset + ".measured.dofs." + study, study, false);
+      for (const auto &[name, seconds] : measured.case_times)
+        check_measured_name("presets." + preset + ".measured.case_times." + name, name, true);
+      for (const auto &[name, n] : measured.dofs)
+        check_measured_name("presets." + preset + ".measured.dofs." + name, name, false);
     }
     for (const auto &[preset, measured] : c.preset_measured)
-      for (const auto &[study, error] : measured.error_F_max)
+      for (const auto &[name, error] : measured.error_F_max)
       {
         std::string names;
-        bool found = (study == "impact" && c.impact.has_value()) ||
-                     (study == "rolling" && c.rolling.has_value());
-        for (const auto &f : c.fe_studies)
+        bool found = (name == "impact" && c.impact.has_value()) ||
+                     (name == "rolling" && c.rolling.has_value());
+        for (const auto &f : c.fe_sweeps)
         {
           names += (names.empty() ? "" : "|") + f.name;
-          found = found || f.name == study;
+          found = found || f.name == name;
         }
         if (c.impact)
           names += "|impact";
         if (c.rolling)
           names += "|rolling";
         if (!found)
-          throw InputError(path, "presets." + preset + ".measured.error_F_max." + study, study,
-                           "one of the fe_studies: " + names);
+          throw InputError(path, "presets." + preset + ".measured.error_F_max." + name, name,
+                           "one of the " + c.fe_sweeps_key + ": " + names);
       }
 
     top.finish();
+    // Only once the file is read: a file with an error says that, not what to rename.
+    warn_deprecated(path, "fe_studies", "fe_sweeps", old_sweeps_key);
+    warn_deprecated(path, "study", "sweep", old_law_key);
     return c;
   }
 } // namespace clearjoint::pipeline

@@ -1,5 +1,11 @@
-// pipeline.yaml, schema clearjoint.pipeline/1: which FE studies to sweep, which MBD scenes to
-// run with which fitted laws, and the presets. See docs/pipeline.md for every key.
+// pipeline.yaml, schema clearjoint.pipeline/1: which FE sweeps to run (one scene key over
+// values, each case fitted, a law family over them), which MBD scenes to run with which fitted
+// laws, and the presets. See docs/pipeline.md for every key.
+//
+// "Study" is fe_stage's word for what a scene computes (its `study:` key: radial,
+// misalignment, hertz, patch, impact, rolling); a *sweep* here runs one such scene over the
+// values of one of its keys. Files written before the rename say `fe_studies:` and, in a law
+// choice, `study:`; both are still read, with a warning naming the new key.
 #pragma once
 
 #include "common/key_path.h"
@@ -18,11 +24,13 @@ namespace clearjoint::pipeline
   /// Scene key path → value, applied in order.
   using Overrides = std::vector<std::pair<std::string, nlohmann::json>>;
 
-  /// The keyword a study's `values` (and a law's `value`) may hold instead of a number:
-  /// θ_max of the study's scene geometry (paper Eq. 3), see study_values.h.
+  /// The keyword a sweep's `values` (and a law's `value`) may hold instead of a number:
+  /// θ_max of the sweep's scene geometry (paper Eq. 3), see sweep_values.h.
   inline constexpr const char *theta_max_keyword = "theta_max";
 
-  struct FeStudy
+  /// One entry of `fe_sweeps`: an FE scene run once per value of one of its keys; the cases'
+  /// curves are fitted, one law per value and a law family over the values.
+  struct FeSweep
   {
     std::string name;             ///< e.g. "thickness"; output folder name
     std::string scene;            ///< base FE scene file (clearjoint.fe/1)
@@ -30,7 +38,7 @@ namespace clearjoint::pipeline
     std::string unit;             ///< the unit of `values` and of the scene key, e.g. "m", "deg"
     std::string key;              ///< key path in the scene that the sweep sets
     /// In `unit`. Where the file gives a keyword (keywords[i] non-empty) the value is NaN until
-    /// resolve_value_keywords() (study_values.h) replaces it with the number.
+    /// resolve_value_keywords() (sweep_values.h) replaces it with the number.
     std::vector<double> values;
     std::vector<std::string> keywords;  ///< parallel to values: "" or e.g. "theta_max"
     /// Set in every case's scene after the preset's overrides (e.g. geometry.mesh).
@@ -45,9 +53,9 @@ namespace clearjoint::pipeline
   {
     std::string key;                    ///< key path in the MBD scene, e.g. "contact.law_file"
     std::optional<std::string> file;    ///< a law file given directly (no FE)
-    std::optional<std::string> study;   ///< a fitted law: study name ...
+    std::optional<std::string> sweep;   ///< a fitted law: sweep name (key `sweep`) ...
     std::optional<double> value;        ///< ... and parameter value; without a value, the family
-    std::string value_keyword;          ///< "" or the study's keyword (value set on resolution)
+    std::string value_keyword;          ///< "" or the sweep's keyword (value set on resolution)
   };
 
   struct MbdRun
@@ -57,7 +65,7 @@ namespace clearjoint::pipeline
     std::vector<LawChoice> laws;        ///< zero or more law substitutions
     Overrides overrides;                ///< set after the preset, before the laws
     /// Also run the scene with the law's 95 % confidence-band variants (laws/confidence_band.h);
-    /// needs exactly one law, a fitted one (study + value).
+    /// needs exactly one law, a fitted one (sweep + value).
     bool band = false;
   };
 
@@ -80,7 +88,8 @@ namespace clearjoint::pipeline
     Overrides overrides;
   };
 
-  /// A preset's measured estimated error of F(δ_max) for one FE study.
+  /// A preset's measured estimated error of F(δ_max) for one FE sweep (or the impact or
+  /// rolling study).
   struct PresetError
   {
     std::optional<double> percent;      ///< [%]; nullopt: not yet measured
@@ -96,11 +105,11 @@ namespace clearjoint::pipeline
     std::optional<double> impact_time;       ///< [s] the FE impact sweep (its one task)
     std::optional<double> rolling_time;      ///< [s] the FE rolling study (its one task)
     std::optional<double> pipeline_time;     ///< [s] the whole default pipeline
-    std::map<std::string, PresetError> error_F_max;  ///< FE study name → error
-    /// FE study name → [s] one FE case of that study, where it differs from fe_case_time (which
-    /// is the thickness study's reference case): e.g. the misalignment study's.
+    std::map<std::string, PresetError> error_F_max;  ///< sweep name, impact, rolling → error
+    /// FE sweep name → [s] one FE case of that sweep, where it differs from fe_case_time (which
+    /// is the thickness sweep's reference case): e.g. the misalignment sweep's.
     std::map<std::string, double> case_times;
-    /// study name (FE studies, impact, rolling) → [1] DoFs of its reference case.
+    /// FE sweep name, impact, rolling → [1] DoFs of its reference case.
     std::map<std::string, double> dofs;
     std::string date;                        ///< when measured ("" not stated)
     std::string machine_cpu;                 ///< the CPU model it was measured on ("" not stated)
@@ -121,7 +130,10 @@ namespace clearjoint::pipeline
     /// preset → stage ("fe" | "mbd") → key path → value, applied to every generated scene.
     std::map<std::string, std::map<std::string, nlohmann::json>> presets;
     std::map<std::string, PresetMeasured> preset_measured;  ///< preset → measurements
-    std::vector<FeStudy> fe_studies;
+    std::vector<FeSweep> fe_sweeps;
+    /// The key the file gave them under: "fe_sweeps", or the deprecated "fe_studies" (messages
+    /// name the key as written).
+    std::string fe_sweeps_key = "fe_sweeps";
     std::string fit_weighting = "absolute";
     /// fit_stage --family-out-of-range: what a law family does for a parameter outside its values.
     std::string family_out_of_range = "error";
@@ -137,11 +149,13 @@ namespace clearjoint::pipeline
     return names;
   }
 
-  /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a study that
-  /// does not exist or a value not in that study → InputError naming the key and valid range.
+  /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a sweep that
+  /// does not exist or a value not in that sweep → InputError naming the key and valid range.
+  /// A deprecated key (`fe_studies`, a law's `study`) is read with one warning line (log.h)
+  /// naming its new name; a file giving both the old and the new key is an InputError.
   /// Relative paths are taken relative to the directory run_pipeline runs in; override values
   /// that name an existing file from there are made absolute. Keywords in `values` are kept
-  /// (NaN); resolve_value_keywords() (study_values.h) fills them in once the preset is known.
+  /// (NaN); resolve_value_keywords() (sweep_values.h) fills them in once the preset is known.
   PipelineConfig read_pipeline_config(const std::string &path);
 
   /// The shortest text that reads back as exactly `value` ("0.004", "1.5",

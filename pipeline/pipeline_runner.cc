@@ -10,7 +10,7 @@
 #include "pipeline/slurm_executor.h"
 #include "pipeline/presets.h"
 #include "pipeline/scene_builder.h"
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 
 #include <algorithm>
 #include <chrono>
@@ -54,14 +54,14 @@ namespace clearjoint::pipeline
     return path;
   }
 
-  nlohmann::json PipelineRunner::fe_case_scene(const FeStudy &study, const double value,
+  nlohmann::json PipelineRunner::fe_case_scene(const FeSweep &sweep, const double value,
                                                const bool dry_run,
                                                std::vector<int> &after)
   {
-    Overrides overrides = study.overrides;
-    overrides.emplace_back(study.key, value);
-    nlohmann::json scene = compose_scene(config_, study.scene, "fe", overrides);
-    const std::string where = study.scene + " (study '" + study.name + "' of " + config_.source + ")";
+    Overrides overrides = sweep.overrides;
+    overrides.emplace_back(sweep.key, value);
+    nlohmann::json scene = compose_scene(config_, sweep.scene, "fe", overrides);
+    const std::string where = sweep.scene + " (sweep '" + sweep.name + "' of " + config_.source + ")";
     const auto geo = geo_to_mesh(scene, where);
     if (!geo)
       return scene;
@@ -77,7 +77,7 @@ namespace clearjoint::pipeline
     const auto g = scene_joint_geometry(scene, where);
     Task mesh = make_mesh_task(
       *geo, {{"R_B", g.R_B}, {"t_B", g.t_B}, {"L_B", g.L_B}, {"c_r", g.c_r}, {"c_a", g.c_a}},
-      study.mesh_parameters, run_dir(), options_.build_dir);
+      sweep.mesh_parameters, run_dir(), options_.build_dir);
     const std::string msh = mesh.output_dir + "/mesh.msh";
     if (dry_run)
     {
@@ -116,9 +116,9 @@ namespace clearjoint::pipeline
   std::map<std::string, int> PipelineRunner::planned_tasks() const
   {
     std::map<std::string, int> n = {{"make_mesh", int(planned_meshes_.size())}};
-    for (const auto &study : config_.fe_studies)
+    for (const auto &sweep : config_.fe_sweeps)
     {
-      const int values = int(study.values.size());
+      const int values = int(sweep.values.size());
       n["fe_stage"] += values;
       n["fit_stage"] += values + (values >= 2 ? 1 : 0);  // one law per value, and the family
     }
@@ -133,8 +133,8 @@ namespace clearjoint::pipeline
     {
       n["mbd_stage"] += 1;
       // laws/confidence_band.h: 4 regression variants, 2 more with a measured mesh error
-      if (m.band && !m.laws.empty() && m.laws.front().study)
-        n["mbd_stage"] += 4 + (discretisation_error_args(*m.laws.front().study).empty() ? 0 : 2);
+      if (m.band && !m.laws.empty() && m.laws.front().sweep)
+        n["mbd_stage"] += 4 + (discretisation_error_args(*m.laws.front().sweep).empty() ? 0 : 2);
     }
     return n;
   }
@@ -151,12 +151,12 @@ namespace clearjoint::pipeline
     return which == "fe_case_time" ? m->second.fe_case_time : m->second.pipeline_time;
   }
 
-  std::vector<std::string> PipelineRunner::discretisation_error_args(const std::string &study) const
+  std::vector<std::string> PipelineRunner::discretisation_error_args(const std::string &sweep) const
   {
     const auto m = config_.preset_measured.find(config_.preset);
     if (m == config_.preset_measured.end())
       return {};
-    const auto e = m->second.error_F_max.find(study);
+    const auto e = m->second.error_F_max.find(sweep);
     if (e == m->second.error_F_max.end() || !e->second.percent)
       return {};  // not measured: the law says null, the report says "not measured"
     char buf[32];
@@ -189,10 +189,10 @@ namespace clearjoint::pipeline
     return graph_.add(std::move(node));
   }
 
-  void PipelineRunner::attach_figure(const int node, const std::string &study)
+  void PipelineRunner::attach_figure(const int node, const std::string &sweep)
   {
     GraphNode &n = graph_.node(node);
-    if (const auto figure = task_figure(config_, n.task.stage, study))
+    if (const auto figure = task_figure(config_, n.task.stage, sweep))
     {
       n.figure_key = figure->first;
       n.figure_seconds = figure->second;
@@ -260,7 +260,7 @@ namespace clearjoint::pipeline
     if (impact.law.file)
       law = fs::absolute(*impact.law.file).string();
     else
-      law = laws.at(*impact.law.study).at(value_label(*impact.law.value)).path;
+      law = laws.at(*impact.law.sweep).at(value_label(*impact.law.value)).path;
     summary_["impact"] = {{"scene", scene},
                           {"fe_dir", fe.output_dir},
                           {"sweep", fe.output_dir + "/impact_sweep.csv"},
@@ -279,8 +279,8 @@ namespace clearjoint::pipeline
       cmp.args.push_back("--no-plots");
     cmp.input_files = {law, sweep};
     std::vector<int> after = {fe_node};
-    if (impact.law.study)
-      after.push_back(laws.at(*impact.law.study).at(value_label(*impact.law.value)).node);
+    if (impact.law.sweep)
+      after.push_back(laws.at(*impact.law.sweep).at(value_label(*impact.law.value)).node);
     cmp.output_dir = run + "/impact/compare";
     add(cmp, "mbd", after);
     summary_["impact"]["compare_dir"] = cmp.output_dir;
@@ -379,60 +379,60 @@ namespace clearjoint::pipeline
                 {"presets", presets_summary(config_)},
                 {"pipeline_file", fs::absolute(config_.source).string()},
                 {"tasks", nlohmann::json::array()},
-                {"studies", nlohmann::json::array()},
+                {"sweeps", nlohmann::json::array()},
                 {"mbd_runs", nlohmann::json::array()}};
 
     // Every FE case's scene is composed and checked before any task runs, so a bad scene key
     // (a missing mesh, no gmsh for a .geo, a bad geometry) stops the run before any work.
-    for (const auto &study : config_.fe_studies)
-      for (const double value : study.values)
+    for (const auto &sweep : config_.fe_sweeps)
+      for (const double value : sweep.values)
       {
         std::vector<int> unused;
-        fe_case_scene(study, value, true, unused);
+        fe_case_scene(sweep, value, true, unused);
       }
     fs::create_directories(run);
     eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
                                     preset_time("pipeline_time"), preset_time("impact_time"),
                                     preset_time("rolling_time"));
 
-    std::map<std::string, std::map<std::string, Done>> laws;  // study → value label → law
+    std::map<std::string, std::map<std::string, Done>> laws;  // sweep → value label → law
     std::map<std::string, Done> families;
 
-    for (const auto &study : config_.fe_studies)
+    for (const auto &sweep : config_.fe_sweeps)
     {
-      log::info("FE study '" + study.name + "': " + study.parameter + " over " +
-                std::to_string(study.values.size()) + " values");
+      log::info("FE sweep '" + sweep.name + "': " + sweep.parameter + " over " +
+                std::to_string(sweep.values.size()) + " values");
       // The family stores its parameter in SI (fit_stage --family; mbd_stage evaluates a
-      // family at the tilt in rad): a study in deg gets a family in rad.
-      const std::string family_unit = to_si(1.0, study.unit).unit;
-      nlohmann::json s = {{"name", study.name},
-                          {"parameter", study.parameter},
-                          {"unit", study.unit},
-                          {"key", study.key},
-                          {"scene", fs::absolute(study.scene).string()},
+      // family at the tilt in rad): a sweep in deg gets a family in rad.
+      const std::string family_unit = to_si(1.0, sweep.unit).unit;
+      nlohmann::json s = {{"name", sweep.name},
+                          {"parameter", sweep.parameter},
+                          {"unit", sweep.unit},
+                          {"key", sweep.key},
+                          {"scene", fs::absolute(sweep.scene).string()},
                           {"family_unit", family_unit},
                           {"cases", nlohmann::json::array()}};
-      std::vector<std::string> family_args = {"--family", study.parameter};
-      // The preset's measured error of F for this study goes into every law fitted here, so
+      std::vector<std::string> family_args = {"--family", sweep.parameter};
+      // The preset's measured error of F for this sweep goes into every law fitted here, so
       // the MBD band and the report can set it beside the regression interval.
-      const std::vector<std::string> mesh_error_args = discretisation_error_args(study.name);
+      const std::vector<std::string> mesh_error_args = discretisation_error_args(sweep.name);
       std::vector<std::string> family_inputs;
       std::vector<int> family_deps;
-      for (std::size_t i = 0; i < study.values.size(); ++i)
+      for (std::size_t i = 0; i < sweep.values.size(); ++i)
       {
-        const double value = study.values[i];
-        const std::string label = study.parameter + "=" + value_label(value);
+        const double value = sweep.values[i];
+        const std::string label = sweep.parameter + "=" + value_label(value);
         std::vector<int> mesh_tasks;  // a .geo's mesh task, if any
-        const nlohmann::json scene_json = fe_case_scene(study, value, false, mesh_tasks);
+        const nlohmann::json scene_json = fe_case_scene(sweep, value, false, mesh_tasks);
         const std::string scene =
-          write_scene(scene_json, study.scene, "fe_" + study.name + "_" + label);
-        Task fe = fe_stage_task(scene, "fe/" + study.name + "/" + label, "fe_stage");
+          write_scene(scene_json, sweep.scene, "fe_" + sweep.name + "_" + label);
+        Task fe = fe_stage_task(scene, "fe/" + sweep.name + "/" + label, "fe_stage");
         const int fe_node = add(fe, "fe", mesh_tasks, config_.mpi_ranks, scene_json);
-        attach_figure(fe_node, study.name);
+        attach_figure(fe_node, sweep.name);
         const std::string csv = fe.output_dir + "/force_penetration.csv";
 
         Task fit;
-        fit.name = "fit/" + study.name + "/" + label;
+        fit.name = "fit/" + sweep.name + "/" + label;
         fit.stage = "fit_stage";
         fit.executable = stage_executable("fit_stage");
         fit.args = {csv, "--output", "{out}/law.json", "--weighting", config_.fit_weighting};
@@ -440,26 +440,26 @@ namespace clearjoint::pipeline
         if (!options_.plots)
           fit.args.push_back("--no-plots");
         fit.input_files = {csv};
-        fit.output_dir = run + "/fit/" + study.name + "/" + label;
-        laws[study.name][value_label(value)] = {fit.output_dir + "/law.json",
+        fit.output_dir = run + "/fit/" + sweep.name + "/" + label;
+        laws[sweep.name][value_label(value)] = {fit.output_dir + "/law.json",
                                                 add(fit, "fit", {fe_node})};
         const nlohmann::json *mesh = find_key_path(scene_json, "geometry.mesh");
         s["cases"].push_back({{"value", value},
-                              {"keyword", study.keywords[i].empty() ? nlohmann::json()
-                                                                    : nlohmann::json(study.keywords[i])},
-                              {"family_value", to_si(value, study.unit).value},
+                              {"keyword", sweep.keywords[i].empty() ? nlohmann::json()
+                                                                    : nlohmann::json(sweep.keywords[i])},
+                              {"family_value", to_si(value, sweep.unit).value},
                               {"scene", scene},
                               {"mesh", mesh ? *mesh : nlohmann::json()},
                               {"fe_dir", fe.output_dir},
                               {"law", fit.output_dir + "/law.json"}});
-        family_args.push_back(csv + "=" + value_label(to_si(value, study.unit).value));
+        family_args.push_back(csv + "=" + value_label(to_si(value, sweep.unit).value));
         family_inputs.push_back(csv);
         family_deps.push_back(fe_node);
       }
-      if (study.values.size() >= 2)
+      if (sweep.values.size() >= 2)
       {
         Task fam;
-        fam.name = "fit/" + study.name + "/family";
+        fam.name = "fit/" + sweep.name + "/family";
         fam.stage = "fit_stage";
         fam.executable = stage_executable("fit_stage");
         fam.args = family_args;
@@ -472,11 +472,11 @@ namespace clearjoint::pipeline
         if (!options_.plots)
           fam.args.push_back("--no-plots");
         fam.input_files = family_inputs;
-        fam.output_dir = run + "/fit/" + study.name + "/family";
-        families[study.name] = {fam.output_dir + "/family.json", add(fam, "fit", family_deps)};
+        fam.output_dir = run + "/fit/" + sweep.name + "/family";
+        families[sweep.name] = {fam.output_dir + "/family.json", add(fam, "fit", family_deps)};
         s["family"] = fam.output_dir + "/family.json";
       }
-      summary_["studies"].push_back(s);
+      summary_["sweeps"].push_back(s);
     }
 
     if (config_.impact)
@@ -497,8 +497,8 @@ namespace clearjoint::pipeline
         }
         else
         {
-          const Done &f = choice.value ? laws.at(*choice.study).at(value_label(*choice.value))
-                                       : families.at(*choice.study);
+          const Done &f = choice.value ? laws.at(*choice.sweep).at(value_label(*choice.value))
+                                       : families.at(*choice.sweep);
           law = f.path;
           after.push_back(f.node);
         }
@@ -521,7 +521,7 @@ namespace clearjoint::pipeline
         // The same scene with the law's confidence-band variants: one MBD task each, added
         // once the fitted law exists (their number depends on what the law holds).
         const LawChoice &choice = m.laws.front();
-        const Done &fit = laws.at(*choice.study).at(value_label(*choice.value));
+        const Done &fit = laws.at(*choice.sweep).at(value_label(*choice.value));
         entry["band"] = nlohmann::json::array();
         graph_.node(fit.node).on_done.push_back(
           [this, m, index = summary_["mbd_runs"].size(), mbd, law = fit.path,

@@ -31,7 +31,7 @@ namespace clearjoint::pipeline
   class PipelineRunner
   {
   public:
-    /// The config's value keywords must be resolved (resolve_value_keywords, study_values.h).
+    /// The config's value keywords must be resolved (resolve_value_keywords, sweep_values.h).
     PipelineRunner(PipelineConfig config, RunOptions options);
     /// Runs everything; returns the summary written to <run dir>/pipeline_summary.json.
     nlohmann::json run();
@@ -49,9 +49,9 @@ namespace clearjoint::pipeline
       int node;          ///< the task behind it (graph_)
     };
 
-    /// The scene of one FE case (base + preset + study overrides + the swept value), with a
+    /// The scene of one FE case (base + preset + sweep overrides + the swept value), with a
     /// .geo in geometry.mesh replaced by the mesh its task writes (dry_run: checked only).
-    nlohmann::json fe_case_scene(const FeStudy &study, double value, bool dry_run,
+    nlohmann::json fe_case_scene(const FeSweep &sweep, double value, bool dry_run,
                                  std::vector<int> &after);
     /// One fe_stage run of a composed scene (written to `scene`) into <run>/<name>; the files
     /// the scene names join its inputs when it starts (add).
@@ -72,9 +72,9 @@ namespace clearjoint::pipeline
     /// composed scene the task runs, whose named files join its inputs when it starts.
     int add(const Task &task, const std::string &stage_group, std::vector<int> after,
             int ranks = 1, const nlohmann::json &scene = nullptr);
-    /// Sets the chosen preset's measured time of task `node` (of FE study `study`, if any):
+    /// Sets the chosen preset's measured time of task `node` (of FE sweep `sweep`, if any):
     /// printed beside its time when it ends and written into the summary (presets.h).
-    void attach_figure(int node, const std::string &study = "");
+    void attach_figure(int node, const std::string &sweep = "");
     /// The band variants of MBD run `m` (entry `index` of the summary's mbd_runs), once the
     /// fitted law at `law_path` exists: one MBD task each, after the fit `fit_node`.
     void add_band_tasks(const MbdRun &m, std::size_t index, const Task &mbd,
@@ -84,8 +84,8 @@ namespace clearjoint::pipeline
     /// The summary's task list, in the order the tasks were added.
     void record_tasks(const Scheduler &scheduler);
     /// fit_stage's --discretisation-error arguments from the chosen preset's measured error
-    /// of F for this study; none when it is not measured.
-    std::vector<std::string> discretisation_error_args(const std::string &study) const;
+    /// of F for this sweep; none when it is not measured.
+    std::vector<std::string> discretisation_error_args(const std::string &sweep) const;
     /// Tasks per stage this run will execute or reuse (for "task k of N").
     std::map<std::string, int> planned_tasks() const;
     /// The chosen preset's measured fe_case_time, pipeline_time, impact_time or rolling_time

@@ -9,15 +9,15 @@ namespace clearjoint::pipeline
   std::string describe_preset_errors(const PipelineConfig &config, const std::string &preset)
   {
     const auto m = config.preset_measured.find(preset);
-    std::string out = "preset " + preset + ": estimated error of F(delta_max) per FE study:";
-    if (config.fe_studies.empty())
-      return out + " (no FE studies)";
-    for (const auto &study : config.fe_studies)
+    std::string out = "preset " + preset + ": estimated error of F(delta_max) per FE sweep:";
+    if (config.fe_sweeps.empty())
+      return out + " (no FE sweeps)";
+    for (const auto &sweep : config.fe_sweeps)
     {
-      out += "\n    " + study.name + ": ";
+      out += "\n    " + sweep.name + ": ";
       const PresetError *e = nullptr;
       if (m != config.preset_measured.end())
-        if (const auto it = m->second.error_F_max.find(study.name); it != m->second.error_F_max.end())
+        if (const auto it = m->second.error_F_max.find(sweep.name); it != m->second.error_F_max.end())
           e = &it->second;
       if (!e)
         out += "not stated in pipeline.yaml";
@@ -61,8 +61,8 @@ namespace clearjoint::pipeline
           return {{"value", *v}, {"unit", unit}};
         };
         nlohmann::json errors = nlohmann::json::object();
-        for (const auto &[study, e] : m.error_F_max)
-          errors[study] = {{"percent", e.percent ? nlohmann::json(*e.percent) : nlohmann::json()},
+        for (const auto &[name, e] : m.error_F_max)
+          errors[name] = {{"percent", e.percent ? nlohmann::json(*e.percent) : nlohmann::json()},
                            {"where", e.where}};
         p["measured"] = {{"note", m.note},
                          {"fe_dofs", opt(m.fe_dofs, "1")},
@@ -72,10 +72,10 @@ namespace clearjoint::pipeline
                          {"pipeline_time", opt(m.pipeline_time, "s")},
                          {"error_F_max", errors}};
         nlohmann::json case_times = nlohmann::json::object(), dofs = nlohmann::json::object();
-        for (const auto &[study, seconds] : m.case_times)
-          case_times[study] = {{"value", seconds}, {"unit", "s"}};
-        for (const auto &[study, n] : m.dofs)
-          dofs[study] = {{"value", n}, {"unit", "1"}};
+        for (const auto &[name, seconds] : m.case_times)
+          case_times[name] = {{"value", seconds}, {"unit", "s"}};
+        for (const auto &[name, n] : m.dofs)
+          dofs[name] = {{"value", n}, {"unit", "1"}};
         p["measured"]["case_times"] = case_times;
         p["measured"]["dofs"] = dofs;
         p["measured"]["date"] = m.date.empty() ? nlohmann::json() : nlohmann::json(m.date);
@@ -93,7 +93,7 @@ namespace clearjoint::pipeline
 
   std::optional<std::pair<std::string, double>> task_figure(const PipelineConfig &config,
                                                             const std::string &stage,
-                                                            const std::string &study)
+                                                            const std::string &sweep)
   {
     const auto it = config.preset_measured.find(config.preset);
     if (it == config.preset_measured.end())
@@ -107,8 +107,8 @@ namespace clearjoint::pipeline
     };
     if (stage == "fe_stage")
     {
-      if (const auto c = m.case_times.find(study); c != m.case_times.end())
-        return std::pair<std::string, double>{"case_times." + study, c->second};
+      if (const auto c = m.case_times.find(sweep); c != m.case_times.end())
+        return std::pair<std::string, double>{"case_times." + sweep, c->second};
       return named("fe_case_time", m.fe_case_time);
     }
     if (stage == "fe_impact")

@@ -12,8 +12,8 @@
 
 namespace clearjoint::pipeline
 {
-  /// One line per FE study: "thickness 2.0 % (t_B = 4 mm, ...)" or "misalignment: not yet
-  /// measured (...)"; studies the preset gives no entry for say so too.
+  /// One line per FE sweep: "thickness 2.0 % (t_B = 4 mm, ...)" or "misalignment: not yet
+  /// measured (...)"; sweeps the preset gives no entry for say so too.
   std::string describe_preset_errors(const PipelineConfig &config, const std::string &preset);
 
   /// Every preset with its scene settings, measurements and whether it is the chosen one
@@ -33,11 +33,11 @@ namespace clearjoint::pipeline
   }
 
   /// The chosen preset's measured time of one task [s] and the key of `measured` it comes from:
-  /// stage fe_stage → case_times.<study>, else fe_case_time; fe_impact → impact_time;
+  /// stage fe_stage → case_times.<sweep>, else fe_case_time; fe_impact → impact_time;
   /// fe_rolling → rolling_time. nullopt for other stages and for figures not measured.
   std::optional<std::pair<std::string, double>> task_figure(const PipelineConfig &config,
                                                             const std::string &stage,
-                                                            const std::string &study = "");
+                                                            const std::string &sweep = "");
 
   /// "preset fast measured 2.3 s", and ", this run 3.1x that: figure stale?" when
   /// figure_missed(): the text beside a task's time in the log.

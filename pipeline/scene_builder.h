@@ -1,5 +1,5 @@
 // The scenes run_pipeline generates: a base scene (YAML or JSON) with its relative file paths
-// made absolute, the preset's overrides for its stage, then the study's or run's own overrides.
+// made absolute, the preset's overrides for its stage, then the sweep's or run's own overrides.
 #pragma once
 
 #include "pipeline/pipeline_config.h"

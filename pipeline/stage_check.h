@@ -1,6 +1,6 @@
 // One stage's --check run of an input the pipeline generated (a scene, or a fit command), and
 // how its failure is reported: an input error of the stage becomes an input error naming the
-// pipeline key that produced the rejected value (a study value, an override, a preset key, a
+// pipeline key that produced the rejected value (a sweep value, an override, a preset key, a
 // law), so the user is sent to the line of pipeline.yaml to change.
 #pragma once
 

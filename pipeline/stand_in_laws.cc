@@ -2,7 +2,7 @@
 
 #include "laws/law_family.h"
 #include "laws/law_file.h"
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 
 #include <algorithm>
 
@@ -14,9 +14,9 @@ namespace clearjoint::pipeline
 {
   namespace fs = std::filesystem;
 
-  StandInLaws::StandInLaws(fs::path folder, const std::vector<FeStudy> &studies)
+  StandInLaws::StandInLaws(fs::path folder, const std::vector<FeSweep> &sweeps)
     : folder_(std::move(folder))
-    , studies_(studies)
+    , sweeps_(sweeps)
   {
   }
 
@@ -27,7 +27,7 @@ namespace clearjoint::pipeline
     const std::string &law = paper_law();
     if (choice.value || !choice.value_keyword.empty())
       return law;
-    return family(*choice.study);
+    return family(*choice.sweep);
   }
 
   const std::string &StandInLaws::paper_law()
@@ -41,23 +41,23 @@ namespace clearjoint::pipeline
     return paper_law_;
   }
 
-  const std::string &StandInLaws::family(const std::string &study_name)
+  const std::string &StandInLaws::family(const std::string &sweep_name)
   {
-    auto &family = families_[study_name];
+    auto &family = families_[sweep_name];
     if (family.empty())
     {
-      const FeStudy *study = nullptr;
-      for (const auto &s : studies_)
-        if (s.name == study_name)
-          study = &s;
+      const FeSweep *sweep = nullptr;
+      for (const auto &s : sweeps_)
+        if (s.name == sweep_name)
+          sweep = &s;
       const laws::LawFile law = laws::read_law_file(paper_law_);
-      const SiValue lo = to_si(study->values.front(), study->unit);
-      const SiValue hi = to_si(study->values.back(), study->unit);
-      family = (folder_ / ("stand_in_family_" + study->name + ".json")).string();
+      const SiValue lo = to_si(sweep->values.front(), sweep->unit);
+      const SiValue hi = to_si(sweep->values.back(), sweep->unit);
+      family = (folder_ / ("stand_in_family_" + sweep->name + ".json")).string();
       // Two members, the same law at both ends of the values (one apart when they coincide, so
       // that the family has a range).
       laws::write_law_family(
-        family, laws::LawFamily(study->parameter, lo.unit, law.delta_ref,
+        family, laws::LawFamily(sweep->parameter, lo.unit, law.delta_ref,
                                 {{std::min(lo.value, hi.value), law},
                                  {std::max(lo.value, hi.value) + (lo.value == hi.value ? 1.0 : 0.0),
                                   law}},

@@ -1,5 +1,5 @@
-"""The report's FE part: one section per study — what was modelled and how it differs from the
-paper, F–δ with the paper's law over it, F_ref and n against the parameter (not K: K's unit
+"""The report's FE part: one section per FE sweep — what was modelled and how it differs from
+the paper, F–δ with the paper's law over it, F_ref and n against the parameter (not K: K's unit
 N/m^n changes with n), the paper's claim beside ours, the fields (VTK pictures, yield check,
 contact-field checks), the law table, and every case's own plots folded away."""
 import glob
@@ -35,17 +35,17 @@ REASONS = {
 }
 
 
-def case_label(study, case):
-    v, u = shown(case["value"], study["unit"])
+def case_label(sweep, case):
+    v, u = shown(case["value"], sweep["unit"])
     keyword = case.get("keyword")
     middle = f"{keyword} = " if keyword else ""
-    name = "θ" if study["parameter"] == "theta" else study["parameter"]
+    name = "θ" if sweep["parameter"] == "theta" else sweep["parameter"]
     return f"{name} = {middle}{v:.5g} {u}"
 
 
-def param_axis_label(study):
-    u = shown(1.0, study["unit"])[1]
-    name = "θ" if study["parameter"] == "theta" else study["parameter"]
+def param_axis_label(sweep):
+    u = shown(1.0, sweep["unit"])[1]
+    name = "θ" if sweep["parameter"] == "theta" else sweep["parameter"]
     return f"{name} [{u}]"
 
 
@@ -79,18 +79,18 @@ def trend_words(values):
     return 0, f"is not monotonic ({up} of {len(diffs)} steps up)"
 
 
-class FeStudy:
-    """One study of pipeline_summary.json with its laws and FE manifests loaded."""
+class FeSweep:
+    """One FE sweep of pipeline_summary.json (its `sweeps`) with its laws and FE manifests loaded."""
 
-    def __init__(self, study):
-        self.study = study
+    def __init__(self, sweep):
+        self.sweep = sweep
         self.cases = []  # (case, law, fe_manifest)
-        for case in study["cases"]:
+        for case in sweep["cases"]:
             law = load_or_none(case["law"])
             man = load_or_none(os.path.join(case["fe_dir"], "manifest.json"))
             if law is not None:
                 self.cases.append((case, law, man))
-        self.anchor = "study-" + study["name"]
+        self.anchor = "sweep-" + sweep["name"]
 
     def first_scene(self):
         for _, _, man in self.cases:
@@ -103,12 +103,12 @@ class FeStudy:
         return min(l["valid_range"]["delta_max"] for _, l, _ in self.cases)
 
     def values_shown(self):
-        return [shown(c["value"], self.study["unit"])[0] for c, _, _ in self.cases]
+        return [shown(c["value"], self.sweep["unit"])[0] for c, _, _ in self.cases]
 
 
 def modelled_paragraph(fs):
     s = fs.first_scene()
-    study = fs.study
+    sweep = fs.sweep
     loading = get(s, "loading", "journal", default="?")
     mu = get(s, "contact", "mu")
     g = get(s, "geometry", default={})
@@ -117,8 +117,8 @@ def modelled_paragraph(fs):
     sym = value_of(get(man, "extra", "symmetry_factor"))
     dofs = value_of(get(man, "extra", "n_dofs"))
     values = ", ".join(f"{v:.4g}" for v in fs.values_shown())
-    parts = [f"<p><strong>What was modelled.</strong> {esc(study['name'])}: "
-             f"{esc(param_axis_label(study))} ∈ {{{esc(values)}}}; "
+    parts = [f"<p><strong>What was modelled.</strong> {esc(sweep['name'])}: "
+             f"{esc(param_axis_label(sweep))} ∈ {{{esc(values)}}}; "
              f"{esc(LOADING_WORDS.get(loading, loading))}"]
     if g:
         parts.append(f"; bearing R_B = {g.get('R_B', 0) * 1e3:.4g} mm, L_B = {g.get('L_B', 0) * 1e3:.4g} mm, "
@@ -158,14 +158,14 @@ def modelled_paragraph(fs):
 
 
 def force_figure(fs):
-    study = fs.study
+    sweep = fs.sweep
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.5, 4.6))
     for case, law, _ in fs.cases:
         K, n = law["law"]["K"], law["law"]["n"]
         top = law["valid_range"]["delta_max"]
         # from a tenth of the range: below it the log–log panel would show a line without data
         xs = [top * (0.1 + 0.9 * i / 100) for i in range(101)]
-        label = case_label(study, case)
+        label = case_label(sweep, case)
         line, = ax1.plot([x * 1e3 for x in xs], [K * x ** n for x in xs], "-", label=label)
         ax2.plot([x * 1e3 for x in xs], [K * x ** n for x in xs], "-", color=line.get_color())
         d = law.get("diagnostics")
@@ -188,7 +188,7 @@ def force_figure(fs):
     ax2.set_title("log–log (slope = n)")
     ax1.legend(fontsize=8)
     fig.tight_layout()
-    return figure_html(fig, f"Study {esc(study['name'])}: FE data (points) and fits F = K·δ^n "
+    return figure_html(fig, f"Sweep {esc(sweep['name'])}: FE data (points) and fits F = K·δ^n "
                             f"(lines) for every case, with the paper's t_B = 4 mm law (dashed). "
                             f"Forces are the full joint's.")
 
@@ -196,7 +196,7 @@ def force_figure(fs):
 def fref_figure(fs):
     """F_ref and n against the parameter with the regression's 95 % interval and, for F_ref,
     the measured mesh error as a second, wider bar."""
-    study = fs.study
+    sweep = fs.sweep
     dref = fs.delta_ref()
     xs = fs.values_shown()
     F, F_hw, F_mesh, ns, n_lo, n_hi = [], [], [], [], [], []
@@ -218,7 +218,7 @@ def fref_figure(fs):
                 label="F_ref, 95 % interval of the fit")
     a2.errorbar(xs, ns, yerr=[n_lo, n_hi], fmt="s-", color="C3", capsize=4,
                 label="n, 95 % interval of the fit")
-    if study["parameter"] == "t_B":
+    if sweep["parameter"] == "t_B":
         a1.plot([_paper.TB4_T_B * 1e3], [_paper.tb4_force(dref)], "k*", ms=12,
                 label="paper t_B = 4 mm")
         px = sorted([_paper.TB4_T_B] + list(_paper.N_BY_T_B))
@@ -226,9 +226,9 @@ def fref_figure(fs):
         a2.plot([x * 1e3 for x in px], [pn[x] for x in px], "k*", ms=12, label="paper (§3.1)")
     # (no paper line for θ: its aligned law, 16 344 N at 0.05 mm, is ~3× our tilted forces and
     # would flatten the trend this panel is for; the caption gives the number)
-    a1.set_xlabel(param_axis_label(study))
+    a1.set_xlabel(param_axis_label(sweep))
     a1.set_ylabel(f"F_ref = F(δ = {dref * 1e3:.3g} mm) [N]")
-    a2.set_xlabel(param_axis_label(study))
+    a2.set_xlabel(param_axis_label(sweep))
     a2.set_ylabel("exponent n [1]")
     for a in (a1, a2):
         a.grid(True, alpha=0.3)
@@ -236,9 +236,9 @@ def fref_figure(fs):
     fig.tight_layout()
     return figure_html(fig, f"F_ref — the force at the reference penetration δ_ref = "
                             f"{dref * 1e3:.3g} mm, comparable across laws with different n — and "
-                            f"the exponent n against {esc(param_axis_label(study))}. K is not "
+                            f"the exponent n against {esc(param_axis_label(sweep))}. K is not "
                             f"plotted: its unit N/m^n differs from law to law."
-                            + ("" if study["parameter"] == "t_B" else
+                            + ("" if sweep["parameter"] == "t_B" else
                                f" For scale: the paper's aligned t_B = 4 mm law gives "
                                f"{_paper.tb4_force(dref):.0f} N at this δ."))
 
@@ -246,15 +246,15 @@ def fref_figure(fs):
 def trend_finding(fs):
     """One sentence for the summary: our trend of F_ref over the parameter beside the paper's
     claim, or None with fewer than two cases."""
-    claim = _paper.CLAIMS.get(fs.study["parameter"])
+    claim = _paper.CLAIMS.get(fs.sweep["parameter"])
     dref = fs.delta_ref()
     Fs = [f_ref_interval(l, dref)[0] for _, l, _ in fs.cases]
     if len(Fs) < 2:
         return None
     sign, words = trend_words(Fs)
     xs = fs.values_shown()
-    text = (f"<a href='#{esc(fs.anchor)}'>{esc(fs.study['name'])}</a>: F at δ = {dref * 1e3:.3g} mm "
-            f"{words} over {esc(param_axis_label(fs.study))} = {xs[0]:.4g} … {xs[-1]:.4g} "
+    text = (f"<a href='#{esc(fs.anchor)}'>{esc(fs.sweep['name'])}</a>: F at δ = {dref * 1e3:.3g} mm "
+            f"{words} over {esc(param_axis_label(fs.sweep))} = {xs[0]:.4g} … {xs[-1]:.4g} "
             f"({Fs[0]:.0f} → {Fs[-1]:.0f} N, {100 * (Fs[-1] - Fs[0]) / Fs[0]:+.1f} %)")
     if claim:
         expected, _ = claim
@@ -262,13 +262,13 @@ def trend_finding(fs):
             text += " — as the paper says"
         else:
             text += (" — <strong>the paper says it " + ("grows" if expected > 0 else "falls") +
-                     "</strong>; our reading of why in the study's section")
+                     "</strong>; our reading of why in the sweep's section")
     return text
 
 
 def claim_table(fs):
-    study = fs.study
-    claim = _paper.CLAIMS.get(study["parameter"])
+    sweep = fs.sweep
+    claim = _paper.CLAIMS.get(sweep["parameter"])
     dref = fs.delta_ref()
     Fs = [f_ref_interval(l, dref)[0] for _, l, _ in fs.cases]
     if len(Fs) < 2:
@@ -279,7 +279,7 @@ def claim_table(fs):
     errs = [mesh_error(l) for _, l, _ in fs.cases]
     e = max([x for x in errs if x] or [0.0])
     ours = (f"F_ref {words} from {thousands(first)} N to {thousands(last)} N ({change:+.1f} %) over "
-            f"{esc(param_axis_label(study))} = {fs.values_shown()[0]:.4g} … "
+            f"{esc(param_axis_label(sweep))} = {fs.values_shown()[0]:.4g} … "
             f"{fs.values_shown()[-1]:.4g}")
     if e:
         steps = [abs(b - a) / a for a, b in zip(Fs, Fs[1:])]
@@ -291,10 +291,10 @@ def claim_table(fs):
     if claim:
         expected, text = claim
         agree = sign == expected
-        reason = "" if agree else REASONS.get(study["parameter"], "not analysed")
+        reason = "" if agree else REASONS.get(sweep["parameter"], "not analysed")
         rows.append(f"<tr><td>trend of F at fixed δ</td><td>{esc(text)}</td><td>{ours}</td>"
                     f"<td>{'yes' if agree else '<strong>no</strong>'}</td><td>{esc(reason)}</td></tr>")
-    if study["parameter"] == "t_B":
+    if sweep["parameter"] == "t_B":
         for case, law, _ in fs.cases:
             if abs(case["value"] - _paper.TB4_T_B) < 1e-9:
                 f, hw = f_ref_interval(law, _paper.DELTA_MAX)
@@ -324,7 +324,7 @@ def claim_table(fs):
 
 
 def law_table(fs, base):
-    study = fs.study
+    sweep = fs.sweep
     dref = fs.delta_ref()
     rows = ["<table><tr><th>case</th><th>F = K·δ^n, δ in mm, F in N</th><th>K [N/m^n] (SI)</th>"
             "<th>n (95 %)</th><th>F_ref at δ_ref [N] (fit 95 %)</th><th>mesh error of F</th>"
@@ -341,23 +341,23 @@ def law_table(fs, base):
             links.append(rel_link(pvd, base, "fields (ParaView)"))
         if case.get("mesh"):
             links.append(rel_link(case["mesh"], base, "mesh"))
-        rows.append(f"<tr><td>{esc(case_label(study, case))}</td>"
+        rows.append(f"<tr><td>{esc(case_label(sweep, case))}</td>"
                     f"<td>{law['mm_N']['K']:.6g}·δ^{law['law']['n']:.4f}</td><td>{law['law']['K']:.5g}</td>"
                     f"<td>{law['law']['n']:.4f} ({n_ci[0]:.4f} … {n_ci[1]:.4f})</td>"
                     f"<td>{f:.5g} ± {hw or 0:.3g}</td>"
                     f"<td>{f'± {100 * e:.3g} %' if e else 'not measured'}</td>"
                     f"<td>{d.get('r_squared', float('nan')):.6f}</td><td>{' · '.join(links)}</td></tr>")
     rows.append("</table>")
-    fam = study.get("family")
+    fam = sweep.get("family")
     if fam:
-        rows.append(f"<p>Law family over {esc(study['parameter'])} (parameter in "
-                    f"{esc(study.get('family_unit', study['unit']))}, SI): {rel_link(fam, base)}.</p>")
+        rows.append(f"<p>Law family over {esc(sweep['parameter'])} (parameter in "
+                    f"{esc(sweep.get('family_unit', sweep['unit']))}, SI): {rel_link(fam, base)}.</p>")
     return "".join(rows)
 
 
 def picture_case(fs):
-    """The case drawn for the study: t_B = 4 mm (the paper's bearing), θ = 2.5° (Fig. 7b)."""
-    want = {"t_B": 0.004, "theta": 2.5}.get(fs.study["parameter"])
+    """The case drawn for the sweep: t_B = 4 mm (the paper's bearing), θ = 2.5° (Fig. 7b)."""
+    want = {"t_B": 0.004, "theta": 2.5}.get(fs.sweep["parameter"])
     best = None
     for case, law, man in fs.cases:
         if not os.path.exists(os.path.join(case["fe_dir"], "fields", "solution.pvd")):
@@ -484,14 +484,14 @@ def cached_field_stats(case, man, warnings, anchor, stick_code=2):
 def yield_section(fs, warnings):
     """Every case's largest von Mises stress and volume above the yield stress (fe_stage's
     manifest block when present, else the report's own from the VTU), and one warning for the
-    study when any case exceeds it."""
+    sweep when any case exceeds it."""
     rows, above, limits = [], [], set()
     for case, law, man in fs.cases:
         stats = None if isinstance(get(man, "extra", "yield_check"), dict) else \
             cached_field_stats(case, man, warnings, fs.anchor)
         y, source = yield_check(case, man, stats)
         if not y or y.get("max_von_mises") is None:
-            rows.append(f"<tr><td>{esc(case_label(fs.study, case))}</td><td colspan='5'>no fields, "
+            rows.append(f"<tr><td>{esc(case_label(fs.sweep, case))}</td><td colspan='5'>no fields, "
                         f"no yield check in the manifest</td></tr>")
             continue
         ys = y["yield_stress"] or scene_yield_stress(man)
@@ -500,7 +500,7 @@ def yield_section(fs, warnings):
         vb = y.get("volume_above_yield_bearing")
         if vm > ys:
             above.append((case, vm, vol, frac, ys))
-        rows.append(f"<tr><td>{esc(case_label(fs.study, case))}</td><td>{vm / 1e6:.0f}</td>"
+        rows.append(f"<tr><td>{esc(case_label(fs.sweep, case))}</td><td>{vm / 1e6:.0f}</td>"
                     f"<td>{f'{vol * 1e9:.4g}' if vol is not None else '–'}</td>"
                     f"<td>{f'{vb * 1e9:.4g}' if vb is not None else '–'}</td>"
                     f"<td>{f'{100 * frac:.3g} %' if frac is not None else '–'}</td>"
@@ -512,7 +512,7 @@ def yield_section(fs, warnings):
         vols = [a[2] for a in above if a[2] is not None]
         yss = sorted({a[4] for a in above})  # the scene may name its own yield stress
         ys_txt = " / ".join(f"{y / 1e6:.4g}" for y in yss)
-        warnings.add(f"FE {fs.study['name']}",
+        warnings.add(f"FE {fs.sweep['name']}",
                      f"stress above the yield stress {ys_txt} MPa in "
                      f"{len(above)} of {len(fs.cases)} cases: largest von Mises "
                      f"{min(vms) / 1e6:.0f} … {max(vms) / 1e6:.0f} MPa"
@@ -539,7 +539,7 @@ def pictures_and_checks(fs, run_dir, warnings):
     if not pick:
         return "<p>No field files (VTU) to draw: the FE cases were run without fields.</p>", None
     case, law, man = pick
-    label = case_label(fs.study, case)
+    label = case_label(fs.sweep, case)
     from plotting import fields
     sym = value_of(get(man, "extra", "symmetry_factor"), 1.0)
     mu = get(man, "extra", "scene", "contact", "mu")
@@ -556,7 +556,7 @@ def pictures_and_checks(fs, run_dir, warnings):
     stats = cached_field_stats(case, man, warnings, fs.anchor, stick_code)
     out = []
     R_B = get(man, "extra", "scene", "geometry", "R_B")
-    png = os.path.join(run_dir, "pictures", f"{fs.study['name']}_fields.png")
+    png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fields.png")
     os.makedirs(os.path.dirname(png), exist_ok=True)
     rendered = False
     if R_B:
@@ -569,7 +569,7 @@ def pictures_and_checks(fs, run_dir, warnings):
                                                                 "yield_stress")) or
                                                    scene_yield_stress(man)),
                             # VTK's default font has no Greek letters
-                            "--title", f"{fs.study['name']}: {label.replace('θ', 'theta').replace('°', ' deg')}"],
+                            "--title", f"{fs.sweep['name']}: {label.replace('θ', 'theta').replace('°', ' deg')}"],
                            capture_output=True, text=True)
         rendered = r.returncode == 0 and os.path.exists(png)
         if not rendered:
@@ -580,7 +580,7 @@ def pictures_and_checks(fs, run_dir, warnings):
                                            "geometry.R_B (the bore, where the contact is)", fs.anchor)
     if rendered:
         out.append(image_file_html(
-            png, f"{esc(fs.study['name'])}, {esc(label)}, δ = "
+            png, f"{esc(fs.sweep['name'])}, {esc(label)}, δ = "
                  f"{get(man, 'extra', 'scene', 'loading', 'delta_max', default=0) * 1e3:.3g} mm "
                  f"(last increment), rendered off-screen with VTK from "
                  f"{esc(os.path.relpath(fields.last_field_file(case['fe_dir']), run_dir))}: the mesh, von "
@@ -619,7 +619,7 @@ def pictures_and_checks(fs, run_dir, warnings):
 def per_case_details(fs, base):
     out = []
     for case, law, man in fs.cases:
-        label = case_label(fs.study, case)
+        label = case_label(fs.sweep, case)
         body = []
         status = get(man, "status", default="missing")
         wall = value_of(get(man, "wall_time"))
@@ -638,16 +638,16 @@ def per_case_details(fs, base):
                            f"{thousands(value_of(get(man, 'extra', 'force_at_delta_max'), float('nan')))} N, "
                            f"n = {law['law']['n']:.4f} — per-case plots and files",
                            "".join(body)))
-    fam_png = os.path.splitext(fs.study.get("family") or "")[0] + ".png"
-    if fs.study.get("family") and os.path.exists(fam_png):
-        out.append(details(f"law family over {esc(fs.study['parameter'])}: plot",
+    fam_png = os.path.splitext(fs.sweep.get("family") or "")[0] + ".png"
+    if fs.sweep.get("family") and os.path.exists(fam_png):
+        out.append(details(f"law family over {esc(fs.sweep['parameter'])}: plot",
                            image_file_html(fam_png, "law family: members and F_ref, n")))
     return "".join(out)
 
 
 def fe_case_warnings(fs, warnings):
     for case, law, man in fs.cases:
-        label = f"FE {fs.study['name']}, {case_label(fs.study, case)}"
+        label = f"FE {fs.sweep['name']}, {case_label(fs.sweep, case)}"
         status = get(man, "status")
         if status != "complete":
             warnings.add(label, f"fe_stage status {esc(str(status))}: "
@@ -658,12 +658,12 @@ def fe_case_warnings(fs, warnings):
                                 f"not follow one power law well", fs.anchor)
 
 
-def study_section(study, base, warnings):
-    fs = FeStudy(study)
-    head = (f"<h2 id='{esc(fs.anchor)}'>FE study “{esc(study['name'])}”: contact force over "
-            f"{esc(param_axis_label(study))}</h2>")
+def sweep_section(sweep, base, warnings):
+    fs = FeSweep(sweep)
+    head = (f"<h2 id='{esc(fs.anchor)}'>FE sweep “{esc(sweep['name'])}”: contact force over "
+            f"{esc(param_axis_label(sweep))}</h2>")
     if not fs.cases:
-        warnings.add(f"FE {study['name']}", "no fitted laws found", fs.anchor)
+        warnings.add(f"FE {sweep['name']}", "no fitted laws found", fs.anchor)
         return head + "<p>No fitted laws found.</p>", fs
     fe_case_warnings(fs, warnings)
     pictures, _ = pictures_and_checks(fs, base, warnings)

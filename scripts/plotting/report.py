@@ -1,7 +1,7 @@
 """The pipeline's HTML report: one self-contained file (figures embedded as PNG data, no network
 resources) that leads with the answer — a summary of what ran, the headline laws beside the
 paper's, the MBD headline numbers and every warning of the run — then a table of contents, one
-section per FE study (what was modelled, how it differs from the paper, F–δ with the paper's law,
+section per FE sweep (what was modelled, how it differs from the paper, F–δ with the paper's law,
 F_ref and n against the parameter, the paper's claims beside ours, pictures of the fields), the
 FE impact sweep beside the quasi-static curves (and the MBD laws where compared), the FE rolling
 study (spin rates against the paper's Eqs. 7–8, energy split, strain profile, slip stages), the
@@ -19,14 +19,14 @@ import os
 
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
-from plotting._report_fe import f_ref_interval, mesh_error, study_section, trend_finding
+from plotting._report_fe import f_ref_interval, mesh_error, sweep_section, trend_finding
 from plotting._report_impact import impact_headline, impact_section
 from plotting._report_mbd import headline_table, mbd_section
 from plotting._report_rolling import rolling_headline, rolling_section
 
 
 # What each preset error (presets.<p>.measured.error_F_max.<name>) is the error of: F(δ_max) for
-# a quasi-static FE study; the impact study's peak force; the rolling study's plastic dissipation
+# a quasi-static FE sweep; the impact study's peak force; the rolling study's plastic dissipation
 # (pipeline.yaml, docs/pipeline.md "Presets' measured error and cost").
 ERROR_OF = {"impact": "peak force", "rolling": "plastic dissipation"}
 
@@ -45,8 +45,8 @@ STALE_FACTOR = 1.5
 
 
 def measured_time(measured, key):
-    """measured[key] for "fe_case_time" & co., measured["case_times"][study] for
-    "case_times.<study>"."""
+    """measured[key] for "fe_case_time" & co., measured["case_times"][sweep] for
+    "case_times.<sweep>"."""
     if key.startswith("case_times."):
         return ((measured or {}).get("case_times") or {}).get(key.split(".", 1)[1])
     return (measured or {}).get(key)
@@ -81,29 +81,38 @@ def stale(run_seconds, figure_seconds):
             figure_seconds > STALE_FACTOR * run_seconds)
 
 
+def summary_sweeps(summary):
+    """The FE sweeps of pipeline_summary.json: `sweeps`, or `studies` in a run folder written
+    before issue 29 renamed them (the report still reads those)."""
+    if "sweeps" in summary:
+        return summary["sweeps"]
+    return summary.get("studies") or []
+
+
 def preset_section(summary):
     """Every preset's measured cost (DoFs, times of one FE curve, the impact sweep, the rolling
-    study and the whole pipeline) and error per FE study (of F(δ_max); the impact study's of its
+    study and the whole pipeline) and error per FE sweep (of F(δ_max); the impact study's of its
     peak force, the rolling study's of its plastic dissipation), each error with where it was
     measured; the chosen preset marked. A null value reads "not measured"."""
     presets = summary.get("presets") or []
     if not presets:
         return ""
-    studies = [s["name"] for s in summary["studies"]]
+    # one error column per FE sweep, then the other names measured (impact, rolling)
+    columns = [s["name"] for s in summary_sweeps(summary)]
     for p in presets:
         for name in ((p.get("measured") or {}).get("error_F_max") or {}):
-            if name not in studies:
-                studies.append(name)
+            if name not in columns:
+                columns.append(name)
     times = [t for t in PRESET_TIMES
              if t[3] is None or summary.get(t[3])
              or any((p.get("measured") or {}).get(t[0]) for p in presets)]
-    # an FE study's own case time (bench/measure_presets.py writes case_times.<study>)
-    case_studies = []
+    # an FE sweep's own case time (bench/measure_presets.py writes case_times.<sweep>)
+    case_sweeps = []
     for p in presets:
         for name in ((p.get("measured") or {}).get("case_times") or {}):
-            if name not in case_studies:
-                case_studies.append(name)
-    times[1:1] = [(f"case_times.{n}", f"one FE case, {n}", "{:.3g}", None) for n in case_studies]
+            if name not in case_sweeps:
+                case_sweeps.append(name)
+    times[1:1] = [(f"case_times.{n}", f"one FE case, {n}", "{:.3g}", None) for n in case_sweeps]
 
     def quantity(q, fmt, unit):
         if not q:
@@ -115,7 +124,7 @@ def preset_section(summary):
         return f"error of {ERROR_OF.get(s, 'F(δ_max)')}, {html.escape(s)} [%]"
 
     rows = ["<h2 id='presets'>Presets: measured cost and error</h2>",
-            "<p>Estimated relative error per FE study — of the force at δ_max (against a Richardson "
+            "<p>Estimated relative error per FE sweep — of the force at δ_max (against a Richardson "
             "extrapolation over the mesh levels), of the impact study's peak force, of the rolling "
             "study's plastic dissipation (over the time steps) — and cost, as measured "
             "(docs/benchmarks.md, docs/fe.md). Point at an error to see where it was measured "
@@ -123,12 +132,12 @@ def preset_section(summary):
             "exists yet.</p>",
             "<table><tr><th>preset</th><th>FE scene settings</th><th>FE DoFs [1]</th>" +
             "".join(f"<th>{label} [s]</th>" for _, label, _, _ in times) +
-            "".join(f"<th>{error_heading(s)}</th>" for s in studies) +
+            "".join(f"<th>{error_heading(s)}</th>" for s in columns) +
             "<th>source</th></tr>"]
     missed = []
     chosen_name = next((p["name"] for p in presets if p.get("chosen")), "")
 
-    def this_run_row(p, times, studies, measured_by_run):
+    def this_run_row(p, times, columns, measured_by_run):
         """The row of this run's times under the chosen preset's figures: a figure this run
         misses by more than STALE_FACTOR either way is marked; reused tasks measure nothing."""
         m = p.get("measured") or {}
@@ -152,14 +161,14 @@ def preset_section(summary):
                 cells.append(f"<td>{shown}</td>")
         return (f"<tr><td>this run</td><td>times of this run's tasks (those that ran) under "
                 f"preset {html.escape(p['name'])}</td><td></td>" + "".join(cells) +
-                "".join("<td></td>" for _ in studies) + "<td>pipeline_summary.json</td></tr>",
+                "".join("<td></td>" for _ in columns) + "<td>pipeline_summary.json</td></tr>",
                 missed)
 
     for p in presets:
         m = p.get("measured") or {}
         errors = m.get("error_F_max") or {}
         cells = []
-        for s in studies:
+        for s in columns:
             e = errors.get(s)
             if e is None:
                 cells.append("<td>not stated</td>")
@@ -177,7 +186,7 @@ def preset_section(summary):
                     "".join(cells) +
                     f"<td>{html.escape(m.get('note', 'no measurements stated'))}</td></tr>")
         if p.get("chosen") and summary.get("tasks"):
-            row, missed = this_run_row(p, times, studies, run_times(summary))
+            row, missed = this_run_row(p, times, columns, run_times(summary))
             rows.append(row)
     rows.append("</table>")
     if missed:
@@ -188,7 +197,7 @@ def preset_section(summary):
                     f"{html.escape(chosen_name)}</code> (docs/benchmarks.md, \"Preset figures\").</p>")
     # Where each error was measured, per column, each distinct text once with its presets.
     items = []
-    for s in studies:
+    for s in columns:
         wheres = {}
         for p in presets:
             e = ((p.get("measured") or {}).get("error_F_max") or {}).get(s)
@@ -223,12 +232,12 @@ def chosen_preset(summary):
     return None
 
 
-def what_ran(summary, studies):
+def what_ran(summary, sweeps):
     preset = chosen_preset(summary)
     errors = get(preset, "measured", "error_F_max", default={}) or {}
     items = []
-    for fs in studies:
-        st = fs.study
+    for fs in sweeps:
+        st = fs.sweep
         scene = fs.first_scene()
         e = get(errors, st["name"], "percent")
         loading = get(scene, "loading", "journal", default="?")
@@ -244,10 +253,10 @@ def what_ran(summary, studies):
     settings = ", ".join(f"{k} = {v}" for k, v in sorted((get(preset, "fe", default={}) or {}).items()))
     return (f"<p>Preset <strong>{esc(summary['preset'])}</strong> "
             f"({esc(settings or 'the scenes as they are')})."
-            f" FE studies:</p><ul>{''.join(items)}</ul>")
+            f" FE sweeps:</p><ul>{''.join(items)}</ul>")
 
 
-def headline_laws(studies, has_band):
+def headline_laws(sweeps, has_band):
     """Our t_B = 4 mm law beside the paper's, in mm/N and SI, and F at 0.05 mm."""
     rows = ["<table><tr><th>law</th><th>δ in mm, F in N</th><th>SI: K [N/m^n]</th><th>n</th>"
             "<th>F(0.05 mm) [N]</th><th>uncertainty of F(0.05 mm)</th></tr>"]
@@ -256,8 +265,8 @@ def headline_laws(studies, has_band):
                 f"<td>{_paper.TB4_N}</td><td>{_paper.tb4_force(_paper.DELTA_MAX):.0f}</td>"
                 f"<td>its mesh study: 3.12 %</td></tr>")
     verdict = ""
-    for fs in studies:
-        if fs.study["parameter"] != "t_B":
+    for fs in sweeps:
+        if fs.sweep["parameter"] != "t_B":
             continue
         for case, law, _ in fs.cases:
             if abs(case["value"] - _paper.TB4_T_B) > 1e-9:
@@ -286,9 +295,9 @@ def headline_laws(studies, has_band):
     return "".join(rows) + verdict
 
 
-def summary_section(summary, studies, runs, warnings, has_band):
+def summary_section(summary, sweeps, runs, warnings, has_band):
     parts = ["<section class='summary'><h2 id='summary'>Summary</h2>",
-             "<h3>What ran</h3>", what_ran(summary, studies)]
+             "<h3>What ran</h3>", what_ran(summary, sweeps)]
     mus = sorted({get(r.joint, "friction", "mu") for r in runs if r.joint} - {None})
     if runs:
         parts.append(f"<p>Multibody: the paper's slider–crank over "
@@ -298,8 +307,8 @@ def summary_section(summary, studies, runs, warnings, has_band):
     parts.append(impact_headline(summary.get("impact")))
     parts.append(rolling_headline(summary.get("rolling")))
     parts.append("<h3>Headline law beside the paper's</h3>")
-    parts.append(headline_laws(studies, has_band))
-    findings = [t for t in (trend_finding(fs) for fs in studies if fs.cases) if t]
+    parts.append(headline_laws(sweeps, has_band))
+    findings = [t for t in (trend_finding(fs) for fs in sweeps if fs.cases) if t]
     if findings:
         parts.append("<h3>Trends beside the paper's claims</h3><ul>" +
                      "".join(f"<li>{t}</li>" for t in findings) + "</ul>")
@@ -312,10 +321,10 @@ def summary_section(summary, studies, runs, warnings, has_band):
     return "".join(parts)
 
 
-def toc(studies, has_mbd, has_band, has_impact=False, has_rolling=False):
+def toc(sweeps, has_mbd, has_band, has_impact=False, has_rolling=False):
     items = ["<li><a href='#summary'>Summary</a> (<a href='#warnings'>warnings</a>)</li>"]
-    for fs in studies:
-        items.append(f"<li><a href='#{esc(fs.anchor)}'>FE study “{esc(fs.study['name'])}”</a></li>")
+    for fs in sweeps:
+        items.append(f"<li><a href='#{esc(fs.anchor)}'>FE sweep “{esc(fs.sweep['name'])}”</a></li>")
     if has_impact:
         items.append("<li><a href='#impact'>FE impact study</a></li>")
     if has_rolling:
@@ -348,11 +357,11 @@ def main(argv):
     base = os.path.dirname(os.path.abspath(a.output))
     os.makedirs(base, exist_ok=True)
     warnings = Warnings()
-    study_html, studies = [], []
-    for st in summary["studies"]:
-        html_, fs = study_section(st, base, warnings)
-        study_html.append(html_)
-        studies.append(fs)
+    sweep_html, sweeps = [], []
+    for st in summary_sweeps(summary):
+        html_, fs = sweep_section(st, base, warnings)
+        sweep_html.append(html_)
+        sweeps.append(fs)
     impact_html = impact_section(summary.get("impact"), base, warnings)
     rolling_html = rolling_section(summary.get("rolling"), base, warnings)
     mbd_html, runs = ("", [])
@@ -364,10 +373,10 @@ def main(argv):
              f"{esc(summary['preset'])}</h1>",
              f"<p>Pipeline file: {esc(summary['pipeline_file'])}. Laws are shown in SI "
              f"(δ in m, F in N) and in the paper's units (δ in mm, F in N).</p>",
-             summary_section(summary, studies, runs, warnings, "id='band'" in mbd_html),
-             toc(studies, bool(runs), "id='band'" in mbd_html, bool(impact_html),
+             summary_section(summary, sweeps, runs, warnings, "id='band'" in mbd_html),
+             toc(sweeps, bool(runs), "id='band'" in mbd_html, bool(impact_html),
                  bool(rolling_html))]
-    parts += study_html
+    parts += sweep_html
     parts.append(impact_html)
     parts.append(rolling_html)
     parts.append(mbd_html)

@@ -55,12 +55,12 @@ namespace fake_pipeline
     return "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir + "/out\npreset: fast\n" +
            "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
            "accurate: {fe: null, mbd: null}}\n"
-           "fe_studies:\n  - name: thickness\n    scene: " + dir + "/fe.yaml\n"
+           "fe_sweeps:\n  - name: thickness\n    scene: " + dir + "/fe.yaml\n"
            "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: " + values + "\n"
            "fit: {weighting: absolute}\n"
            "mbd_runs:\n"
-           "  - {name: fitted, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness, value: 0.002}], band: true}\n"
-           "  - {name: family, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, study: thickness}]}\n"
+           "  - {name: fitted, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, sweep: thickness, value: 0.002}], band: true}\n"
+           "  - {name: family, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, sweep: thickness}]}\n"
            "  - {name: paper, scene: " + dir + "/mbd.yaml, laws: [{key: joint.law_file, file: " + dir + "/law.json}]}\n"
            "report: false\n";
   }

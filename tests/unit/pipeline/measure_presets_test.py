@@ -52,7 +52,7 @@ presets:
       error_F_max:
         thickness: {percent: 0.85, where: "by hand"}
 
-fe_studies:
+fe_sweeps:
   - name: thickness
     scene: thickness.yaml
     parameter: {name: t_B, unit: m, key: geometry.t_B}

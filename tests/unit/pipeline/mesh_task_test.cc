@@ -58,7 +58,7 @@ TEST(MeshTask, GeoInputsIncludeItsIncludes)
     << "changing the included journal must re-mesh";
 }
 
-TEST(MeshTask, TheTaskPassesTheJointAndTheStudysNumbers)
+TEST(MeshTask, TheTaskPassesTheJointAndTheSweepsNumbers)
 {
   const std::map<std::string, double> joint = {
     {"R_B", 0.01}, {"t_B", 0.006}, {"L_B", 0.02}, {"c_r", 5e-4}, {"c_a", 1e-3}};
@@ -84,7 +84,7 @@ TEST(MeshTask, TheTaskPassesTheJointAndTheStudysNumbers)
   EXPECT_NE(make_mesh_task(geometries + "/flanged_bearing.geo", joint, {{"h", 1e-3}}, "/tmp/run", "/b")
               .output_dir,
             t.output_dir);
-  // A study's number for a joint key wins (the user asked for it explicitly).
+  // A sweep's number for a joint key wins (the user asked for it explicitly).
   const Task u = make_mesh_task(geometries + "/flanged_bearing.geo", joint, {{"t_B", 0.005}},
                                 "/tmp/run", "/b");
   std::string uargs;

@@ -36,7 +36,7 @@ namespace
     std::string root;
   };
 
-  /// A pipeline with one FE study and one MBD run of the shipped slider–crank scene using the
+  /// A pipeline with one FE sweep and one MBD run of the shipped slider–crank scene using the
   /// law fitted for t_B = 4 mm; `mbd_extra` is added to the MBD run's mapping.
   std::string pipeline(const test_support::ScratchDir &dir, const std::string &mbd_extra = "",
                        const std::string &output_root = "", const std::string &name = "m")
@@ -48,12 +48,12 @@ namespace
       (output_root.empty() ? dir.file("out") : output_root) + "\npreset: fast\n" +
       "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
       "accurate: {fe: null, mbd: null}}\n"
-      "fe_studies:\n  - name: thickness\n    scene: " + dir.file("fe.yaml") + "\n"
+      "fe_sweeps:\n  - name: thickness\n    scene: " + dir.file("fe.yaml") + "\n"
       "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004]\n"
       "fit: {weighting: absolute}\n"
       "mbd_runs:\n  - {name: " + name + ", scene: " + src +
       "/mbd_stage/scenes/slider_crank_fe_law.yaml, laws: [{key: "
-      "clearance_joints.0.normal.law_file, study: thickness, value: 0.004}]" + mbd_extra + "}\n"
+      "clearance_joints.0.normal.law_file, sweep: thickness, value: 0.004}]" + mbd_extra + "}\n"
       "report: false\n";
     test_support::write_text(dir.file("p.yaml"), text);
     return dir.file("p.yaml");

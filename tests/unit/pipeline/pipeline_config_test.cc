@@ -1,8 +1,9 @@
 #include "common/document_reader.h"
 #include "common/error.h"
+#include "common/log.h"
 #include "geometry/joint_geometry.h"
 #include "pipeline/pipeline_config.h"
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -21,7 +22,7 @@ presets:
   fast: {fe: {mesh.level: 0}, mbd: null}
   standard: {fe: null, mbd: null}
   accurate: {fe: null, mbd: null}
-fe_studies:
+fe_sweeps:
   - name: thickness
     scene: fe.yaml
     parameter: {name: t_B, unit: m, key: geometry.t_B}
@@ -31,7 +32,7 @@ mbd_runs:
   - name: a
     scene: m.yaml
     laws:
-      - {key: joint.law_file, study: thickness, value: 0.004}
+      - {key: joint.law_file, sweep: thickness, value: 0.004}
   - name: b
     scene: m.yaml
 )";
@@ -53,7 +54,7 @@ TEST(PipelineConfig, ReadsAGoodFile)
   test_support::ScratchDir dir("pipeline_config_good");
   test_support::write_text(dir.file("p.yaml"), good);
   const auto c = read_pipeline_config(dir.file("p.yaml"));
-  EXPECT_EQ(c.fe_studies.at(0).values.size(), 2u);
+  EXPECT_EQ(c.fe_sweeps.at(0).values.size(), 2u);
   EXPECT_EQ(c.mbd_runs.at(0).laws.at(0).value.value(), 0.004);
   EXPECT_TRUE(c.mbd_runs.at(1).laws.empty());
   EXPECT_EQ(c.presets.at("fast").at("fe:mesh.level"), 0);
@@ -65,10 +66,10 @@ TEST(PipelineConfig, BadFilesNameTheKeyAndTheValidRange)
   EXPECT_NE(m.find("fit.wieghting"), std::string::npos) << m;
   m = error_for("preset: fast", "preset: quick");
   EXPECT_NE(m.find("fast|standard|accurate"), std::string::npos) << m;
-  m = error_for("study: thickness, value: 0.004", "study: thickness, value: 0.005");
+  m = error_for("sweep: thickness, value: 0.004", "sweep: thickness, value: 0.005");
   EXPECT_NE(m.find("0.002, 0.004"), std::string::npos) << m;
-  m = error_for("study: thickness, value", "study: misalignment, value");
-  EXPECT_NE(m.find("one of the fe_studies: thickness"), std::string::npos) << m;
+  m = error_for("sweep: thickness, value", "sweep: misalignment, value");
+  EXPECT_NE(m.find("one of the fe_sweeps: thickness"), std::string::npos) << m;
   m = error_for("values: [0.002, 0.004]", "values: [0.004, 0.002]");
   EXPECT_NE(m.find("strictly increasing"), std::string::npos) << m;
   m = error_for("schema: clearjoint.pipeline/1", "schema: clearjoint.pipeline/0");
@@ -93,28 +94,115 @@ TEST(PipelineConfig, SetKeyPath)
 TEST(PipelineConfig, BadNewKeysNameTheKeyAndTheValidRange)
 {
   std::string m = error_for("values: [0.002, 0.004]", "values: [0.002, theta_maxx]");
-  EXPECT_NE(m.find("fe_studies[0].values[1]"), std::string::npos) << m;
+  EXPECT_NE(m.find("fe_sweeps[0].values[1]"), std::string::npos) << m;
   EXPECT_NE(m.find("or the keyword theta_max"), std::string::npos) << m;
   m = error_for("values: [0.002, 0.004]", "values: [theta_max, theta_max]");
   EXPECT_NE(m.find("each keyword at most once"), std::string::npos) << m;
-  m = error_for("study: thickness, value: 0.004", "study: thickness, value: theta_max");
+  m = error_for("sweep: thickness, value: 0.004", "sweep: thickness, value: theta_max");
   EXPECT_NE(m.find("mbd_runs[0].laws[0].value"), std::string::npos) << m;
   EXPECT_NE(m.find("0.002, 0.004"), std::string::npos) << m;
   m = error_for("    values: [0.002, 0.004]", "    values: [0.002, 0.004]\n    overrides: [a, b]");
-  EXPECT_NE(m.find("fe_studies[0].overrides"), std::string::npos) << m;
+  EXPECT_NE(m.find("fe_sweeps[0].overrides"), std::string::npos) << m;
   EXPECT_NE(m.find("a mapping of scene key paths"), std::string::npos) << m;
   m = error_for("    values: [0.002, 0.004]",
                 "    values: [0.002, 0.004]\n    overrides: {geometry.t_B: 0.003}");
   EXPECT_NE(m.find("keys other than the swept parameter's key 'geometry.t_B'"), std::string::npos) << m;
   m = error_for("    values: [0.002, 0.004]", "    values: [0.002, 0.004]\n    mesh_parameters: {h: fine}");
-  EXPECT_NE(m.find("fe_studies[0].mesh_parameters.h"), std::string::npos) << m;
+  EXPECT_NE(m.find("fe_sweeps[0].mesh_parameters.h"), std::string::npos) << m;
   m = error_for("fit: {weighting: absolute}", "fit: {weighting: absolute, family_out_of_range: wrap}");
   EXPECT_NE(m.find("fit.family_out_of_range"), std::string::npos) << m;
   EXPECT_NE(m.find("error|clamp|extend"), std::string::npos) << m;
   m = error_for("  - name: b\n", "  - name: b\n    overrides: 3\n");
   EXPECT_NE(m.find("mbd_runs[1].overrides"), std::string::npos) << m;
   m = error_for("  - name: thickness", "  - name: thick/ness");
-  EXPECT_NE(m.find("fe_studies[0].name"), std::string::npos) << m;
+  EXPECT_NE(m.find("fe_sweeps[0].name"), std::string::npos) << m;
+}
+
+// Issue 29 item 5: a sweep is called a sweep (`fe_sweeps`, a law's `sweep`); the keys files
+// written before say `fe_studies` and `study`. They are read as before, with one warning line
+// per old key naming the new one, and messages name the key as the file has it.
+TEST(PipelineConfig, TheOldKeysAreReadWithADeprecationWarning)
+{
+  test_support::ScratchDir dir("pipeline_config_old_keys");
+  auto old_keys = [](std::string text) {
+    text.replace(text.find("fe_sweeps:"), 10, "fe_studies:");
+    text.replace(text.find("sweep: thickness"), 16, "study: thickness");
+    text.replace(text.find("mbd_runs:"), 9,
+                 "impact: {scene: i.yaml, law: {study: thickness, value: 0.002}}\nmbd_runs:");
+    return text;
+  };
+  test_support::write_text(dir.file("old.yaml"), old_keys(good));
+  test_support::write_text(dir.file("new.yaml"), good);
+
+  const unsigned int warnings_before = log::n_warnings();
+  testing::internal::CaptureStderr();
+  const PipelineConfig c = read_pipeline_config(dir.file("old.yaml"));
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(log::n_warnings() - warnings_before, 2u) << err;
+  ASSERT_EQ(c.fe_sweeps.size(), 1u);
+  EXPECT_EQ(c.fe_sweeps[0].name, "thickness");
+  EXPECT_EQ(c.fe_sweeps[0].values, (std::vector<double>{0.002, 0.004}));
+  EXPECT_EQ(c.fe_sweeps_key, "fe_studies");
+  EXPECT_EQ(c.mbd_runs.at(0).laws.at(0).sweep.value_or(""), "thickness");
+  EXPECT_EQ(c.mbd_runs.at(0).laws.at(0).value.value(), 0.004);
+  ASSERT_TRUE(c.impact.has_value());
+  EXPECT_EQ(c.impact->law.sweep.value_or(""), "thickness");
+  EXPECT_EQ(c.impact->law.value.value(), 0.002);
+  // One line each, naming the file, the old key, the new key and where the old one is used.
+  EXPECT_NE(err.find("warning: " + dir.file("old.yaml") +
+                     ": 'fe_studies' is deprecated, rename it to 'fe_sweeps' (fe_studies)\n"),
+            std::string::npos)
+    << err;
+  EXPECT_NE(err.find("warning: " + dir.file("old.yaml") +
+                     ": 'study' is deprecated, rename it to 'sweep' "
+                     "(mbd_runs[0].laws[0].study, impact.law.study)\n"),
+            std::string::npos)
+    << err;
+
+  // The same file with the new keys: no warning.
+  testing::internal::CaptureStderr();
+  const PipelineConfig n = read_pipeline_config(dir.file("new.yaml"));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_EQ(n.fe_sweeps_key, "fe_sweeps");
+  EXPECT_EQ(n.fe_sweeps[0].values, c.fe_sweeps[0].values);
+
+  // Errors in an old file name the key as written there (and the file's error comes first:
+  // no deprecation warning for a file that is not read).
+  std::string text = old_keys(good);
+  text.replace(text.find("values: [0.002, 0.004]"), 22, "values: [0.002, theta_maxx]");
+  test_support::write_text(dir.file("bad.yaml"), text);
+  testing::internal::CaptureStderr();
+  std::string m = test_support::input_error_of([&] { read_pipeline_config(dir.file("bad.yaml")); });
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_NE(m.find("fe_studies[0].values[1]"), std::string::npos) << m;
+  text = old_keys(good);
+  text.replace(text.find("study: thickness, value: 0.004"), 30, "study: wear, value: 0.004");
+  test_support::write_text(dir.file("bad.yaml"), text);
+  m = test_support::input_error_of([&] { read_pipeline_config(dir.file("bad.yaml")); });
+  EXPECT_NE(m.find("mbd_runs[0].laws[0].study"), std::string::npos) << m;
+  EXPECT_NE(m.find("one of the fe_studies: thickness"), std::string::npos) << m;
+}
+
+// Both the old and the new name of one thing in one file: an input error naming both keys
+// (which of the two was meant cannot be guessed).
+TEST(PipelineConfig, AnOldAndANewKeyTogetherAreAnInputError)
+{
+  std::string m = error_for("fit: {weighting: absolute}",
+                            "fe_studies:\n  - name: other\n    scene: fe.yaml\n"
+                            "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n"
+                            "    values: [0.002]\nfit: {weighting: absolute}");
+  EXPECT_NE(m.find("key 'fe_studies'"), std::string::npos) << m;
+  EXPECT_NE(m.find("'fe_sweeps' and 'fe_studies' are both given"), std::string::npos) << m;
+  m = error_for("sweep: thickness, value: 0.004", "sweep: thickness, study: thickness, value: 0.004");
+  EXPECT_NE(m.find("key 'mbd_runs[0].laws[0].study'"), std::string::npos) << m;
+  EXPECT_NE(m.find("'mbd_runs[0].laws[0].sweep' and 'mbd_runs[0].laws[0].study' are both given"),
+            std::string::npos)
+    << m;
+  // Also when they agree: one of them has to go.
+  m = error_for("mbd_runs:", "impact: {scene: i.yaml, law: {sweep: thickness, study: thickness, "
+                             "value: 0.004}}\nmbd_runs:");
+  EXPECT_NE(m.find("impact.law.study"), std::string::npos) << m;
+  EXPECT_NE(m.find("impact.law.sweep"), std::string::npos) << m;
 }
 
 TEST(PipelineConfig, OverridesAndKeywordsAreKept)
@@ -127,10 +215,10 @@ TEST(PipelineConfig, OverridesAndKeywordsAreKept)
   text.replace(text.find("  - name: b\n"), 12, "  - name: b\n    overrides: {a.model: law_family}\n");
   test_support::write_text(dir.file("p.yaml"), text);
   const auto c = read_pipeline_config(dir.file("p.yaml"));
-  ASSERT_EQ(c.fe_studies[0].overrides.size(), 2u);
-  EXPECT_EQ(c.fe_studies[0].overrides[0].first, "geometry.mesh");
-  EXPECT_EQ(c.fe_studies[0].overrides[0].second, "m.msh") << "no such file here: kept as given";
-  EXPECT_EQ(c.fe_studies[0].mesh_parameters.at("h"), 0.001);
+  ASSERT_EQ(c.fe_sweeps[0].overrides.size(), 2u);
+  EXPECT_EQ(c.fe_sweeps[0].overrides[0].first, "geometry.mesh");
+  EXPECT_EQ(c.fe_sweeps[0].overrides[0].second, "m.msh") << "no such file here: kept as given";
+  EXPECT_EQ(c.fe_sweeps[0].mesh_parameters.at("h"), 0.001);
   EXPECT_EQ(c.mbd_runs[1].overrides.at(0).second, "law_family");
   EXPECT_EQ(c.family_out_of_range, "error") << "fit_stage's default";
 }
@@ -146,8 +234,8 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
   resolve_value_keywords(flanged);
   std::filesystem::current_path(cwd);
 
-  const FeStudy *mis = nullptr;
-  for (const auto &s : c.fe_studies)
+  const FeSweep *mis = nullptr;
+  for (const auto &s : c.fe_sweeps)
     if (s.name == "misalignment")
       mis = &s;
   ASSERT_TRUE(mis);
@@ -162,34 +250,34 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
     {
       tilted = true;
       ASSERT_EQ(r.laws.size(), 1u);
-      EXPECT_EQ(r.laws[0].study.value_or(""), "misalignment");
+      EXPECT_EQ(r.laws[0].sweep.value_or(""), "misalignment");
       EXPECT_FALSE(r.laws[0].value) << "the family";
       ASSERT_EQ(r.overrides.size(), 1u);
       EXPECT_EQ(r.overrides[0].second, "law_family");
     }
   EXPECT_TRUE(tilted);
-  // Every preset states an error per FE study (null = not yet measured, never invented).
+  // Every preset states an error per FE sweep (null = not yet measured, never invented).
   for (const auto &p : preset_names())
-    for (const auto &s : c.fe_studies)
+    for (const auto &s : c.fe_sweeps)
       EXPECT_TRUE(c.preset_measured.at(p).error_F_max.count(s.name)) << p << " " << s.name;
   EXPECT_EQ(*c.preset_measured.at("fast").error_F_max.at("thickness").percent, 4.8);
   EXPECT_EQ(*c.preset_measured.at("standard").error_F_max.at("thickness").percent, 2.0);
   EXPECT_EQ(*c.preset_measured.at("accurate").error_F_max.at("thickness").percent, 0.85);
 
   // The flanged pipeline names the .geo, made absolute, and it exists.
-  const auto &mesh = flanged.fe_studies.at(0).overrides.at(0);
+  const auto &mesh = flanged.fe_sweeps.at(0).overrides.at(0);
   EXPECT_EQ(mesh.first, "geometry.mesh");
   EXPECT_EQ(mesh.second.get<std::string>(),
             std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/flanged_bearing.geo");
 }
 
 // The impact study (issue 12 item 4): a scene and one law of the same geometry, fitted here
-// (study + value) or given as a file; a family, an unknown study or a missing scene are errors
+// (sweep + value) or given as a file; a family, an unknown sweep or a missing scene are errors
 // naming the key.
 TEST(PipelineConfig, ImpactStudy)
 {
   const std::string impact =
-    "impact:\n  scene: i.yaml\n  law: {study: thickness, value: 0.004}\nmbd_runs:";
+    "impact:\n  scene: i.yaml\n  law: {sweep: thickness, value: 0.004}\nmbd_runs:";
   EXPECT_EQ(error_for("mbd_runs:", impact), "(accepted)");
   {
     test_support::ScratchDir dir("pipeline_config_impact");
@@ -199,14 +287,14 @@ TEST(PipelineConfig, ImpactStudy)
     const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
     ASSERT_TRUE(c.impact.has_value());
     EXPECT_EQ(c.impact->scene, "i.yaml");
-    EXPECT_EQ(*c.impact->law.study, "thickness");
+    EXPECT_EQ(*c.impact->law.sweep, "thickness");
     EXPECT_DOUBLE_EQ(*c.impact->law.value, 0.004);
   }
-  EXPECT_NE(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {study: thickness}\n"
+  EXPECT_NE(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {sweep: thickness}\n"
                                    "mbd_runs:")
-              .find("impact.law.study"),
+              .find("impact.law.sweep"),
             std::string::npos);
-  EXPECT_NE(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {study: wear, value: 1}\n"
+  EXPECT_NE(error_for("mbd_runs:", "impact:\n  scene: i.yaml\n  law: {sweep: wear, value: 1}\n"
                                    "mbd_runs:")
               .find("thickness"),
             std::string::npos);

@@ -141,7 +141,7 @@ TEST(RunPipeline, BadPipelineFile)
 
 namespace
 {
-  /// A pipeline with a misalignment study (θ in deg, theta_max among the values) and an MBD run
+  /// A pipeline with a misalignment sweep (θ in deg, theta_max among the values) and an MBD run
   /// that takes its law family; `mbd_scene` and `mbd_overrides` describe that run.
   std::string misalignment_yaml(const std::string &dir, const std::string &mbd_scene,
                                 const std::string &mbd_key, const std::string &mbd_overrides)
@@ -152,23 +152,23 @@ namespace
     return "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir + "/out\npreset: fast\n"
            "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
            "accurate: {fe: null, mbd: null}}\n"
-           "fe_studies:\n  - name: misalignment\n    scene: " + dir + "/mis.yaml\n"
+           "fe_sweeps:\n  - name: misalignment\n    scene: " + dir + "/mis.yaml\n"
            "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
            "    values: [1.0, 2.0, theta_max]\n"
            "fit: {weighting: absolute, family_out_of_range: clamp}\n"
            "mbd_runs:\n"
            "  - name: tilted\n    scene: " + mbd_scene + "\n"
            "    overrides: " + mbd_overrides + "\n"
-           "    laws: [{key: " + mbd_key + ", study: misalignment}]\n"
+           "    laws: [{key: " + mbd_key + ", sweep: misalignment}]\n"
            "  - {name: at_max, scene: " + mbd_scene + ", laws: [{key: " + mbd_key +
-           ", study: misalignment, value: theta_max}]}\n"
+           ", sweep: misalignment, value: theta_max}]}\n"
            "report: false\n";
   }
 
   const double theta_max_deg = geometry::degrees(*geometry::theta_max(geometry::JointGeometry{}));
 } // namespace
 
-TEST(RunPipeline, MisalignmentStudyRunsThetaMaxAtFullPrecisionAndItsFamilyInRadians)
+TEST(RunPipeline, MisalignmentSweepRunsThetaMaxAtFullPrecisionAndItsFamilyInRadians)
 {
   test_support::ScratchDir dir("pipeline_misalignment");
   FakeBuild build(dir);
@@ -216,8 +216,8 @@ TEST(RunPipeline, MisalignmentStudyRunsThetaMaxAtFullPrecisionAndItsFamilyInRadi
   EXPECT_TRUE(with(second, "ran").empty()) << second.log;
   // The summary tells the report the family's unit and each case's keyword.
   const auto summary = read_json_file(dir.file("out/r/pipeline_summary.json"));
-  EXPECT_EQ(summary["studies"][0]["family_unit"], "rad");
-  EXPECT_EQ(summary["studies"][0]["cases"][2]["keyword"], "theta_max");
+  EXPECT_EQ(summary["sweeps"][0]["family_unit"], "rad");
+  EXPECT_EQ(summary["sweeps"][0]["cases"][2]["keyword"], "theta_max");
   EXPECT_EQ(summary["presets"].size(), 3u);
 }
 
@@ -280,14 +280,14 @@ TEST(RunPipeline, TwoGeometriesKeepTheirLawsApart)
   FakeBuild build(dir);
   test_support::write_text(dir.file("flanged.msh"), "another bearing\n");
   std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
-  const std::string second_study =
+  const std::string second_sweep =
     "  - name: thickness_flanged\n    scene: " + dir.file("fe.yaml") + "\n"
     "    overrides: {geometry.mesh: " + dir.file("flanged.msh") + "}\n"
     "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004]\n";
-  yaml.insert(yaml.find("fit:"), second_study);
+  yaml.insert(yaml.find("fit:"), second_sweep);
   yaml.insert(yaml.find("report:"),
               "  - {name: flanged, scene: " + dir.file("mbd.yaml") +
-                ", laws: [{key: joint.law_file, study: thickness_flanged, value: 0.002}]}\n");
+                ", laws: [{key: joint.law_file, sweep: thickness_flanged, value: 0.002}]}\n");
   test_support::write_text(dir.file("p.yaml"), yaml);
   const Outcome o = run(dir, build);
   ASSERT_EQ(o.exit_code, 0) << o.log;
@@ -299,7 +299,7 @@ TEST(RunPipeline, TwoGeometriesKeepTheirLawsApart)
   EXPECT_EQ(law_b.scene["geometry"]["mesh"], dir.file("flanged.msh")) << "the law names its mesh";
   EXPECT_EQ(read_json_file(dir.file("out/r/mbd/flanged/scene_used.json"))["joint"]["law_file"], b);
   EXPECT_EQ(read_json_file(dir.file("out/r/mbd/fitted/scene_used.json"))["joint"]["law_file"], a);
-  // Same parameter value, two geometries: two families, each from its own study's cases.
+  // Same parameter value, two geometries: two families, each from its own sweep's cases.
   EXPECT_TRUE(fs::exists(dir.file("out/r/fit/thickness/family/family.json")));
   EXPECT_TRUE(fs::exists(dir.file("out/r/fit/thickness_flanged/family/family.json")));
 }
@@ -312,9 +312,9 @@ TEST(RunPipeline, AGeoIsMeshedInItsOwnTaskSharedAndReused)
   FakeBuild build(dir);
   const std::string geo = std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/default_joint.geo";
   std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.006]");
-  const std::string study_keys = "    overrides: {geometry.mesh: " + geo + "}\n"
+  const std::string sweep_keys = "    overrides: {geometry.mesh: " + geo + "}\n"
                                  "    mesh_parameters: {h: 0.004}\n";
-  yaml.insert(yaml.find("    parameter:"), study_keys);
+  yaml.insert(yaml.find("    parameter:"), sweep_keys);
   test_support::write_text(dir.file("p.yaml"), yaml);
   const Outcome first = run(dir, build);
   ASSERT_EQ(first.exit_code, 0) << first.log;
@@ -543,8 +543,8 @@ namespace
 // writes fields (CLEARJOINT_FAKE_FIELDS=1: von Mises above the yield stress near the contact,
 // contact fields in Abaqus's meaning), the real fit and MBD stages run on its laws, and the report
 // must lead with the answer: summary (what ran, our t_B = 4 mm law beside the paper's, trends
-// beside the paper's claims, MBD headline numbers, every warning), contents, one section per
-// study with VTK pictures, the yield check against the yield stress the scene names, contact-field
+// beside the paper's claims, MBD headline numbers, every warning), contents, one section per FE
+// sweep with VTK pictures, the yield check against the yield stress the scene names, contact-field
 // checks (fe_stage's old fields — shear and 'stick' without friction, slip off contact — are
 // flagged), all models overlaid, the band split into regression and mesh with the dominant part
 // named, per-run plots folded away and captioned by what they show; and in headless Chromium
@@ -563,22 +563,22 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     "         pipeline_time: 60.0, error_F_max: {thickness: {percent: 4.8, where: made up},\n"
     "         misalignment: {percent: null, where: not measured}}}}\n"
     "  standard: {fe: null, mbd: null}\n  accurate: {fe: null, mbd: null}\n"
-    "fe_studies:\n"
+    "fe_sweeps:\n"
     "  - name: thickness\n    scene: " + src + "/fe_stage/scenes/radial.yaml\n"
     "    parameter: {name: t_B, unit: m, key: geometry.t_B}\n    values: [0.002, 0.004, 0.006]\n"
     // frictionless, fields as fe_stage wrote them before issue 15, and its own yield stress
-    // (above the stand-in's 600 MPa: no yield warning for this study)
+    // (above the stand-in's 600 MPa: no yield warning for this sweep)
     "  - name: misalignment\n    scene: " + src + "/fe_stage/scenes/misalignment.yaml\n"
     "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
     "    values: [1.0, 2.5, theta_max]\n"
     "    overrides: {contact.mu: 0.0, fake_old_contact_fields: true, material.yield_stress: 1.0e9}\n"
     "fit: {weighting: absolute, family_out_of_range: clamp}\n"
     "mbd_runs:\n"
-    "  - {name: fe_law, scene: " + mbd + "fe_law.yaml, laws: [{key: clearance_joints.0.normal.law_file, study: thickness, value: 0.004}], band: true}\n"
+    "  - {name: fe_law, scene: " + mbd + "fe_law.yaml, laws: [{key: clearance_joints.0.normal.law_file, sweep: thickness, value: 0.004}], band: true}\n"
     "  - {name: paper_law, scene: " + mbd + "fe_law_damped.yaml, laws: [{key: clearance_joints.0.normal.law_file, file: " + src + "/laws/paper_tB4.json}]}\n"
     "  - {name: johnson, scene: " + mbd + "johnson.yaml}\n"
     "  - {name: ideal, scene: " + mbd + "ideal.yaml}\n"
-    "  - {name: tilted_1deg, scene: " + mbd + "tilted_1deg.yaml, overrides: {clearance_joints.0.normal.model: law_family}, laws: [{key: clearance_joints.0.normal.law_file, study: misalignment}]}\n"
+    "  - {name: tilted_1deg, scene: " + mbd + "tilted_1deg.yaml, overrides: {clearance_joints.0.normal.model: law_family}, laws: [{key: clearance_joints.0.normal.law_file, sweep: misalignment}]}\n"
     // issue 13 item 5: the rolling study's own section (the stand-in's outputs: a clean run)
     "rolling: {scene: " + src + "/fe_stage/scenes/rolling.yaml}\n"
     "report: true\n");
@@ -595,9 +595,9 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
     return p;
   };
 
-  // Item 1: summary, then contents, then one section per study, then the multibody part.
-  const auto summary = at("id='summary'"), contents = at("<nav>"), thickness = at("id='study-thickness'"),
-             misalignment = at("id='study-misalignment'"), rolling = at("id='rolling'"),
+  // Item 1: summary, then contents, then one section per FE sweep, then the multibody part.
+  const auto summary = at("id='summary'"), contents = at("<nav>"), thickness = at("id='sweep-thickness'"),
+             misalignment = at("id='sweep-misalignment'"), rolling = at("id='rolling'"),
              multibody = at("id='mbd'");
   EXPECT_LT(summary, contents);
   EXPECT_LT(contents, thickness);
@@ -634,7 +634,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
   at("against the yield stress 1000 MPa (the scene's material.yield_stress)");
 
   // Items 2 and 3: the paper's law over our curves, F_ref (not K) over the parameter, the
-  // paper's claims beside ours, the fields rendered with VTK for each study.
+  // paper's claims beside ours, the fields rendered with VTK for each sweep.
   at("with the paper's t_B = 4 mm law (dashed)");
   at("K is not plotted");
   at("The paper's claims beside ours");
@@ -646,7 +646,7 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
   at("id='band'");
 
   // Per-run plots folded away and captioned by what they show, not by their file name. Unfolded:
-  // per study F–δ, F_ref and n, the fields picture; for the multibody runs the two overlays and
+  // per sweep F–δ, F_ref and n, the fields picture; for the multibody runs the two overlays and
   // the band.
   // ... and the rolling study's three: spin rates (Fig. 10), energy split, strain profile (Fig. 12)
   EXPECT_EQ(count_of(unfolded_only(report), "<img"), 3u * 2u + 2u + 1u + 3u);

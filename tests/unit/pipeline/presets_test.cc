@@ -1,4 +1,4 @@
-// The presets' measured errors: read strictly, printed per FE study, tabulated for the report.
+// The presets' measured errors: read strictly, printed per FE sweep, tabulated for the report.
 #include "common/error.h"
 #include "pipeline/pipeline_config.h"
 #include "pipeline/presets.h"
@@ -21,7 +21,7 @@ namespace
     return "schema: clearjoint.pipeline/1\nrun: r\npreset: fast\n"
            "presets:\n  fast: {fe: null, mbd: null, " + fast_measured + "}\n"
            "  standard: {fe: {mesh.level: 1}, mbd: null}\n  accurate: {fe: null, mbd: null}\n"
-           "fe_studies:\n"
+           "fe_sweeps:\n"
            "  - {name: thickness, scene: fe.yaml, parameter: {name: t_B, unit: m, key: geometry.t_B}, values: [0.004]}\n"
            "  - {name: misalignment, scene: fe.yaml, parameter: {name: theta, unit: deg, key: m.t}, values: [1.0]}\n"
            "fit: {weighting: absolute}\nmbd_runs: []\n";
@@ -42,7 +42,7 @@ namespace
   }
 } // namespace
 
-TEST(Presets, ErrorsPerStudyArePrintedWithWhereTheyWereMeasured)
+TEST(Presets, ErrorsPerSweepArePrintedWithWhereTheyWereMeasured)
 {
   test_support::ScratchDir dir("presets_good");
   const auto c = read(dir, measured);
@@ -120,11 +120,11 @@ TEST(Presets, RollingTimeAndErrorNeedTheRollingStudy)
   EXPECT_NE(bad.find("presets.fast.measured.rolling_time"), std::string::npos) << bad;
 }
 
-// Issue 32 item 2: what bench/measure_presets.py writes besides the figures above — per-study
+// Issue 32 item 2: what bench/measure_presets.py writes besides the figures above — per-sweep
 // case times and DoFs, the machine and the date — read strictly; a bad value names its key.
-TEST(Presets, MeasuredMachineDateAndPerStudyFigures)
+TEST(Presets, MeasuredMachineDateAndPerSweepFigures)
 {
-  test_support::ScratchDir dir("presets_per_study");
+  test_support::ScratchDir dir("presets_per_sweep");
   const auto c = read(dir, "measured: {note: x, date: '2026-11-28 10:00 UTC', "
                            "machine: {cpu: Some CPU, cores: 2}, fe_case_time: 2.3, "
                            "case_times: {misalignment: 1.9}, dofs: {thickness: 3588, misalignment: 2418}, "
@@ -135,7 +135,7 @@ TEST(Presets, MeasuredMachineDateAndPerStudyFigures)
   EXPECT_EQ(*m.machine_cores, 2);
   EXPECT_EQ(m.case_times.at("misalignment"), 1.9);
   EXPECT_EQ(m.dofs.at("misalignment"), 2418.0);
-  // an FE case's figure: its study's own case time, else fe_case_time
+  // an FE case's figure: its sweep's own case time, else fe_case_time
   EXPECT_EQ(task_figure(c, "fe_stage", "misalignment")->first, "case_times.misalignment");
   EXPECT_EQ(task_figure(c, "fe_stage", "misalignment")->second, 1.9);
   EXPECT_EQ(task_figure(c, "fe_stage", "thickness")->first, "fe_case_time");
@@ -147,7 +147,7 @@ TEST(Presets, MeasuredMachineDateAndPerStudyFigures)
   EXPECT_EQ(s[0]["measured"]["machine"]["cores"], 2);
   EXPECT_EQ(s[0]["measured"]["date"], "2026-11-28 10:00 UTC");
 
-  // negative time, unknown study, non-numeric values: input errors naming the key
+  // negative time, unknown sweep, non-numeric values: input errors naming the key
   std::string e = error_for("measured: {note: x, case_times: {misalignment: -1}, error_F_max: {}}");
   EXPECT_NE(e.find("presets.fast.measured.case_times.misalignment"), std::string::npos) << e;
   e = error_for("measured: {note: x, case_times: {radial: 2}, error_F_max: {}}");

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The report's comparison with the paper (issue 15 item 2): the trend of F_ref over the study's
+"""The report's comparison with the paper (issue 15 item 2): the trend of F_ref over the sweep's
 parameter beside the paper's claim (force grows with t_B, falls with θ), the reason shown where
 they differ, the mesh error weighed against the steps of the trend, and our t_B = 4 mm force
 beside the paper's 16 344 N at 0.05 mm (numbers with their thousands apart, the prose with its
@@ -15,7 +15,7 @@ import tempfile
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "scripts"))
 
 from plotting import _paper  # noqa: E402
-from plotting._report_fe import FeStudy, claim_table, trend_finding  # noqa: E402
+from plotting._report_fe import FeSweep, claim_table, trend_finding  # noqa: E402
 
 DELTA = 5e-5  # [m]
 
@@ -30,7 +30,7 @@ def law(F_ref, n=1.05, mesh_error=None):
     return out
 
 
-def study(d, name, parameter, unit, values_forces, mesh_error=None):
+def sweep(d, name, parameter, unit, values_forces, mesh_error=None):
     cases = []
     for value, F in values_forces:
         folder = os.path.join(d, name, f"{value}")
@@ -39,7 +39,7 @@ def study(d, name, parameter, unit, values_forces, mesh_error=None):
         with open(path, "w") as f:
             json.dump(law(F, mesh_error=mesh_error), f)
         cases.append({"value": value, "law": path, "fe_dir": folder})
-    return FeStudy({"name": name, "parameter": parameter, "unit": unit, "cases": cases})
+    return FeSweep({"name": name, "parameter": parameter, "unit": unit, "cases": cases})
 
 
 def main():
@@ -51,7 +51,7 @@ def main():
 
     with tempfile.TemporaryDirectory() as d:
         # θ: ours grows with θ, the paper says it falls → flagged, with our reading of why
-        theta = study(d, "misalignment", "theta", "rad",
+        theta = sweep(d, "misalignment", "theta", "rad",
                       [(0.0174533, 6000.0), (0.0261799, 6300.0), (0.0436332, 6900.0)])
         t = trend_finding(theta)
         expect("grows monotonically" in t and "the paper says it falls" in t,
@@ -61,7 +61,7 @@ def main():
         expect("rigid" in table and "rim" in table, "θ: the reason is shown where they differ")
 
         # t_B: grows as the paper says; 2 of 2 steps smaller than twice a 5 % mesh error
-        tb = study(d, "thickness", "t_B", "m",
+        tb = sweep(d, "thickness", "t_B", "m",
                    [(0.002, 15000.0), (0.004, 16000.0), (0.006, 16500.0)], mesh_error=0.05)
         t = trend_finding(tb)
         expect("grows monotonically" in t and "as the paper says" in t, f"t_B trend: {t}")
@@ -77,7 +77,7 @@ def main():
                and "fit ±0 N, mesh ±5 %" in table, f"commas of the prose kept: {table}")
 
         # a trend that turns: not monotonic, so not 'as the paper says'
-        bumpy = study(d, "bumpy", "t_B", "m", [(0.002, 15000.0), (0.004, 16000.0), (0.006, 15500.0)])
+        bumpy = sweep(d, "bumpy", "t_B", "m", [(0.002, 15000.0), (0.004, 16000.0), (0.006, 15500.0)])
         t = trend_finding(bumpy)
         expect("is not monotonic (1 of 2 steps up)" in t and "the paper says it grows" in t,
                f"non-monotonic trend: {t}")

@@ -3,7 +3,7 @@
 writes them into pipeline_summary.json (pipeline/presets.cc: each measured time {value, unit} or
 null, error_F_max.<name> {percent or null, where}): the measured times of one FE curve, the
 impact sweep, the rolling study and the whole pipeline in their columns with their unit, a null
-time "not measured"; an error column per FE study, named by what it is the error of (F(δ_max);
+time "not measured"; an error column per FE sweep, named by what it is the error of (F(δ_max);
 the impact study's peak force; the rolling study's plastic dissipation), each cell carrying its
 `where` as a tooltip and listed below the table, a null percent "not yet measured"; the impact
 and rolling time columns left out of a run that has neither the study nor a measured time.
@@ -94,7 +94,7 @@ def main():
         if not ok:
             bad.append(what)
 
-    summary = {"presets": PRESETS, "studies": [{"name": "thickness"}],
+    summary = {"presets": PRESETS, "sweeps": [{"name": "thickness"}],
                "impact": {"scene": "impact.yaml"}, "rolling": {"status": "complete"}}
     t = parse(preset_section(summary))
     heads = [text for text, _ in t.rows[0]]
@@ -132,6 +132,7 @@ def main():
     # A run without the impact and rolling studies whose presets measured neither: no such columns.
     plain = [preset("fast", True, 3588, 2.3, 66, None, None,
                     {"thickness": {"percent": None, "where": WHERE_THICKNESS}})]
+    # (a summary written before issue 29 calls the sweeps `studies`: read the same)
     t = parse(preset_section({"presets": plain, "studies": [{"name": "thickness"}]}))
     heads = [text for text, _ in t.rows[0]]
     expect("FE impact sweep [s]" not in heads and "FE rolling study [s]" not in heads,
@@ -140,7 +141,7 @@ def main():
     expect(cell is not None and cell[0] == "not yet measured", f"a null thickness percent: {t.rows[1]}")
 
     # Issue 32 item 2: this run's times beside the chosen preset's figures, a figure missed by
-    # more than 1.5x either way flagged as stale; reused tasks measure nothing; an FE study's
+    # more than 1.5x either way flagged as stale; reused tasks measure nothing; an FE sweep's
     # own case time (case_times) gets its column.
     def task(name, stage, seconds, key, figure, outcome="ran"):
         return {"name": name, "stage": stage, "outcome": outcome,
@@ -151,7 +152,7 @@ def main():
                       {"thickness": {"percent": 2.0, "where": WHERE_THICKNESS}})
     standard["measured"]["case_times"] = {"misalignment": {"value": 7.8, "unit": "s"}}
     run = {"presets": [preset("fast", False, 3588, 2.3, 66, 14, 27, {}), standard],
-           "studies": [{"name": "thickness"}, {"name": "misalignment"}],
+           "sweeps": [{"name": "thickness"}, {"name": "misalignment"}],
            "impact": {"scene": "impact.yaml"}, "rolling": {"status": "complete"},
            "wall_time": {"value": 449.0, "unit": "s"},
            "tasks": [task("fe/thickness/t_B=0.002", "fe_stage", 19.0, "fe_case_time", 19.2),

@@ -244,7 +244,7 @@ def main():
 
         # The whole report with a rolling study and nothing else.
         summary = {"schema": "clearjoint.pipeline_summary/1", "run": "r", "preset": "fast",
-                   "pipeline_file": "p.yaml", "presets": [], "tasks": [], "studies": [],
+                   "pipeline_file": "p.yaml", "presets": [], "tasks": [], "sweeps": [],
                    "mbd_runs": [], "rolling": {"fe_dir": big, "status": "complete"}}
         sp = os.path.join(d, "pipeline_summary.json")
         with open(sp, "w") as f:

@@ -159,7 +159,7 @@ TEST(PipelineEndToEnd, GmshBearingRunsEndToEnd)
     "  fast: {fe: null, mbd: null}\n"
     "  standard: {fe: null, mbd: null}\n"
     "  accurate: {fe: null, mbd: null}\n"
-    "fe_studies:\n"
+    "fe_sweeps:\n"
     "  - name: flanged\n"
     "    scene: " + std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/scenes/radial.yaml\n"
     "    overrides: {geometry.mesh: " + std::string(CLEARJOINT_SOURCE_DIR) +
@@ -174,7 +174,7 @@ TEST(PipelineEndToEnd, GmshBearingRunsEndToEnd)
     "  - name: flanged_law\n"
     "    scene: " + std::string(CLEARJOINT_SOURCE_DIR) +
       "/mbd_stage/scenes/slider_crank_fe_law_damped.yaml\n"
-    "    laws: [{key: clearance_joints.0.normal.law_file, study: flanged, value: 0.004}]\n"
+    "    laws: [{key: clearance_joints.0.normal.law_file, sweep: flanged, value: 0.004}]\n"
     "report: false\n");
   const std::string cmd = std::string("cd ") + CLEARJOINT_SOURCE_DIR + " && " + RUN_PIPELINE_EXE +
                           " " + yaml.string() + " --no-plots";

@@ -1,4 +1,4 @@
-// The values a study sweeps: the `theta_max` keyword resolved from the study's scene geometry
+// The values of an FE sweep: the `theta_max` keyword resolved from the sweep's scene geometry
 // (paper Eq. 3), and the SI form in which a law family stores them.
 #pragma once
 
@@ -19,15 +19,15 @@ namespace clearjoint::pipeline
   geometry::JointGeometry scene_joint_geometry(const nlohmann::json &scene,
                                                const std::string &scene_file);
 
-  /// Replaces each keyword in the studies' values by its number and sets the laws' values that
-  /// name a keyword. `theta_max` is geometry::theta_max() of the study's scene after the preset
-  /// and the study's overrides, in the study's unit (deg or rad), at full precision. Throws
+  /// Replaces each keyword in the sweeps' values by its number and sets the laws' values that
+  /// name a keyword. `theta_max` is geometry::theta_max() of the sweep's scene after the preset
+  /// and the sweep's overrides, in the sweep's unit (deg or rad), at full precision. Throws
   /// InputError naming the pipeline file and key when the unit is not an angle, when Eq. 3 has
   /// no root for that geometry, when the swept key changes that geometry, or when the values
   /// are then not strictly increasing.
   void resolve_value_keywords(PipelineConfig &config);
 
-  /// A value in a study's unit converted to SI, as law families store their parameter
+  /// A value in a sweep's unit converted to SI, as law families store their parameter
   /// (fit_stage --family takes SI; mbd_stage evaluates a family at the tilt θ in rad):
   /// deg → rad, mm → m; any other unit is taken as SI already and kept.
   struct SiValue

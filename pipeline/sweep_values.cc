@@ -1,4 +1,4 @@
-#include "pipeline/study_values.h"
+#include "pipeline/sweep_values.h"
 
 #include "common/error.h"
 #include "common/units.h"
@@ -34,66 +34,66 @@ namespace clearjoint::pipeline
 
   namespace
   {
-    double resolve_theta_max(const PipelineConfig &config, const FeStudy &study,
+    double resolve_theta_max(const PipelineConfig &config, const FeSweep &sweep,
                              const std::string &values_key)
     {
       for (const std::string k : {"geometry.R_B", "geometry.L_B", "geometry.c_r", "geometry.c_a"})
-        if (study.key == k)
+        if (sweep.key == k)
           throw InputError(config.source, values_key, theta_max_keyword,
-                           "numbers only, in a study that sweeps " + study.key,
-                           "theta_max depends on " + study.key + ", so it differs per case");
-      if (study.unit != "deg" && study.unit != "rad")
+                           "numbers only, in a sweep of " + sweep.key,
+                           "theta_max depends on " + sweep.key + ", so it differs per case");
+      if (sweep.unit != "deg" && sweep.unit != "rad")
         throw InputError(config.source, values_key, theta_max_keyword,
-                         "numbers in " + study.unit + ", or theta_max only in a study whose "
+                         "numbers in " + sweep.unit + ", or theta_max only in a sweep whose "
                          "parameter unit is deg or rad",
                          "theta_max is an angle");
-      const std::string where = study.scene + " (preset " + config.preset +
-                                (study.overrides.empty() ? "" : ", with the study's overrides") + ")";
-      const auto scene = compose_scene(config, study.scene, "fe", study.overrides);
+      const std::string where = sweep.scene + " (preset " + config.preset +
+                                (sweep.overrides.empty() ? "" : ", with the sweep's overrides") + ")";
+      const auto scene = compose_scene(config, sweep.scene, "fe", sweep.overrides);
       const auto g = scene_joint_geometry(scene, where);
       const auto theta = geometry::theta_max(g);
       if (!theta)
         throw InputError(config.source, values_key, theta_max_keyword,
-                         "numbers in " + study.unit + ", or theta_max for a joint where paper "
+                         "numbers in " + sweep.unit + ", or theta_max for a joint where paper "
                          "Eq. 3 has a root",
                          "Eq. 3 has no root for the geometry of " + where + " (R_B = " +
                            format_value(g.R_B) + " m, c_r = " + format_value(g.c_r) +
                            " m, L_B = " + format_value(g.L_B) + " m, c_a = " +
                            format_value(g.c_a) + " m): the journal can turn over inside the "
                            "bearing, so there is no largest tilt (docs/geometry.md)");
-      return study.unit == "deg" ? geometry::degrees(*theta) : *theta;
+      return sweep.unit == "deg" ? geometry::degrees(*theta) : *theta;
     }
   } // namespace
 
   void resolve_value_keywords(PipelineConfig &config)
   {
-    for (std::size_t s = 0; s < config.fe_studies.size(); ++s)
+    for (std::size_t s = 0; s < config.fe_sweeps.size(); ++s)
     {
-      FeStudy &study = config.fe_studies[s];
-      const std::string key = "fe_studies[" + std::to_string(s) + "].values";
-      for (std::size_t i = 0; i < study.values.size(); ++i)
-        if (study.keywords[i] == theta_max_keyword)
-          study.values[i] = resolve_theta_max(config, study, key + "[" + std::to_string(i) + "]");
-      for (std::size_t i = 1; i < study.values.size(); ++i)
-        if (!(study.values[i] > study.values[i - 1]))
+      FeSweep &sweep = config.fe_sweeps[s];
+      const std::string key = config.fe_sweeps_key + "[" + std::to_string(s) + "].values";
+      for (std::size_t i = 0; i < sweep.values.size(); ++i)
+        if (sweep.keywords[i] == theta_max_keyword)
+          sweep.values[i] = resolve_theta_max(config, sweep, key + "[" + std::to_string(i) + "]");
+      for (std::size_t i = 1; i < sweep.values.size(); ++i)
+        if (!(sweep.values[i] > sweep.values[i - 1]))
         {
           std::string shown;
-          for (std::size_t j = 0; j < study.values.size(); ++j)
-            shown += (j ? ", " : "") + (study.keywords[j].empty()
-                                          ? value_label(study.values[j])
-                                          : study.keywords[j] + " = " + value_label(study.values[j]));
-          throw InputError(config.source, key, "[" + shown + "] " + study.unit,
+          for (std::size_t j = 0; j < sweep.values.size(); ++j)
+            shown += (j ? ", " : "") + (sweep.keywords[j].empty()
+                                          ? value_label(sweep.values[j])
+                                          : sweep.keywords[j] + " = " + value_label(sweep.values[j]));
+          throw InputError(config.source, key, "[" + shown + "] " + sweep.unit,
                            "strictly increasing values (after resolving keywords)");
         }
     }
     for (auto &run : config.mbd_runs)
       for (auto &law : run.laws)
         if (!law.value_keyword.empty())
-          for (const auto &study : config.fe_studies)
-            if (law.study && study.name == *law.study)
-              for (std::size_t i = 0; i < study.values.size(); ++i)
-                if (study.keywords[i] == law.value_keyword)
-                  law.value = study.values[i];
+          for (const auto &sweep : config.fe_sweeps)
+            if (law.sweep && sweep.name == *law.sweep)
+              for (std::size_t i = 0; i < sweep.values.size(); ++i)
+                if (sweep.keywords[i] == law.value_keyword)
+                  law.value = sweep.values[i];
   }
 
   SiValue to_si(const double value, const std::string &unit)
