@@ -358,86 +358,225 @@ namespace clearjoint::fe::mortar
         return face_cols.back().second;
       }
     };
+
+    /// The options' ranges (std::invalid_argument naming the field and its range).
+    void check_options(const Options &options)
+    {
+      if (!(options.max_distance > 0) || !std::isfinite(options.max_distance))
+        throw std::invalid_argument(
+          "mortar: Options::max_distance = " + std::to_string(options.max_distance) +
+          " m; allowed is (0, inf) m");
+      if (options.subdivisions < 1 || options.subdivisions > 1000)
+        throw std::invalid_argument("mortar: Options::subdivisions = " +
+                                    std::to_string(options.subdivisions) + "; allowed is 1..1000");
+      if (options.gauss_points < 1 || options.gauss_points > 20)
+        throw std::invalid_argument("mortar: Options::gauss_points = " +
+                                    std::to_string(options.gauss_points) + "; allowed is 1..20");
+
+      // Me of a 9-node face is singular unless the rule has ≥ 3 distinct points per direction
+      // (then ψ would be garbage without any error); 4-node faces need 2, but one limit is simpler.
+      if (options.subdivisions * options.gauss_points < 3)
+        throw std::invalid_argument("mortar: Options::subdivisions × gauss_points = " +
+                                    std::to_string(options.subdivisions * options.gauss_points) +
+                                    " points per direction; at least 3 are needed for a regular "
+                                    "mass matrix of a 9-node face");
+    }
+
+    /// Slave node id → index into the result; each normal must be a unit vector, each id
+    /// listed once.
+    std::unordered_map<long, std::size_t> index_slave_nodes(
+      const std::vector<SlaveNode> &slave_nodes)
+    {
+      std::unordered_map<long, std::size_t> index;
+      for (std::size_t i = 0; i < slave_nodes.size(); ++i)
+        {
+          const auto &n = slave_nodes[i].normal;
+          const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+          if (!(len > 0.5 && len < 2))
+            throw std::invalid_argument("mortar: slave node " + std::to_string(slave_nodes[i].id) +
+                                        " has a normal of length " + std::to_string(len) +
+                                        "; a unit vector is expected");
+          if (!index.emplace(slave_nodes[i].id, i).second)
+            throw std::invalid_argument("mortar: slave node " + std::to_string(slave_nodes[i].id) +
+                                        " is listed twice");
+        }
+      return index;
+    }
+
+    /// The iterated Gauss rule on [0,1]: points qa and weights qw (summing to 1).
+    void iterated_gauss_rule(const Options &options, std::vector<double> &qa,
+                             std::vector<double> &qw)
+    {
+      std::vector<double> gx, gw;
+      gauss_legendre(options.gauss_points, gx, gw);
+      for (unsigned s = 0; s < options.subdivisions; ++s)
+        for (unsigned i = 0; i < gx.size(); ++i)
+          qa.push_back((s + gx[i]) / options.subdivisions),
+            qw.push_back(gw[i] / options.subdivisions);
+    }
+
+    /// Master faces: structure and area (a 3×3 Gauss rule suffices to see a zero area).
+    void check_master_faces(const std::vector<Face> &master_faces)
+    {
+      for (std::size_t i = 0; i < master_faces.size(); ++i)
+        {
+          const Face &f = master_faces[i];
+          check_face(f, "master", i);
+          std::vector<double> x3, w3;
+          gauss_legendre(3, x3, w3);
+          double area = 0;
+          Shape s;
+          for (unsigned i1 = 0; i1 < 3; ++i1)
+            for (unsigned i2 = 0; i2 < 3; ++i2)
+              {
+                eval_shape(unsigned(f.nodes.size()), x3[i1], x3[i2], s);
+                Vec3 ta, tb;
+                tangents(f, s, ta, tb);
+                area += w3[i1] * w3[i2] * ta.cross(tb).norm();
+              }
+          check_area(f, area, "master", i);
+        }
+    }
+
+    /// One slave face's quadrature on the iterated rule (qa, qw): per point its shape, position,
+    /// unit normal oriented by the caller's node normals and weight; and the face's dual basis
+    /// ψ_k = Σ_l A_kl N_l with D_e,k = ∫ N_k. Throws std::invalid_argument for a degenerate face
+    /// or normals (nearly) tangent to it.
+    struct SlaveFaceRule
+    {
+      std::vector<Shape> shape;
+      std::vector<Vec3> xq, nq;
+      std::vector<double> wq;
+      Eigen::VectorXd De;
+      Eigen::MatrixXd A;
+    };
+
+    void slave_face_rule(const Face &f, const std::size_t e,
+                         const std::array<Vec3, max_nodes> &normal, const std::vector<double> &qa,
+                         const std::vector<double> &qw, SlaveFaceRule &r)
+    {
+      const unsigned nn = unsigned(f.nodes.size());
+      const std::size_t n_q1 = qa.size(), n_q = n_q1 * n_q1;
+      std::vector<Shape> &shape = r.shape;
+      std::vector<Vec3> &xq = r.xq, &nq = r.nq;
+      std::vector<double> &wq = r.wq;
+      // Quadrature points, weights and area first (a degenerate face is reported as such,
+      // not as a normal problem), then the oriented normals, D_e and Me.
+      double area = 0;
+      for (std::size_t i = 0, q = 0; i < n_q1; ++i)
+        for (std::size_t j = 0; j < n_q1; ++j, ++q)
+          {
+            Shape &s = shape[q];
+            eval_shape(nn, qa[i], qa[j], s);
+            Vec3 ta, tb;
+            tangents(f, s, ta, tb);
+            nq[q] = ta.cross(tb);  // unnormalised here
+            xq[q] = point(f, s);
+            wq[q] = qw[i] * qw[j] * nq[q].norm();
+            area += wq[q];
+          }
+      check_area(f, area, "slave", e);
+
+      Eigen::VectorXd De = Eigen::VectorXd::Zero(nn);
+      Eigen::MatrixXd Me = Eigen::MatrixXd::Zero(nn, nn);
+      for (std::size_t q = 0; q < n_q; ++q)
+        {
+          const Shape &s = shape[q];
+          const double Jq = nq[q].norm();
+          Vec3 n_interp = Vec3::Zero();
+          for (unsigned k = 0; k < nn; ++k)
+            n_interp += s.N[k] * normal[k];
+          // Orientation from the caller's node normals, so the sign of the face
+          // parametrisation does not matter and curved faces use their true normal.
+          const double cosine = Jq > 0 ? nq[q].dot(n_interp) / (Jq * n_interp.norm()) : 0.0;
+          if (Jq > 0 && !(std::abs(cosine) > 1e-3))
+            throw std::invalid_argument(
+              "mortar: slave face " + std::to_string(e) +
+              ": the node normals are (nearly) tangent to the face or cancel out "
+              "(cosine to the face normal " +
+              std::to_string(cosine) + ")");
+          nq[q] = Jq > 0 ? Vec3((cosine > 0 ? 1.0 : -1.0) * nq[q] / Jq) : Vec3::Zero();
+          for (unsigned k = 0; k < nn; ++k)
+            {
+              De[k] += wq[q] * s.N[k];
+              for (unsigned l = 0; l < nn; ++l)
+                Me(k, l) += wq[q] * s.N[k] * s.N[l];
+            }
+        }
+
+      // Dual basis ψ_k = Σ_l A_kl N_l, A = diag(D_e) Me⁻¹: ∫ψ_k N_l = δ_kl D_e,k with the
+      // same quadrature, so biorthogonality holds to round-off.
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(Me);
+      const Eigen::MatrixXd A = De.asDiagonal() * ldlt.solve(Eigen::MatrixXd::Identity(nn, nn));
+      if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12) || !A.allFinite())
+        throw std::invalid_argument("mortar: slave face " + std::to_string(e) +
+                                    " has a singular mass matrix (degenerate geometry)");
+      r.De = De;
+      r.A = A;
+    }
+
+    /// The couplings from the accumulated rows: C_sm = M_sm / D_s (entries below 1e-14 of D
+    /// dropped), the weighted gap G_s / D_s, complete where every quadrature point of the
+    /// node's faces found a master.
+    std::vector<Coupling> finish_couplings(const std::vector<SlaveNode> &slave_nodes,
+                                           std::vector<std::vector<std::pair<long, double>>> &M,
+                                           const std::vector<double> &D,
+                                           const std::vector<double> &G,
+                                           const std::vector<char> &incomplete,
+                                           const std::vector<char> &on_face)
+    {
+      std::vector<Coupling> out(slave_nodes.size());
+      for (std::size_t i = 0; i < slave_nodes.size(); ++i)
+        {
+          Coupling &c = out[i];
+          c.node = slave_nodes[i].id;
+          c.weight = D[i];
+          c.complete = on_face[i] && !incomplete[i];
+          c.gap = D[i] > 0 ? G[i] / D[i] : 0.0;
+          auto &row = M[i];
+          std::sort(row.begin(), row.end(),
+                    [](const auto &x, const auto &y) { return x.first < y.first; });
+          for (std::size_t j = 0; j < row.size();)
+            {
+              const long id = row[j].first;
+              double sum = 0;
+              for (; j < row.size() && row[j].first == id; ++j)
+                sum += row[j].second;
+              if (D[i] > 0 && std::abs(sum / D[i]) >= 1e-14)
+                c.masters.emplace_back(id, sum / D[i]);
+            }
+          std::vector<std::pair<long, double>>().swap(row);
+        }
+      return out;
+    }
   }  // namespace
 
   std::vector<Coupling> couple(const std::vector<Face> &slave_faces,
                                const std::vector<SlaveNode> &slave_nodes,
                                const std::vector<Face> &master_faces, const Options &options)
   {
-    if (!(options.max_distance > 0) || !std::isfinite(options.max_distance))
-      throw std::invalid_argument(
-        "mortar: Options::max_distance = " + std::to_string(options.max_distance) +
-        " m; allowed is (0, inf) m");
-    if (options.subdivisions < 1 || options.subdivisions > 1000)
-      throw std::invalid_argument("mortar: Options::subdivisions = " +
-                                  std::to_string(options.subdivisions) + "; allowed is 1..1000");
-    if (options.gauss_points < 1 || options.gauss_points > 20)
-      throw std::invalid_argument("mortar: Options::gauss_points = " +
-                                  std::to_string(options.gauss_points) + "; allowed is 1..20");
+    check_options(options);
 
-    // Me of a 9-node face is singular unless the rule has ≥ 3 distinct points per direction
-    // (then ψ would be garbage without any error); 4-node faces need 2, but one limit is simpler.
-    if (options.subdivisions * options.gauss_points < 3)
-      throw std::invalid_argument("mortar: Options::subdivisions × gauss_points = " +
-                                  std::to_string(options.subdivisions * options.gauss_points) +
-                                  " points per direction; at least 3 are needed for a regular "
-                                  "mass matrix of a 9-node face");
+    const std::unordered_map<long, std::size_t> index = index_slave_nodes(slave_nodes);
 
-    // Slave node id → index into the result.
-    std::unordered_map<long, std::size_t> index;
-    for (std::size_t i = 0; i < slave_nodes.size(); ++i)
-      {
-        const auto &n = slave_nodes[i].normal;
-        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(len > 0.5 && len < 2))
-          throw std::invalid_argument("mortar: slave node " + std::to_string(slave_nodes[i].id) +
-                                      " has a normal of length " + std::to_string(len) +
-                                      "; a unit vector is expected");
-        if (!index.emplace(slave_nodes[i].id, i).second)
-          throw std::invalid_argument("mortar: slave node " + std::to_string(slave_nodes[i].id) +
-                                      " is listed twice");
-      }
-
-    // The iterated Gauss rule on [0,1]², weights summing to 1.
-    std::vector<double> gx, gw, qa, qw;
-    gauss_legendre(options.gauss_points, gx, gw);
-    for (unsigned s = 0; s < options.subdivisions; ++s)
-      for (unsigned i = 0; i < gx.size(); ++i)
-        qa.push_back((s + gx[i]) / options.subdivisions),
-          qw.push_back(gw[i] / options.subdivisions);
+    std::vector<double> qa, qw;
+    iterated_gauss_rule(options, qa, qw);
     const std::size_t n_q1 = qa.size();
 
-    // Master faces: structure and area (a 3×3 Gauss rule suffices to see a zero area).
-    for (std::size_t i = 0; i < master_faces.size(); ++i)
-      {
-        const Face &f = master_faces[i];
-        check_face(f, "master", i);
-        std::vector<double> x3, w3;
-        gauss_legendre(3, x3, w3);
-        double area = 0;
-        Shape s;
-        for (unsigned i1 = 0; i1 < 3; ++i1)
-          for (unsigned i2 = 0; i2 < 3; ++i2)
-            {
-              eval_shape(unsigned(f.nodes.size()), x3[i1], x3[i2], s);
-              Vec3 ta, tb;
-              tangents(f, s, ta, tb);
-              area += w3[i1] * w3[i2] * ta.cross(tb).norm();
-            }
-        check_area(f, area, "master", i);
-      }
+    check_master_faces(master_faces);
     const MasterSearch search(master_faces, options.max_distance);
 
-    std::vector<Coupling> out(slave_nodes.size());
     std::vector<std::vector<std::pair<long, double>>> M(slave_nodes.size());
     std::vector<double> D(slave_nodes.size(), 0.0), G(slave_nodes.size(), 0.0);
     std::vector<char> incomplete(slave_nodes.size(), 0), on_face(slave_nodes.size(), 0);
 
     // Per-face work arrays, reused.
     const std::size_t n_q = n_q1 * n_q1;
-    std::vector<Shape> shape(n_q);
-    std::vector<Vec3> xq(n_q), nq(n_q);
-    std::vector<double> wq(n_q);
+    SlaveFaceRule rule;
+    rule.shape.resize(n_q);
+    rule.xq.resize(n_q);
+    rule.nq.resize(n_q);
+    rule.wq.resize(n_q);
     LocalM local;
 
     for (std::size_t e = 0; e < slave_faces.size(); ++e)
@@ -460,57 +599,12 @@ namespace clearjoint::fe::mortar
             normal[k] = Vec3(n[0], n[1], n[2]);
           }
 
-        // Quadrature points, weights and area first (a degenerate face is reported as such,
-        // not as a normal problem), then the oriented normals, D_e and Me.
-        double area = 0;
-        for (std::size_t i = 0, q = 0; i < n_q1; ++i)
-          for (std::size_t j = 0; j < n_q1; ++j, ++q)
-            {
-              Shape &s = shape[q];
-              eval_shape(nn, qa[i], qa[j], s);
-              Vec3 ta, tb;
-              tangents(f, s, ta, tb);
-              nq[q] = ta.cross(tb);  // unnormalised here
-              xq[q] = point(f, s);
-              wq[q] = qw[i] * qw[j] * nq[q].norm();
-              area += wq[q];
-            }
-        check_area(f, area, "slave", e);
-
-        Eigen::VectorXd De = Eigen::VectorXd::Zero(nn);
-        Eigen::MatrixXd Me = Eigen::MatrixXd::Zero(nn, nn);
-        for (std::size_t q = 0; q < n_q; ++q)
-          {
-            const Shape &s = shape[q];
-            const double Jq = nq[q].norm();
-            Vec3 n_interp = Vec3::Zero();
-            for (unsigned k = 0; k < nn; ++k)
-              n_interp += s.N[k] * normal[k];
-            // Orientation from the caller's node normals, so the sign of the face
-            // parametrisation does not matter and curved faces use their true normal.
-            const double cosine = Jq > 0 ? nq[q].dot(n_interp) / (Jq * n_interp.norm()) : 0.0;
-            if (Jq > 0 && !(std::abs(cosine) > 1e-3))
-              throw std::invalid_argument(
-                "mortar: slave face " + std::to_string(e) +
-                ": the node normals are (nearly) tangent to the face or cancel out "
-                "(cosine to the face normal " +
-                std::to_string(cosine) + ")");
-            nq[q] = Jq > 0 ? Vec3((cosine > 0 ? 1.0 : -1.0) * nq[q] / Jq) : Vec3::Zero();
-            for (unsigned k = 0; k < nn; ++k)
-              {
-                De[k] += wq[q] * s.N[k];
-                for (unsigned l = 0; l < nn; ++l)
-                  Me(k, l) += wq[q] * s.N[k] * s.N[l];
-              }
-          }
-
-        // Dual basis ψ_k = Σ_l A_kl N_l, A = diag(D_e) Me⁻¹: ∫ψ_k N_l = δ_kl D_e,k with the
-        // same quadrature, so biorthogonality holds to round-off.
-        const Eigen::LDLT<Eigen::MatrixXd> ldlt(Me);
-        const Eigen::MatrixXd A = De.asDiagonal() * ldlt.solve(Eigen::MatrixXd::Identity(nn, nn));
-        if (ldlt.info() != Eigen::Success || !(ldlt.rcond() > 1e-12) || !A.allFinite())
-          throw std::invalid_argument("mortar: slave face " + std::to_string(e) +
-                                      " has a singular mass matrix (degenerate geometry)");
+        slave_face_rule(f, e, normal, qa, qw, rule);
+        const std::vector<Shape> &shape = rule.shape;
+        const std::vector<Vec3> &xq = rule.xq, &nq = rule.nq;
+        const std::vector<double> &wq = rule.wq;
+        const Eigen::VectorXd &De = rule.De;
+        const Eigen::MatrixXd &A = rule.A;
         for (unsigned k = 0; k < nn; ++k)
           D[node[k]] += De[k];
 
@@ -571,27 +665,6 @@ namespace clearjoint::fe::mortar
           }
       }
 
-    for (std::size_t i = 0; i < slave_nodes.size(); ++i)
-      {
-        Coupling &c = out[i];
-        c.node = slave_nodes[i].id;
-        c.weight = D[i];
-        c.complete = on_face[i] && !incomplete[i];
-        c.gap = D[i] > 0 ? G[i] / D[i] : 0.0;
-        auto &row = M[i];
-        std::sort(row.begin(), row.end(),
-                  [](const auto &x, const auto &y) { return x.first < y.first; });
-        for (std::size_t j = 0; j < row.size();)
-          {
-            const long id = row[j].first;
-            double sum = 0;
-            for (; j < row.size() && row[j].first == id; ++j)
-              sum += row[j].second;
-            if (D[i] > 0 && std::abs(sum / D[i]) >= 1e-14)
-              c.masters.emplace_back(id, sum / D[i]);
-          }
-        std::vector<std::pair<long, double>>().swap(row);
-      }
-    return out;
+    return finish_couplings(slave_nodes, M, D, G, incomplete, on_face);
   }
 }  // namespace clearjoint::fe::mortar

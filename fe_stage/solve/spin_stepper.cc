@@ -146,34 +146,43 @@ namespace clearjoint::fe::detail
         catch (const StepFailure &f)
           {
             m_.restore_state(saved_);
-            if (predicted_in_time)
-              {
-                predict_in_time = false;
-                if (m_.rank_ == 0)
-                  log::debug("fe_stage: time step to t = " + format_value(t_ + dt) +
-                             " s failed from the state predicted in time (" + f.reason +
-                             "); again from the last state");
-                continue;
-              }
-            // (the step controller's floor: a step that keeps failing would otherwise
-            // shrink without end, t + Δt → t)
-            if (!control_.cut())
-              {
-                message = "time step to t = " + format_value(t_ + dt) + " s failed after " +
-                          std::to_string(control_.cuts()) + " cuts" + control_.floor_note("s") +
-                          ": " + f.reason;
-                if (m_.rank_ == 0)
-                  log::error("fe_stage: " + message);
-                return false;
-              }
-            dt = control_.size();
-            if (m_.rank_ == 0)
-              log::warning("fe_stage: time step to t = " + format_value(t_ + 2 * dt) +
-                           " s failed (" + f.reason + "); retrying with dt " + format_value(dt) +
-                           " s");
+            if (!retry(f, predicted_in_time, predict_in_time, dt, message))
+              return false;
           }
       }
     step.cuts = control_.cuts();
+    return true;
+  }
+
+  /// After a failed attempt at Δt (the state restored): an attempt that started from the state
+  /// predicted in time is tried again at the same Δt from the last state; otherwise the step
+  /// is cut (the step controller's floor: a step that keeps failing would otherwise shrink
+  /// without end, t + Δt → t). False with `message` when no cut is left.
+  bool SpinStepper::retry(const StepFailure &f, const bool predicted_in_time, bool &predict_in_time,
+                          double &dt, std::string &message)
+  {
+    if (predicted_in_time)
+      {
+        predict_in_time = false;
+        if (m_.rank_ == 0)
+          log::debug("fe_stage: time step to t = " + format_value(t_ + dt) +
+                     " s failed from the state predicted in time (" + f.reason +
+                     "); again from the last state");
+        return true;
+      }
+    if (!control_.cut())
+      {
+        message = "time step to t = " + format_value(t_ + dt) + " s failed after " +
+                  std::to_string(control_.cuts()) + " cuts" + control_.floor_note("s") + ": " +
+                  f.reason;
+        if (m_.rank_ == 0)
+          log::error("fe_stage: " + message);
+        return false;
+      }
+    dt = control_.size();
+    if (m_.rank_ == 0)
+      log::warning("fe_stage: time step to t = " + format_value(t_ + 2 * dt) + " s failed (" +
+                   f.reason + "); retrying with dt " + format_value(dt) + " s");
     return true;
   }
 

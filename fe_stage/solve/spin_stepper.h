@@ -48,6 +48,9 @@ namespace clearjoint::fe::detail
     double search_time() const { return search_time_; }  // [s]
 
   private:
+    bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
+               std::string &message);
+
     ContactModel &m_;
     const rolling::Motion motion_;
     const double t_end_, inertia_;
