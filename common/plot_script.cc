@@ -1,5 +1,6 @@
 #include "common/plot_script.h"
 
+#include "common/error.h"
 #include "common/interrupt.h"
 #include "common/log.h"
 
@@ -9,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -46,6 +48,12 @@ namespace clearjoint
       log::warning("plots skipped: cannot start " + words[0] + ": " + std::string(std::strerror(rc)));
       return false;
     }
+    interrupt::child_started(pid);  // a hard stop ends it too (common/interrupt.h)
+    struct Forget
+    {
+      pid_t pid;
+      ~Forget() { interrupt::child_ended(pid); }
+    } forget{pid};
     if (interrupt::requested())  // the signal came before the child existed
       ::kill(pid, SIGTERM);
     int status = 0;
@@ -64,6 +72,17 @@ namespace clearjoint
       }
     }
     interrupt::throw_if_requested("while plotting (" + kind + ")");
+    // plot.py exits 100 + errno when it cannot write its output (a full disk): that is the
+    // stage's write error, not a missing matplotlib.
+    if (WIFEXITED(status) && WEXITSTATUS(status) > 100 && is_write_failure(WEXITSTATUS(status) - 100))
+    {
+      const auto out = std::find(args.begin(), args.end(), "--output");
+      throw WriteError(out != args.end() && out + 1 != args.end() ? *(out + 1) :
+                       args.empty()                              ? kind :
+                                                                   args.front(),
+                       std::string(std::strerror(WEXITSTATUS(status) - 100)) + " (plot.py " +
+                         kind + ")");
+    }
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
     {
       log::warning("plots failed: '" + words[1] + " " + kind +

@@ -3,13 +3,18 @@
 
     scripts/plot.py <kind> [args...]
 
-Each kind lives in scripts/plotting/<kind>.py and exposes main(argv). Stages call this script on
+Each kind lives in scripts/plotting/<kind>.py and exposes main(argv). When an output cannot be
+written (a full disk, an I/O error, a read-only file system) the script exits with 100 + errno
+and no traceback: the stage reports the file and the reason on one line (common/plot_script.h). Stages call this script on
 their own outputs after writing them (and skip it with --no-plots). Only Debian's
 python3-matplotlib is needed; the Agg backend is used so no display is required.
 """
+import errno
 import importlib
 import os
 import sys
+
+WRITE_FAILURES = {errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS, errno.EFBIG}
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
@@ -27,7 +32,12 @@ def main() -> int:
     import matplotlib
     matplotlib.use("Agg")
     module = importlib.import_module(f"plotting.{kind}")
-    return int(module.main(sys.argv[2:]) or 0)
+    try:
+        return int(module.main(sys.argv[2:]) or 0)
+    except OSError as e:
+        if e.errno in WRITE_FAILURES:
+            return 100 + e.errno
+        raise
 
 
 if __name__ == "__main__":
