@@ -99,7 +99,11 @@ namespace clearjoint::interrupt
         // A file being created under it while we remove it (another thread): try again.
         for (int k = 0; k < 5 && std::filesystem::exists(path, ec); ++k)
           std::filesystem::remove_all(path, ec);
-        removed += (removed.empty() ? "" : ", ") + path;
+        bool inside = false;  // a temporary file inside a folder named already
+        for (const auto &[other_id, other] : r.paths)
+          inside = inside || (other_id != id && path.compare(0, other.size() + 1, other + "/") == 0);
+        if (!inside)
+          removed += (removed.empty() ? "" : ", ") + path;
       }
       if (announce)
         log::error(program + ": interrupted by " + signal_name(received) +

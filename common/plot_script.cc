@@ -41,8 +41,18 @@ namespace clearjoint
     for (auto &w : words)
       argv.push_back(w.data());
     argv.push_back(nullptr);
+    // plot.py ends itself when we die (PR_SET_PDEATHSIG, scripts/plot.py): our pid.
+    std::vector<std::string> env_text;
+    for (char **e = environ; *e; ++e)
+      if (std::strncmp(*e, "CLEARJOINT_PLOT_PARENT=", 23) != 0)
+        env_text.emplace_back(*e);
+    env_text.push_back("CLEARJOINT_PLOT_PARENT=" + std::to_string(::getpid()));
+    std::vector<char *> envp;
+    for (auto &e : env_text)
+      envp.push_back(e.data());
+    envp.push_back(nullptr);
     pid_t pid;
-    const int rc = posix_spawnp(&pid, words[0].c_str(), nullptr, nullptr, argv.data(), environ);
+    const int rc = posix_spawnp(&pid, words[0].c_str(), nullptr, nullptr, argv.data(), envp.data());
     if (rc != 0)
     {
       log::warning("plots skipped: cannot start " + words[0] + ": " + std::string(std::strerror(rc)));

@@ -19,7 +19,26 @@ WRITE_FAILURES = {errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS, errno.EFBI
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 
+def end_with_parent() -> None:
+    """Linux: ask for SIGTERM when the stage that started us dies (SIGKILL, the OOM killer), so
+    that no plot.py goes on writing into a folder nobody owns. The stage passes its pid as
+    CLEARJOINT_PLOT_PARENT; if it is already gone, stop at once. (An MPI rank lives in a process
+    group of its own, which run_pipeline's kill of the stage's group does not reach.)"""
+    parent = os.environ.get("CLEARJOINT_PLOT_PARENT")
+    if not parent or not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+        import signal
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM), 0, 0, 0)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != int(parent):
+        sys.exit(143)
+
+
 def main() -> int:
+    end_with_parent()
     kinds = sorted(f[:-3] for f in os.listdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), "plotting"))
                    if f.endswith(".py") and not f.startswith("_"))
     if len(sys.argv) < 2 or sys.argv[1] in ("-h", "--help"):
