@@ -51,6 +51,50 @@ def interrupt(case, cmd, out, delay, expect_code, limit_s):
         failures.append(case)
 
 
+CHILD = r"""
+import importlib.util, os, sys, time
+spec = importlib.util.spec_from_file_location("plot", sys.argv[1])
+plot = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(plot)
+plot.end_with_parent()  # what plot.py does first
+time.sleep(60)
+"""
+PARENT = r"""
+import os, subprocess, sys, time
+env = dict(os.environ, CLEARJOINT_PLOT_PARENT=str(os.getpid()))
+child = subprocess.Popen([sys.executable, "-c", sys.argv[2], sys.argv[1]], env=env)
+print(child.pid, flush=True)
+time.sleep(60)
+"""
+
+
+def plot_ends_with_its_stage():
+    """A stage killed with SIGKILL: its plot.py ends too, also where run_pipeline's kill of
+    the stage's process group does not reach it (an MPI rank has a group of its own)."""
+    plot_py = os.path.join(SOURCE, "scripts", "plot.py")
+    parent = subprocess.Popen([sys.executable, "-c", PARENT, plot_py, CHILD],
+                              stdout=subprocess.PIPE, text=True)
+    child = int(parent.stdout.readline())
+    time.sleep(1.0)  # the child has asked for its SIGTERM
+    parent.kill()
+    parent.wait()
+    gone = False
+    for _ in range(50):
+        try:
+            with open(f"/proc/{child}/stat") as f:
+                gone = f.read().split(") ")[1].startswith("Z")  # ended, not yet reaped
+        except FileNotFoundError:
+            gone = True
+        if gone:
+            break
+        time.sleep(0.1)
+    print(f"[plot_ends_with_its_stage] plot.py {'ended' if gone else 'STILL RUNNING'} after its "
+          f"stage was killed with SIGKILL\n  {'ok' if gone else 'FAILED'}", flush=True)
+    if not gone:
+        os.kill(child, signal.SIGKILL)
+        failures.append("plot_ends_with_its_stage")
+
+
 def main():
     os.makedirs(SCRATCH, exist_ok=True)
     scene = os.path.join(SOURCE, "fe_stage", "scenes", "radial.yaml")
@@ -62,6 +106,7 @@ def main():
     mpirun = shutil.which("mpirun")
     interrupt("np2_setup", [mpirun, "--allow-run-as-root", "--oversubscribe", "-np", "2",
                             FE, scene, "--output", out, "--no-plots"], out, 3.0, 1, 2.5)
+    plot_ends_with_its_stage()
     print("signals: " + ("all cases pass" if not failures else "FAILED: " + ", ".join(failures)))
     return 1 if failures else 0
 
