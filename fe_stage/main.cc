@@ -421,6 +421,9 @@ namespace
 
 int main(int argc, char **argv)
 {
+  // A signal during MPI's start-up (seconds on a loaded machine) is noted too, not fatal; the
+  // handlers are installed again after it in case MPI set its own.
+  interrupt::install();
   const auto runtime = fe::make_runtime(argc, argv);
   const bool root = rank_of(MPI_COMM_WORLD) == 0;
   // SIGINT/SIGTERM: stop after the current increment (all ranks together), or, inside a long

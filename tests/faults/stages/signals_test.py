@@ -25,6 +25,11 @@ def interrupt(case, cmd, out, delay, expect_code, limit_s):
     log = os.path.join(SCRATCH, case + ".log")
     with open(log, "w") as f:
         p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=SCRATCH)
+    # the work folder exists once MPI has started and the scene is read: the setup is under way
+    for _ in range(600):
+        if glob.glob(out + ".tmp.*") or p.poll() is not None:
+            break
+        time.sleep(0.1)
     time.sleep(delay)
     t = time.time()
     p.send_signal(signal.SIGINT)
@@ -43,7 +48,7 @@ def interrupt(case, cmd, out, delay, expect_code, limit_s):
         problems.append(f"left behind: {left}")
     if len(errors) != 1 or "interrupted by SIG" not in errors[0]:
         problems.append(f"expected one 'interrupted by' error line, got {errors}")
-    print(f"[{case}] SIGINT {delay} s in: exit {rc} {seconds:.2f} s after the signal; "
+    print(f"[{case}] SIGINT {delay} s into the setup: exit {rc} {seconds:.2f} s after the signal; "
           f"{errors[0] if errors else 'no error line'}\n  " +
           ("ok" if not problems else "FAILED: " + "; ".join(problems)), flush=True)
     if problems:
@@ -100,12 +105,12 @@ def main():
     scene = os.path.join(SOURCE, "fe_stage", "scenes", "radial.yaml")
     out = os.path.join(SCRATCH, "out")
     # one rank: SIGINT reaches fe_stage, which stops within its 0.3 s grace (+ cleanup)
-    interrupt("np1_setup", [FE, scene, "--output", out, "--no-plots"], out, 3.0, 130, 1.5)
+    interrupt("np1_setup", [FE, scene, "--output", out, "--no-plots"], out, 1.0, 130, 1.5)
     # two ranks: mpirun's SIGTERM comes 1 s after the SIGINT; rank 0 cleans up 0.3 s later,
     # before mpirun's SIGKILL; mpirun itself exits 1 (Open MPI 4.1) whatever its ranks return
     mpirun = shutil.which("mpirun")
     interrupt("np2_setup", [mpirun, "--allow-run-as-root", "--oversubscribe", "-np", "2",
-                            FE, scene, "--output", out, "--no-plots"], out, 3.0, 1, 2.5)
+                            FE, scene, "--output", out, "--no-plots"], out, 1.0, 1, 2.5)
     plot_ends_with_its_stage()
     print("signals: " + ("all cases pass" if not failures else "FAILED: " + ", ".join(failures)))
     return 1 if failures else 0
