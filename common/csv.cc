@@ -193,6 +193,7 @@ namespace clearjoint
     }
     o.put('\n');
     ++n_rows_;
+    file_->check();  // a full disk ends the run at this row (WriteError), not at commit()
   }
 
   void CsvWriter::commit()

@@ -1,6 +1,8 @@
 #include "common/error.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 namespace clearjoint
 {
@@ -36,6 +38,22 @@ namespace clearjoint
   InputError::InputError(const std::string &message)
     : std::runtime_error("input error: " + message)
   {}
+
+  WriteError::WriteError(const std::string &path, const int os_error)
+    : WriteError(path, std::string(std::strerror(os_error != 0 ? os_error : EIO)))
+  {}
+
+  WriteError::WriteError(const std::string &path, const std::string &reason)
+    : std::runtime_error("cannot write '" + path + "': " + reason)
+    , path_(path)
+    , reason_(reason)
+  {}
+
+  bool is_write_failure(const int os_error)
+  {
+    return os_error == ENOSPC || os_error == EDQUOT || os_error == EIO || os_error == EROFS ||
+           os_error == EFBIG;
+  }
 
   std::string format_value(const double value)
   {

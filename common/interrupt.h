@@ -5,7 +5,16 @@
 // 143 for SIGTERM). Nothing is then left under a final name that was not complete before. A
 // second signal ends the process at once (same exit code); what it leaves behind is named
 // *.tmp.<pid> or *.partial and never looks complete.
+//
+// A stage may be far from its next safe point (an FE setup or a linear solve of a fine mesh
+// takes tens of seconds; mpirun sends SIGKILL 1 s after SIGTERM). arm_hard_stop() starts a
+// watchdog: if the stage has not ended `grace` seconds after the first signal (or at once on a
+// second signal), it stops the registered children (plot.py), removes the registered temporary
+// files and folders (Temporary), logs one line and ends the process with 128 + signal. So a
+// stage notices a signal within `grace` even inside a solve, and leaves nothing behind.
 #pragma once
+
+#include <sys/types.h>
 
 #include <stdexcept>
 #include <string>
@@ -34,4 +43,31 @@ namespace clearjoint::interrupt
 
   /// For tests: forget an earlier signal.
   void reset();
+
+  /// Starts the watchdog (once; after install()). `program` names the process in its message;
+  /// `announce` false keeps it silent (the MPI ranks other than 0).
+  void arm_hard_stop(const std::string &program, double grace_seconds, bool announce = true);
+
+  /// A file or folder (removed as a whole) that a hard stop removes while it is registered:
+  /// a work folder "DIR.tmp.<pid>", a temporary file "<path>.tmp.<pid>".
+  class Temporary
+  {
+  public:
+    Temporary() = default;
+    explicit Temporary(const std::string &path);
+    ~Temporary();
+    Temporary(const Temporary &) = delete;
+    Temporary &operator=(const Temporary &) = delete;
+    /// Registers `path` (forgetting the one registered before, if any).
+    void set(const std::string &path);
+    /// Forgets the path (it was renamed into place or removed).
+    void release();
+
+  private:
+    long id_ = 0;
+  };
+
+  /// A child process (plot.py) that a hard stop sends SIGTERM to while it is registered.
+  void child_started(pid_t pid);
+  void child_ended(pid_t pid);
 } // namespace clearjoint::interrupt

@@ -14,6 +14,8 @@ namespace clearjoint
   /// python3, no matplotlib, a bad file) is logged as a warning: plots are a convenience on top
   /// of the stage's data files, which are already written.
   /// If an interrupt arrives (common/interrupt.h) the script is stopped (SIGTERM) and
-  /// interrupt::Interrupted is thrown.
+  /// interrupt::Interrupted is thrown. If it cannot write its output (plot.py exits 100 +
+  /// errno: a full disk, an I/O error) WriteError is thrown naming the output (the argument
+  /// after "--output", else the first argument) and the OS reason.
   bool run_plot_script(const std::string &kind, const std::vector<std::string> &args);
 } // namespace clearjoint

@@ -11,15 +11,23 @@
 
 namespace clearjoint
 {
-  /// Returns body()'s exit code; InputError → 1, NumericalError → 2, an interrupt (SIGINT,
-  /// SIGTERM; common/interrupt.h) → 130/143, anything else → 2 with "unexpected failure" (a
-  /// bug or a resource problem, reported as such).
+  /// Returns body()'s exit code; InputError → 1, NumericalError → 2, WriteError (a full
+  /// disk, an I/O error) → 3 with one line "<program>: cannot write '<file>': <reason>; ...",
+  /// an interrupt (SIGINT, SIGTERM; common/interrupt.h) → 130/143, anything else → 2 with
+  /// "unexpected failure" (a bug or a resource problem, reported as such).
   template <typename Body>
-  int run_stage_main(Body &&body)
+  int run_stage_main(const std::string &program, Body &&body)
   {
     try
     {
       return body();
+    }
+    catch (const WriteError &e)
+    {
+      log::error(program + ": " + e.what() +
+                 "; nothing new written (temporary outputs removed, earlier outputs left as "
+                 "they were)");
+      return exit_write_error;
     }
     catch (const InputError &e)
     {

@@ -14,7 +14,9 @@
 // Everything is written into DIR.tmp.<pid> and renamed to DIR at the end (an earlier DIR is
 // replaced as a whole).
 // Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete),
-// 130/143 interrupted by SIGINT/SIGTERM (after the current increment; DIR.tmp.<pid> removed).
+// 3 an output could not be written (a full disk: one line naming the file and the OS reason,
+// DIR.tmp.<pid> removed), 130/143 interrupted by SIGINT/SIGTERM (after the current increment,
+// or within 0.7 s inside a long setup or solve: common/interrupt.h; DIR.tmp.<pid> removed).
 //
 // The steps: add_options (the command line) → read_scene (apply_preset, validate) →
 // make_work_folder → run_case, or run_sweep over sweep_cases → publish. What a case and a sweep
@@ -28,6 +30,7 @@
 #include "common/units.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/presets.h"
+#include "fe_stage/results/collective_write.h"
 #include "fe_stage/results/case_output.h"
 #include "fe_stage/results/sweep_output.h"
 #include "fe_stage/scene.h"
@@ -37,6 +40,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 
 #include <unistd.h>
@@ -82,6 +86,19 @@ namespace
   }
   int signal_seen = 0;  ///< what interrupted_anywhere() returned last (for the exit code)
 
+  /// The work folder, registered on rank 0 so that a hard stop (a signal inside a long setup
+  /// or solve, common/interrupt.h) removes it too.
+  interrupt::Temporary work_temporary;
+
+  /// A folder made on rank 0; a full disk or an I/O error is a WriteError naming it.
+  void make_folder(const std::string &dir)
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      throw WriteError(dir, ec.message());
+  }
+
   // Outputs are written into "<DIR>.tmp.<pid of rank 0>" and renamed to DIR as a whole when the
   // run ends (complete, or incomplete after a numerical failure: then marked so): an
   // interrupted run never leaves VTU/PVD or CSV files under DIR, and a rerun replaces every old
@@ -114,16 +131,17 @@ namespace
   void publish(const std::string &work, const std::string &dir)
   {
     namespace fs = std::filesystem;
-    if (rank_of(MPI_COMM_WORLD) == 0)
-      {
-        repoint_manifests(work, dir);
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-        fs::rename(work, dir, ec);
-        if (ec)
-          throw NumericalError("cannot rename " + work + " to " + dir + ": " + ec.message());
-      }
-    MPI_Barrier(MPI_COMM_WORLD);
+    fe::write_collectively(MPI_COMM_WORLD, [&] {
+      if (rank_of(MPI_COMM_WORLD) != 0)
+        return;
+      repoint_manifests(work, dir);
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+      fs::rename(work, dir, ec);
+      if (ec)
+        throw NumericalError("cannot rename " + work + " to " + dir + ": " + ec.message());
+      work_temporary.release();
+    });
   }
 
   /// No run is "complete" with a NaN or Inf in its curve (issue 16): it is a numerical failure.
@@ -147,39 +165,41 @@ namespace
                 fe::ImpactSummary *impact = nullptr)
   {
     const bool root = rank_of(MPI_COMM_WORLD) == 0;
-    if (root)
-      std::filesystem::create_directories(dir);
-    MPI_Barrier(MPI_COMM_WORLD);
+    // What rank 0 writes, every rank learns about (a full disk: all ranks stop together).
+    const auto on_root = [&](const std::function<void()> &write) {
+      fe::write_collectively(MPI_COMM_WORLD, [&] {
+        if (root)
+          write();
+      });
+    };
     std::unique_ptr<fe::CaseOutput> output;
-    if (root)
+    on_root([&] {
+      make_folder(dir);
       output = std::make_unique<fe::CaseOutput>(scene, dir, argc, argv, preset);
+    });
     fe::RunOptions options;
     options.output_dir = dir;
     options.write_fields = scene.output.fields;
     options.on_increment = [&](const fe::IncrementRecord &r) {
-      if (output)
-        output->write_increment(r);
+      on_root([&] { output->write_increment(r); });
       if ((signal_seen = interrupted_anywhere()) != 0)
         throw interrupt::Interrupted("after the increment to delta = " + format_value(r.delta) +
                                      " m");
     };
     options.on_dynamic_step = [&](const fe::DynamicStepRecord &r) {
-      if (output)
-        output->write_dynamic_step(r);
+      on_root([&] { output->write_dynamic_step(r); });
       if ((signal_seen = interrupted_anywhere()) != 0)
         throw interrupt::Interrupted("after the time step to t = " + format_value(r.time) + " s");
     };
     options.on_rolling_step = [&](const fe::RollingStepRecord &r) {
-      if (output)
-        output->write_rolling_step(r);
+      on_root([&] { output->write_rolling_step(r); });
     };
     fe::RunResult result = fe::run_scene(scene, options);
     if (impact)
       *impact = result.impact;
     fail_on_non_finite(result);
     force_at_max = result.increments.empty() ? 0.0 : result.increments.back().force;
-    if (root)
-      output->finish(result, plots, shown(dir));
+    on_root([&] { output->finish(result, plots, shown(dir)); });
     return result.complete;
   }
 
@@ -285,6 +305,7 @@ namespace
       try
         {
           create_work_folder(cl.output_dir, cl.final_dir);
+          work_temporary.set(cl.output_dir);
         }
       catch (const InputError &e)
         {
@@ -342,9 +363,16 @@ namespace
   {
     std::vector<Case> cases = sweep_cases(scene, cl.output_dir);
     std::unique_ptr<fe::SweepOutput> output;
-    if (root)
+    const auto on_root = [&](const std::function<void()> &write) {
+      fe::write_collectively(MPI_COMM_WORLD, [&] {
+        if (root)
+          write();
+      });
+    };
+    on_root([&] {
       output = std::make_unique<fe::SweepOutput>(cl.output_dir, fe::sweep_kind(scene),
                                                  cl.scene_path, argc, argv);
+    });
     bool complete = true;
     for (std::size_t k = 0; k < cases.size(); ++k)
       {
@@ -358,13 +386,11 @@ namespace
         const bool ok = run_case(c.scene, c.folder, argc, argv, !cl.no_plots, cl.preset,
                                  result.force_at_delta_max, &result.impact);
         complete = complete && ok;
-        if (root)
-          output->add_case(result);
+        on_root([&] { output->add_case(result); });
         if (!ok)
           break;
       }
-    if (root)
-      output->finish(complete, !cl.no_plots);
+    on_root([&] { output->finish(complete, !cl.no_plots); });
     return complete;
   }
 
@@ -395,10 +421,18 @@ namespace
 
 int main(int argc, char **argv)
 {
+  // A signal during MPI's start-up (seconds on a loaded machine) is noted too, not fatal; the
+  // handlers are installed again after it in case MPI set its own.
+  interrupt::install();
   const auto runtime = fe::make_runtime(argc, argv);
   const bool root = rank_of(MPI_COMM_WORLD) == 0;
-  // SIGINT/SIGTERM (mpirun passes them on to every rank): stop after the current increment.
+  // SIGINT/SIGTERM: stop after the current increment (all ranks together), or, inside a long
+  // setup or solve, at once after a grace. Rank 0, which removes the work folder, goes first
+  // (0.3 s): an interrupted mpirun sends its ranks SIGCONT, SIGTERM 1 s later and SIGKILL 1 s
+  // after that, but kills the others at once when one rank exits. The other ranks wait 1.5 s
+  // (mpirun ends them when rank 0 exits; without mpirun they exit by themselves).
   interrupt::install();
+  interrupt::arm_hard_stop("fe_stage", root ? 0.3 : 1.5, root);
   if (!root)
     log::set_level(log::Level::error);
 
@@ -442,9 +476,36 @@ int main(int argc, char **argv)
                      (cl.final_dir.empty() ? "" : ", " + cl.final_dir + " left as it was"));
         }
       const int code = 128 + (signal_seen != 0 ? signal_seen : interrupt::signal_received());
-      if (signal_seen == 0)  // seen by rank 0 alone (while plotting): the others may wait
+      if (signal_seen == 0 && !fe::failed_together())  // rank 0 alone: the others may wait
         abort_other_ranks(code);
       return code;
+    }
+  catch (const WriteError &e)
+    {
+      // A full disk or an I/O error: one line naming the file and the reason; nothing left.
+      if (root)
+        {
+          std::error_code ec;
+          if (!cl.final_dir.empty())
+            std::filesystem::remove_all(cl.output_dir, ec);
+          log::error(std::string("fe_stage: ") + e.what() +
+                     (cl.final_dir.empty() ? std::string() :
+                                             "; " + cl.output_dir + " removed, " + cl.final_dir +
+                                               " left as it was"));
+        }
+      if (!fe::failed_together())
+        abort_other_ranks(exit_write_error);
+      return exit_write_error;
+    }
+  catch (const fe::StoppedElsewhere &e)
+    {
+      // The rank that failed reports it; rank 0 removes the work folder.
+      if (root && !cl.final_dir.empty())
+        {
+          std::error_code ec;
+          std::filesystem::remove_all(cl.output_dir, ec);
+        }
+      return e.exit_code();
     }
   catch (const InputError &e)
     {
@@ -460,13 +521,15 @@ int main(int argc, char **argv)
   catch (const NumericalError &e)
     {
       log::error(e.what());
-      abort_other_ranks(exit_numerical_error);
+      if (!fe::failed_together())
+        abort_other_ranks(exit_numerical_error);
       return exit_numerical_error;
     }
   catch (const std::exception &e)
     {
       log::error(std::string("fe_stage: ") + e.what());
-      abort_other_ranks(exit_numerical_error);
+      if (!fe::failed_together())
+        abort_other_ranks(exit_numerical_error);
       return exit_numerical_error;
     }
 }

@@ -213,6 +213,8 @@ namespace clearjoint::fit
         const std::string tag = ".tmp." + std::to_string(::getpid());
         tmp_law_ = stem_ + tag + ".json";
         tmp_png_ = stem_ + tag + ".png";
+        temporary_law_.set(tmp_law_);  // removed by a hard stop too (common/interrupt.h)
+        temporary_png_.set(tmp_png_);
       }
       ~FitOutputs()
       {
@@ -271,6 +273,7 @@ namespace clearjoint::fit
 
     private:
       std::string output_, stem_, tmp_law_, tmp_png_;
+      interrupt::Temporary temporary_law_, temporary_png_;
       fs::path dir_, created_top_;
       bool created_dir_ = false;
     };
@@ -358,7 +361,18 @@ namespace clearjoint::fit
       manifest.add_output(c.output);
       if (plotted)
         manifest.add_output(files.png());
-      manifest.write("complete");
+      try
+      {
+        manifest.write("complete");
+      }
+      catch (const WriteError &)
+      {
+        // A law without its manifest is not this run's output (a full disk): remove it.
+        std::error_code ec;
+        fs::remove(c.output, ec);
+        fs::remove(files.png(), ec);
+        throw;
+      }
       log::info("wrote " + c.output);
       return exit_success;
     }

@@ -29,7 +29,8 @@ int main(int argc, char **argv)
     "atomically, LAW.manifest.json, and LAW.png (data, fit, residuals).\n"
     "\n"
     "Exit codes: 0 success, 1 input error (bad file, column, value or option), 2 numerical\n"
-    "failure (the fit did not converge), 130/143 interrupted by SIGINT/SIGTERM."};
+    "failure (the fit did not converge), 3 an output could not be written (a full disk),\n"
+    "130/143 interrupted by SIGINT/SIGTERM."};
   fit::FitCommand command;
   std::string range, start, weighting = "absolute", family;
   double delta_ref = 0;
@@ -75,7 +76,9 @@ int main(int argc, char **argv)
   }
 
   interrupt::install();  // SIGINT/SIGTERM: plot.py stopped, exit 130/143
-  return run_stage_main([&]() -> int {
+
+  interrupt::arm_hard_stop("fit_stage", 1.0);  // a signal inside a long step: stopped within 1 s
+  return run_stage_main("fit_stage", [&]() -> int {
     command.options.weighting =
       weighting == "relative" ? fit::Weighting::relative : fit::Weighting::absolute;
     if (!range.empty())

@@ -11,7 +11,8 @@
 // DIR/restitution_fit.csv (per velocity: the fitted c_e of each damping model),
 // DIR/impact_compare.png and DIR/manifest.json (the fitted c_e per model, its spread over v).
 // Everything goes to DIR.tmp.<pid> first and replaces DIR when complete.
-// Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted.
+// Exit codes: 0 success, 1 input error, 2 numerical failure, 3 write error (a full disk),
+// 130/143 interrupted.
 #include "common/atomic_file.h"
 #include "common/csv.h"
 #include "common/error.h"
@@ -71,7 +72,8 @@ int main(int argc, char **argv)
 {
   CLI::App app{"impact_compare: the FE impact sweep against the MBD contact law, per damping "
                "model, and the c_e that reproduces the FE restitution (clearjoint).\n"
-               "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted."};
+               "Exit codes: 0 success, 1 input error, 2 numerical failure, 3 an output could not be "
+               "written (a full disk), 130/143 interrupted."};
   std::string law_path, sweep_path, output;
   double ce = 0.9;
   bool no_plots = false, check = false;
@@ -94,7 +96,8 @@ int main(int argc, char **argv)
       return app.exit(e) == 0 ? exit_success : exit_input_error;
     }
   interrupt::install();
-  return run_stage_main([&]() -> int {
+  interrupt::arm_hard_stop("impact_compare", 1.0);  // a signal inside a long step: stopped within 1 s
+  return run_stage_main("impact_compare", [&]() -> int {
     if (!(ce > 0.0 && ce <= 1.0))
       throw InputError("", "--restitution", format_value(ce), "(0, 1]");
     const laws::LawFile law = laws::read_law_file(law_path);

@@ -40,6 +40,8 @@ int main(int argc, char **argv)
              "(integrator error, non-finite state, law range under 'error'); the partial "
              "outputs are kept and marked failed; also when the scene's budget (budget.wall_time, "
              "budget.steps) is exceeded; budget.output_rows is checked before the run)\n"
+             "  3  an output could not be written (a full disk, an I/O error; nothing new is "
+             "left)\n"
              "  130/143  interrupted by SIGINT/SIGTERM (DIR.tmp.PID "
              "removed, an earlier DIR left as it was)");
   try
@@ -57,7 +59,9 @@ int main(int argc, char **argv)
     log::set_level(log::Level::debug);
 
   interrupt::install();  // SIGINT/SIGTERM: stop between steps, remove DIR.tmp.<pid>, exit 130/143
-  return run_stage_main([&]() -> int {
+
+  interrupt::arm_hard_stop("mbd_stage", 1.0);  // a signal inside a long step: stopped within 1 s
+  return run_stage_main("mbd_stage", [&]() -> int {
     mbd::Scene scene = mbd::read_scene(scene_path);  // validates everything first
     if (check)
     {

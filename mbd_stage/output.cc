@@ -36,6 +36,7 @@ namespace clearjoint::mbd
     tmp_ = dir_ + ".tmp." + std::to_string(::getpid());
     check_output_replaceable(dir_, "mbd_stage");
     create_work_folder(tmp_, dir_);
+    temporary_.set(tmp_);
   }
 
   OutputWriter::~OutputWriter()
@@ -72,7 +73,42 @@ namespace clearjoint::mbd
     fs::rename(tmp_, dir_, ec);
     if (ec)
       throw NumericalError("cannot rename " + tmp_ + " to " + dir_ + ": " + ec.message());
+    temporary_.set(dir_);  // until the manifest is written: DIR without one is not an output
+    write_manifest(scene, r, make_plots);
+    temporary_.release();
+    // The end-of-run summary (issue 14, item 5).
+    const RunSummaryLines lines =
+      make_run_summary(r.summary, dir_, make_plots && fs::exists(dir_ + "/plots"));
+    for (const auto &l : lines.info)
+      log::info(l);
+    for (const auto &l : lines.warnings)
+      log::warning(l);
+    if (r.complete)
+      return exit_success;
+    log::error("mbd_stage: simulation failed: " + r.failure + " (partial outputs in " + dir_ + ")");
+    return exit_numerical_error;
+  }
 
+  /// DIR/manifest.json, written last. DIR is removed if it cannot be written (a full disk):
+  /// outputs without their manifest would look like an earlier run's.
+  void OutputWriter::write_manifest(const Scene &scene, const SimulationResult &r,
+                                    const bool make_plots)
+  {
+    try
+    {
+      write_manifest_file(scene, r, make_plots);
+    }
+    catch (const WriteError &)
+    {
+      std::error_code ec;
+      fs::remove_all(dir_, ec);
+      throw;
+    }
+  }
+
+  void OutputWriter::write_manifest_file(const Scene &scene, const SimulationResult &r,
+                                         const bool make_plots)
+  {
     Manifest manifest("mbd_stage", dir_ + "/manifest.json", argc_, argv_);
     manifest.add_input(scene.file);
     for (const auto &f : scene.input_files)
@@ -94,16 +130,5 @@ namespace clearjoint::mbd
                                    {"energy", r.summary["energy"]},
                                    {"peaks", r.summary["peaks"]}};
     manifest.write(r.complete ? "complete" : "failed", r.complete ? "" : r.failure);
-    // The end-of-run summary (issue 14, item 5).
-    const RunSummaryLines lines =
-      make_run_summary(r.summary, dir_, make_plots && fs::exists(dir_ + "/plots"));
-    for (const auto &l : lines.info)
-      log::info(l);
-    for (const auto &l : lines.warnings)
-      log::warning(l);
-    if (r.complete)
-      return exit_success;
-    log::error("mbd_stage: simulation failed: " + r.failure + " (partial outputs in " + dir_ + ")");
-    return exit_numerical_error;
   }
 } // namespace clearjoint::mbd

@@ -4,6 +4,7 @@
 // most a *.tmp.* directory, never a DIR that looks finished.
 #pragma once
 
+#include "common/interrupt.h"
 #include "mbd_stage/scene.h"
 #include "mbd_stage/simulation.h"
 
@@ -22,7 +23,11 @@ namespace clearjoint::mbd
     int write(const Scene &scene, const SimulationResult &result, bool make_plots);
 
   private:
+    void write_manifest(const Scene &scene, const SimulationResult &r, bool make_plots);
+    void write_manifest_file(const Scene &scene, const SimulationResult &r, bool make_plots);
+
     std::string dir_, tmp_;
+    interrupt::Temporary temporary_;  ///< tmp_, removed by a hard stop
     int argc_;
     const char *const *argv_;
   };

@@ -1,9 +1,10 @@
 #include "pipeline/command_capture.h"
 
+#include "pipeline/spawn.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,8 +14,6 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
-
-extern char **environ;
 
 namespace clearjoint::pipeline
 {
@@ -27,23 +26,11 @@ namespace clearjoint::pipeline
       result.start_error = std::string("pipe: ") + std::strerror(errno);
       return result;
     }
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
-    posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attr, 0);
-    std::vector<char *> argv;
-    for (const auto &w : words)
-      argv.push_back(const_cast<char *>(w.c_str()));
-    argv.push_back(nullptr);
+    SpawnOptions options;
+    options.output_fd = fds[1];
+    options.stdin_null = true;
     pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attr);
+    const int rc = spawn_in_new_group(words, options, pid);
     ::close(fds[1]);
     if (rc != 0)
     {

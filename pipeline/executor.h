@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,11 @@ namespace clearjoint::pipeline
     std::string what;
     /// What the task's stamp records about where it ran (null for local runs).
     nlohmann::json record;
+    /// The stage's exit status if it exited by itself (3: it could not write its output).
+    std::optional<int> exit_status;
+    /// Ended from outside (a signal, SIGKILL, the OOM killer; Slurm's time limit, scancel, a
+    /// node failure, preemption): its log says nothing about why, so the message is one line.
+    bool ended_from_outside = false;
   };
 
   class Executor

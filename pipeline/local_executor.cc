@@ -57,10 +57,16 @@ namespace clearjoint::pipeline
                    " left processes in its group (a plot.py child, say); they were killed");
     e.succeeded = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     if (WIFEXITED(status))
+    {
       e.what = "exit status " + std::to_string(WEXITSTATUS(status));
+      e.exit_status = WEXITSTATUS(status);
+    }
     else if (WIFSIGNALED(status))
+    {
       e.what = std::string("killed by signal ") + std::to_string(WTERMSIG(status)) + " (" +
                strsignal(WTERMSIG(status)) + ")";
+      e.ended_from_outside = true;
+    }
     else
       e.what = "ended with wait status " + std::to_string(status);
     return e;

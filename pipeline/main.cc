@@ -8,12 +8,33 @@
 #include "pipeline/pipeline_runner.h"
 #include "pipeline/presets.h"
 #include "pipeline/sweep_values.h"
+#include "pipeline/task_runner.h"
 
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
 
 namespace fs = std::filesystem;
+
+namespace
+{
+  /// The run's manifest after a failure; on a full disk it may not be writable either, which
+  /// must not hide the failure itself (already logged).
+  void write_final_manifest(clearjoint::Manifest *manifest, const std::string &status,
+                            const std::string &message)
+  {
+    if (!manifest)
+      return;
+    try
+    {
+      manifest->write(status, message);
+    }
+    catch (const std::exception &)
+    {
+      manifest->discard();
+    }
+  }
+} // namespace
 
 int main(int argc, char **argv)
 {
@@ -38,6 +59,8 @@ int main(int argc, char **argv)
     "\n"
     "Exit codes: 0 success, 1 input error (pipeline.yaml or a scene), 2 a stage failed (a\n"
     "failing rolling study does not stop the rest: the report is written, then exit 2),\n"
+    "3 an output could not be written (a full disk, an I/O error: one line naming the task,\n"
+    "the file and the reason; the next run redoes only what was lost),\n"
     "130/143 interrupted by SIGINT/SIGTERM (passed on to the running stage or report)."};
   std::string pipeline_file = "pipeline.yaml", preset, only, build_dir;
   pipeline::RunOptions options;
@@ -115,7 +138,18 @@ int main(int argc, char **argv)
     if (config.report && options.plots && (!options.only || *options.only == "report"))
     {
       const std::string html = runner.run_dir() + "/report.html";
-      if (run_plot_script("report", {runner.run_dir() + "/pipeline_summary.json", "--output", html}))
+      bool plotted = false;
+      try
+      {
+        plotted = run_plot_script("report",
+                                  {runner.run_dir() + "/pipeline_summary.json", "--output", html});
+      }
+      catch (const WriteError &e)
+      {
+        throw pipeline::TaskWriteError(std::string("run_pipeline in the report: ") + e.what() +
+                                       "; every task is complete, the next run makes the report");
+      }
+      if (plotted)
       {
         manifest->add_output(html);
         log::info("report: " + html);
@@ -155,15 +189,30 @@ int main(int argc, char **argv)
   catch (const InputError &e)
   {
     log::error(e.what());
-    if (manifest)
-      manifest->write("failed", e.what());
+    write_final_manifest(manifest.get(), "failed", e.what());
     return exit_input_error;
+  }
+  catch (const pipeline::TaskWriteError &e)
+  {
+    // A task's output could not be written (a full disk): one line naming the task, the file
+    // and the reason. The tasks completed before are kept; the next run redoes the rest.
+    log::error(e.what());
+    write_final_manifest(manifest.get(), "failed", e.what());
+    return exit_write_error;
+  }
+  catch (const WriteError &e)
+  {
+    // run_pipeline's own file (its manifest, the summary, a generated scene).
+    log::error(std::string("run_pipeline: ") + e.what() +
+               "; the tasks completed so far are kept, the next run redoes the rest");
+    write_final_manifest(manifest.get(), "failed", e.what());
+    return exit_write_error;
   }
   catch (const std::exception &e)
   {
     log::error(e.what());
-    if (manifest)
-      manifest->write(pipeline::interrupt_requested() ? "incomplete" : "failed", e.what());
+    write_final_manifest(manifest.get(),
+                         pipeline::interrupt_requested() ? "incomplete" : "failed", e.what());
     return pipeline::interrupt_requested() ? interrupt::exit_code() : exit_numerical_error;
   }
 }

@@ -1,19 +1,16 @@
 #include "pipeline/process_groups.h"
 
 #include "common/error.h"
+#include "pipeline/spawn.h"
 #include "pipeline/task_runner.h"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <unistd.h>
 
 #include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
-
-extern char **environ;
 
 namespace clearjoint::pipeline
 {
@@ -38,18 +35,6 @@ namespace clearjoint::pipeline
 
   pid_t spawn_in_own_group(const std::vector<std::string> &words, const std::string &log_path)
   {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_APPEND, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    posix_spawnattr_setpgroup(&attr, 0);
-    std::vector<char *> argv;
-    for (const auto &w : words)
-      argv.push_back(const_cast<char *>(w.c_str()));
-    argv.push_back(nullptr);
     pid_t pid = 0;
     // Block the signals while the group is started and registered, so that a handler never
     // misses a group that exists.
@@ -60,13 +45,11 @@ namespace clearjoint::pipeline
     sigprocmask(SIG_BLOCK, &block, &old);
     // The stage starts with our mask as it was (not the block above) and with SIGINT and
     // SIGTERM at their defaults, even if run_pipeline was started with them ignored (nohup).
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK |
-                                      POSIX_SPAWN_SETSIGDEF);
-    posix_spawnattr_setsigmask(&attr, &old);
-    posix_spawnattr_setsigdefault(&attr, &block);
-    const int rc = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attr);
+    SpawnOptions options;
+    options.append_to = log_path;
+    options.mask = &old;
+    options.defaults = &block;
+    const int rc = spawn_in_new_group(words, options, pid);
     if (rc == 0)
       try
       {

@@ -1,5 +1,9 @@
-// The stages run_pipeline starts, each in a process group of its own (issue 33): a stage's
-// MPI ranks and its plot.py child are in its group, so one kill(-group) reaches them all.
+// The stages run_pipeline starts, each in a process group of its own (issue 33): a one-rank
+// stage and its plot.py child are in its group, so one kill(-group) reaches them all. A stage
+// under mpirun is different: Open MPI puts every rank in a process group of its own, so the
+// group holds mpirun alone; mpirun passes a SIGINT/SIGTERM on to its ranks (as SIGCONT, then
+// SIGTERM 1 s later, then SIGKILL), and a rank's plot.py ends itself when its rank dies
+// (PR_SET_PDEATHSIG, scripts/plot.py).
 // The groups are kept in a fixed table that the SIGINT/SIGTERM handler walks
 // (async-signal-safe: atomics only), so an interrupt reaches every running stage at once.
 #pragma once

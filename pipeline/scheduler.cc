@@ -5,9 +5,12 @@
 #include "pipeline/presets.h"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace clearjoint::pipeline
 {
+  namespace fs = std::filesystem;
+
   Scheduler::Scheduler(TaskGraph &graph, Executor &executor, ScheduleOptions options,
                        RunEta *eta, std::function<double(const std::string &)> expected_seconds)
     : graph_(graph)
@@ -127,6 +130,12 @@ namespace clearjoint::pipeline
             again = again || status_[id].state == NodeState::done;
           }
         }
+        catch (const WriteError &w)
+        {
+          status_[id].state = NodeState::failed;
+          fail(std::make_exception_ptr(TaskWriteError(
+            "run_pipeline in task " + graph_.node(id).task.name + ": " + w.what())));
+        }
         catch (...)
         {
           status_[id].state = NodeState::failed;
@@ -163,6 +172,15 @@ namespace clearjoint::pipeline
                                          ""));
         done(e.node, r);
       }
+      catch (const WriteError &w)
+      {
+        // Its stamp (or a manifest) could not be written: the task is not complete and the
+        // next run redoes it.
+        s.state = NodeState::failed;
+        fail(std::make_exception_ptr(
+          TaskWriteError("run_pipeline in task " + s.task.name + ": " + w.what() +
+                         "; the task is not marked complete, the next run redoes it")));
+      }
       catch (...)
       {
         s.state = NodeState::failed;
@@ -171,14 +189,30 @@ namespace clearjoint::pipeline
       return;
     }
     s.state = NodeState::failed;
-    const std::string message = failure_message(s.task, s.run.log_path, e.what);
+    const bool write_error = e.exit_status && *e.exit_status == exit_write_error;
+    // A stage that could not write (a full disk) or was ended from outside (a signal, a
+    // scheduler's time limit): one line; the log's end says nothing more. Its own failure:
+    // the end of its log.
+    const std::string message = write_error            ? write_failure_message(s.task, s.run.log_path)
+                                : e.ended_from_outside ? ended_message(s.task, s.run.log_path, e.what)
+                                                       : failure_message(s.task, s.run.log_path, e.what);
+    if (write_error)
+    {
+      std::error_code ec;
+      fs::remove_all(s.run.partial, ec);  // the stage removed its work; nothing in it is kept
+    }
     if (const auto &tolerated = graph_.node(e.node).on_failure)
     {
       tolerated(message);
       return;
     }
-    log::error(message);
-    fail(std::make_exception_ptr(NumericalError(message)));
+    // Said now if other tasks go on (the run waits for them), and again as the run's last line.
+    if (executor_.n_running() > 0 || first_error_)
+      log::error(message);
+    if (write_error)
+      fail(std::make_exception_ptr(TaskWriteError(message)));
+    else
+      fail(std::make_exception_ptr(NumericalError(message)));
   }
 
   void Scheduler::stop_on_interrupt()

@@ -285,6 +285,10 @@ namespace clearjoint::pipeline
     const auto code = read_exit_file(job.exit_file);
     fs::remove(job.exit_file);
     e.succeeded = state == "COMPLETED" && code.value_or(0) == 0;
+    e.exit_status = code;
+    // The scheduler ended it (TIMEOUT, CANCELLED, NODE_FAIL, PREEMPTED, OUT_OF_MEMORY, ...):
+    // not the stage's own failure, which is COMPLETED or FAILED with its exit status.
+    e.ended_from_outside = state != "COMPLETED" && state != "FAILED";
     e.what = "Slurm job " + id + " ended " + state +
              (code ? ", exit status " + std::to_string(*code) : std::string()) +
              (state == "TIMEOUT" ? ", time limit " + std::to_string(job.time_limit_min) + " min"

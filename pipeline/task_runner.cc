@@ -160,6 +160,32 @@ namespace clearjoint::pipeline
            " ends with:\n" + tail;
   }
 
+  std::string ended_message(const Task &t, const std::string &log_path, const std::string &what)
+  {
+    return t.stage + " in task " + t.name + ": " + what + "; its log: " + log_path;
+  }
+
+  std::string write_failure_message(const Task &t, const std::string &log_path)
+  {
+    // The stage's last line: "error: <stage>: cannot write '<file>': <reason>; ..."
+    std::string line = "could not write its output (exit status 3)";
+    try
+    {
+      const std::string all = read_file(log_path);
+      const auto at = all.rfind("cannot write '");
+      if (at != std::string::npos)
+      {
+        line = all.substr(at, all.find('\n', at) - at);
+        line = line.substr(0, line.find("; "));  // what the stage removed: said below
+      }
+    }
+    catch (...)
+    {
+    }
+    return t.stage + " in task " + t.name + ": " + line +
+           "; nothing of the task kept, the next run redoes it; its log: " + log_path;
+  }
+
   TaskResult complete_run(const Task &t, const PreparedRun &run, const double seconds,
                           const nlohmann::json &executor)
   {

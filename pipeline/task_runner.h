@@ -15,6 +15,7 @@
 
 #include <atomic>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -80,4 +81,22 @@ namespace clearjoint::pipeline
   /// "<stage> failed in task <name> (<what>); its log <log> ends with:\n<last 2000 bytes>".
   std::string failure_message(const Task &task, const std::string &log_path,
                               const std::string &what);
+
+  /// One line for a task ended from outside (a signal; Slurm's time limit, scancel, a node
+  /// failure): "<stage> in task <name>: <what>; its log: <log>" — its log tells nothing more.
+  std::string ended_message(const Task &task, const std::string &log_path,
+                            const std::string &what);
+
+  /// One line for a stage that could not write its output (exit 3): "<stage> in task <name>:
+  /// cannot write '<file>': <reason>; its log: <log>" (the file and the reason are the
+  /// stage's own last line).
+  std::string write_failure_message(const Task &task, const std::string &log_path);
+
+  /// A task's output could not be written (by its stage or by run_pipeline): run_pipeline
+  /// exits 3. The message is one line and names the task.
+  class TaskWriteError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
 } // namespace clearjoint::pipeline

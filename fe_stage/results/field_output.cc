@@ -2,6 +2,7 @@
 // plastic_zone (the yield check), contact pressure/gap/status/shear/slip as Abaqus's
 // CPRESS/COPEN/CSTATUS/CSHEAR/CSLIP, subdomain.
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/results/vtu_files.h"
 
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
@@ -141,17 +142,13 @@ namespace clearjoint::fe::detail
         out.add_data_vector(plastic_zone, "plastic_zone");
       }
     out.build_patches(bodies_.mapping(), dofs_.fe().degree, DataOut<dim>::curved_inner_cells);
-    const std::string pvtu =
-      out.write_vtu_with_pvtu_record(dir + "/", "solution", counter, comm_, 4, 0);
+    // A full disk: WriteError naming the file and the reason, on every rank (vtu_files.h).
+    const std::string pvtu = write_vtu_pieces(out, dir, counter, comm_);
     if (rank_ == 0)
       {
         pvd_records_.emplace_back(delta, pvtu);
-        const std::string pvd = dir + "/solution.pvd";
-        std::ofstream f(pvd + ".tmp");
-        DataOutBase::write_pvd_record(f, pvd_records_);
-        f.close();
-        std::filesystem::rename(pvd + ".tmp", pvd);
         field_files_.push_back(dir + "/" + pvtu);
       }
+    write_pvd(dir, pvd_records_, comm_);
   }
 }  // namespace clearjoint::fe::detail

@@ -384,7 +384,12 @@ def main(argv):
     parts.append(timing_section(summary))
     parts.append("</body></html>")
     tmp = a.output + ".tmp"
-    with open(tmp, "w") as f:
-        f.write("\n".join(parts))
-    os.replace(tmp, a.output)
+    try:
+        with open(tmp, "w") as f:
+            f.write("\n".join(parts))
+        os.replace(tmp, a.output)
+    except OSError:  # a full disk: no half-written report left (plot.py reports the error)
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
     return 0

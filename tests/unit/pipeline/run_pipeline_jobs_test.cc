@@ -174,7 +174,8 @@ TEST(RunPipelineJobs, AStageKilledWithSigkillDoesNotLeaveItsChildRunning)
   kill(stages[0].pid, SIGKILL);  // the stage alone, as the OOM killer would
   EXPECT_EQ(test_support::wait_exit_code(pid), 2);
   const std::string log = test_support::read_text(dir.file("log.txt"));
-  EXPECT_NE(log.find("fe_stage failed in task fe/thickness/t_B=0.002 (killed by signal 9"),
+  EXPECT_NE(log.find("error: fe_stage in task fe/thickness/t_B=0.002: killed by signal 9 (Killed); "
+                     "its log: "),
             std::string::npos) << log;
   EXPECT_NE(log.find("left processes in its group"), std::string::npos) << log;
   EXPECT_FALSE(alive(children[0].pid)) << "the orphaned child was ended with the group";

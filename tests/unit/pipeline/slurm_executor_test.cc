@@ -167,9 +167,41 @@ TEST_F(SlurmExecutorTest, AJobCancelledFromOutsideIsReportedAndTheRerunRedoesIt)
   ASSERT_EQ(std::system(("scancel " + ids[0]).c_str()), 0);
   EXPECT_EQ(test_support::wait_exit_code(pid), 2);
   const std::string log = test_support::read_text(dir_.file("log.txt"));
-  EXPECT_NE(log.find("(Slurm job " + ids[0] + " ended CANCELLED (scancel from outside"),
-            std::string::npos) << log;
+  // one line (its log says nothing about why): the task, the job id, the state, the log
+  EXPECT_TRUE(std::regex_search(log, std::regex("error: fe_stage in task fe/thickness/t_B=0.00[24]: Slurm job " +
+                                                ids[0] + " ended CANCELLED \\(scancel from outside[^\n]*; "
+                                                "its log: [^\n]*t_B=0.00[24].log\n")))
+    << log;
   EXPECT_FALSE(fs::exists(dir_.file("out/r/fe/thickness/t_B=0.002")));
+  const Outcome again = run(dir_, build);
+  ASSERT_EQ(again.exit_code, 0) << again.log;
+  EXPECT_EQ(with(again, "ran").size(), 12u);
+}
+
+TEST_F(SlurmExecutorTest, AJobPastItsTimeLimitIsReportedInOneLineAndTheRerunResumes)
+{
+  FakeBuild build(dir_);
+  // A 15 s limit (sbatch_args come after the executor's own --time, so they win), a 300 s task.
+  std::string yaml = slurm_yaml(dir_.path(), "[0.002, 0.004]");
+  yaml.replace(yaml.find("partition: test}"), 16,
+               "partition: test, sbatch_args: [\"--time=0:15\"]}");
+  test_support::write_text(dir_.file("p.yaml"), yaml);
+  const auto started = std::chrono::steady_clock::now();
+  const Outcome o = run(dir_, build, "--jobs 1", "CLEARJOINT_FAKE_SLEEP=300");
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_EQ(o.exit_code, 2) << o.log;
+  EXPECT_LT(seconds, 150.0) << "ended by Slurm's limit, not by the 300 s sleep";
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(o.log, m, std::regex("error: fe_stage in task fe/thickness/t_B=0.00[24]: "
+                                                     "Slurm job ([0-9]+) ended TIMEOUT[^\n]*"
+                                                     "its log: [^\n]*t_B=0.00[24].log\n")))
+    << o.log;
+  EXPECT_EQ(o.log.find("ends with:"), std::string::npos) << "one line, not the log's tail";
+  EXPECT_EQ(job_state(m[1]), "TIMEOUT");
+  EXPECT_FALSE(fs::exists(dir_.file("out/r/fe/thickness/t_B=0.002")));
+  EXPECT_FALSE(fs::exists(dir_.file("out/r/fe/thickness/t_B=0.004")));
+  // The rerun (no sleep) redoes the task that was killed and goes on.
   const Outcome again = run(dir_, build);
   ASSERT_EQ(again.exit_code, 0) << again.log;
   EXPECT_EQ(with(again, "ran").size(), 12u);
