@@ -24,7 +24,9 @@ def end_with_parent() -> None:
     that no plot.py goes on writing into a folder nobody owns. The stage passes its pid as
     CLEARJOINT_PLOT_PARENT; if it is already gone, stop at once. (An MPI rank lives in a process
     group of its own, which run_pipeline's kill of the stage's group does not reach.)"""
-    parent = os.environ.get("CLEARJOINT_PLOT_PARENT")
+    # popped: the variable names *our* parent; a plot.py we start ourselves (the report's
+    # field pictures: plot.py fields, under xvfb-run) must not compare its parent with it
+    parent = os.environ.pop("CLEARJOINT_PLOT_PARENT", None)
     if not parent or not sys.platform.startswith("linux"):
         return
     try:
