@@ -21,9 +21,10 @@ namespace clearjoint::fe
       , bodies_(scene, plan_, options.comm)
       , dofs_(scene, plan_, bodies_, options.comm)
       , contact_(scene, dofs_, options.comm)
+      , system_(scene, bodies_, dofs_, options.comm)
       , start_(std::chrono::steady_clock::now())
     {
-      material_ = make_material(scene, plan_.rolling);
+      material_ = make_material(scene, scene.material.model == Material::Model::elastoplastic);
       obstacle_ = plan_.obstacle;
     }
   }  // namespace detail

@@ -191,6 +191,10 @@ namespace clearjoint::fe
         M.model = m.string("model", {"elastic", "elastoplastic"}) == "elastoplastic" ?
                     Material::Model::elastoplastic :
                     Material::Model::elastic;
+      if (m.has("kinematics"))
+        M.kinematics = m.string("kinematics", {"small", "finite"}) == "finite" ?
+                         Material::Kinematics::finite :
+                         Material::Kinematics::small;
       if (m.has("hardening"))
         read_hardening(m, M);
       m.finish();
@@ -274,6 +278,8 @@ namespace clearjoint::fe
       S.max_linear_iterations =
         uint_or(o, "max_linear_iterations", S.max_linear_iterations, 1, 1000000);
       S.direct_below_dofs = uint_or(o, "direct_below_dofs", S.direct_below_dofs, 0, 100000000);
+      S.max_newton_iterations =
+        uint_or(o, "max_newton_iterations", S.max_newton_iterations, 1, 1000);
       o.finish();
     }
 
@@ -562,14 +568,41 @@ namespace clearjoint::fe
                          "mid-plane");
     }
 
-    /// Every study but rolling (which validate_rolling checks): elastic only.
+    /// Plasticity: the rolling study (validate_rolling insists on it) and the patch test's
+    /// block under the rigid flat (the elastoplastic quasi-static push, checked against the
+    /// point law); elsewhere the model stays elastic and reports where von Mises exceeds
+    /// material.yield_stress. Finite kinematics: the J2 law in the patch test, so far.
     void validate_material(const FeScene &s)
     {
-      if (s.study != Study::rolling && s.material.model == Material::Model::elastoplastic)
-        throw InputError(s.source_file, "material.model", "elastoplastic",
+      const std::string &f = s.source_file;
+      const bool elastoplastic = s.material.model == Material::Model::elastoplastic;
+      const bool patch = s.study == Study::patch;
+      if (elastoplastic && s.study != Study::rolling && !patch)
+        throw InputError(f, "material.model", "elastoplastic",
                          "elastic for study " + to_string(s.study),
-                         "only the rolling study integrates plasticity; the others report where "
-                         "von Mises exceeds material.yield_stress");
+                         "only the rolling study and the patch test integrate plasticity; the "
+                         "others report where von Mises exceeds material.yield_stress");
+      if (elastoplastic && patch && s.verification.deformable_indenter)
+        throw InputError(f, "verification.indenter", "deformable",
+                         "rigid with material.model elastoplastic",
+                         "the elastoplastic patch test presses the rigid flat");
+      if (elastoplastic && patch && s.mesh.adaptive_cycles > 0)
+        throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
+                         "0 with material.model elastoplastic",
+                         "the quadrature-point history is not carried to a refined mesh");
+      if (s.material.kinematics == Material::Kinematics::finite)
+        {
+          if (!elastoplastic)
+            throw InputError(f, "material.kinematics", "finite",
+                             "small with material.model elastic",
+                             "finite strain is implemented for the J2 law "
+                             "(material.model: elastoplastic)");
+          if (!patch)
+            throw InputError(f, "material.kinematics", "finite",
+                             "small for study " + to_string(s.study),
+                             "finite strain runs in the patch test so far; the rolling study's "
+                             "follows (issue 30)");
+        }
     }
 
     /// Study misalignment: the journal's loading and the tilt (with the swept tilts).
@@ -916,8 +949,10 @@ namespace clearjoint::fe
         << "  E: " << d.material.E << "    # [Pa] Young's modulus, (0, inf)\n"
         << "  nu: " << d.material.nu << "         # [1] Poisson's ratio, (-1, 0.5)\n"
         << "  rho: " << d.material.rho << "       # [kg/m^3] density (dynamic studies only)\n"
-        << "  model: elastic      # elastic | elastoplastic (study rolling only: von Mises,\n"
-        << "                      #   isotropic hardening, radial return)\n"
+        << "  model: elastic      # elastic | elastoplastic (study rolling, and patch: von\n"
+        << "                      #   Mises, isotropic hardening, radial return)\n"
+        << "  kinematics: small   # small | finite (total Lagrangian, J2 in the logarithmic\n"
+        << "                      #   strain space; elastoplastic, study patch so far)\n"
         << "  # hardening: [[0, 168.2e6], [0.1, 196.225e6], ...]  # [eps_p, sigma_y Pa] points,\n"
         << "                      #   linear between, extended beyond the last; default SPEC 2:\n"
         << "                      #   168.2 + 280.25 eps_p MPa at eps_p = 0, 0.1, ..., 1.0\n"
@@ -1000,7 +1035,9 @@ namespace clearjoint::fe
         << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
         << "  max_linear_iterations: " << d.solver.max_linear_iterations << "\n"
         << "  direct_below_dofs: " << d.solver.direct_below_dofs
-        << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n";
+        << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n"
+        << "  max_newton_iterations: " << d.solver.max_newton_iterations
+        << "  # [1, 1000] material Newton iterations per increment (elastoplastic)\n";
     }
 
     /// verification:
@@ -1122,13 +1159,13 @@ namespace clearjoint::fe
       j["geometry"]["mesh"] = s.geometry.mesh;
     if (s.study == Study::misalignment)
       j["misalignment"] = {{"theta_deg", s.misalignment.theta_deg}};
-    j["material"] = {{"E", s.material.E},
-                     {"nu", s.material.nu},
-                     {"rho", s.material.rho},
-                     {"yield_stress", s.material.yield_stress},
-                     {"model", s.material.model == Material::Model::elastoplastic ?
-                                 "elastoplastic" :
-                                 "elastic"}};
+    j["material"] = {
+      {"E", s.material.E},
+      {"nu", s.material.nu},
+      {"rho", s.material.rho},
+      {"yield_stress", s.material.yield_stress},
+      {"model", s.material.model == Material::Model::elastoplastic ? "elastoplastic" : "elastic"},
+      {"kinematics", s.material.kinematics == Material::Kinematics::finite ? "finite" : "small"}};
     if (s.material.model == Material::Model::elastoplastic)
       {
         nlohmann::json h = nlohmann::json::array();
@@ -1179,7 +1216,8 @@ namespace clearjoint::fe
     j["solver"] = {{"linear", lin},
                    {"tolerance", s.solver.tolerance},
                    {"max_linear_iterations", s.solver.max_linear_iterations},
-                   {"direct_below_dofs", s.solver.direct_below_dofs}};
+                   {"direct_below_dofs", s.solver.direct_below_dofs},
+                   {"max_newton_iterations", s.solver.max_newton_iterations}};
     j["verification"] = {{"sphere_radius", s.verification.sphere_radius},
                          {"block_width", s.verification.block_width},
                          {"block_height", s.verification.block_height},

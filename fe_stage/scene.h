@@ -100,6 +100,15 @@ namespace clearjoint::fe
       elastic,
       elastoplastic
     } model = Model::elastic;
+    /// The kinematics: `small` (ε = sym ∇u about the reference configuration) or `finite`
+    /// (total Lagrangian: F = I + ∇u, first Piola stress and geometric stiffness, the J2 law
+    /// lifted to the logarithmic strain space, material/finite_j2.h). Finite needs
+    /// model elastoplastic; so far the patch study (issue 30 brings it to the rolling study).
+    enum class Kinematics
+    {
+      small,
+      finite
+    } kinematics = Kinematics::small;
     /// (ε_p [-], σ_y [Pa]) points, linear between them (material/hardening_table.h); empty:
     /// SPEC §2's default table 168.2 + 280.25·ε_p MPa at ε_p = 0, 0.1, …, 1.0.
     std::vector<std::array<double, 2>> hardening;
@@ -193,6 +202,9 @@ namespace clearjoint::fe
     double tolerance = 1.0e-10;  // [1] relative residual of the linear solve
     unsigned int max_linear_iterations = 2000;
     unsigned int direct_below_dofs = 3000;  // `automatic`: direct (Amesos KLU) below this
+    /// Material Newton iterations per increment at most (an elastoplastic quasi-static study;
+    /// the rolling study has rolling.max_newton_iterations per evaluation of its torque).
+    unsigned int max_newton_iterations = 25;
   };
 
   /// Verification block (study hertz / patch): a block [0,W]×[−H,0]×[0,W] (quarter model).

@@ -63,7 +63,7 @@ namespace clearjoint::fe::detail
             cn.obstacle_u = frame_.partner_motion(cn, frame_.centre, frame_.psi());
             Tensor<1, dim> r;  // from the journal's axis to the node, in the cross-section
             for (unsigned int k = 0; k + 1 < dim; ++k)
-              r[k] = cn.X[k] + solution_[cn.dofs[k]] - frame_.centre[k];
+              r[k] = cn.X[k] + state_.u()[cn.dofs[k]] - frame_.centre[k];
             cn.n = r / r.norm();
             cn.g0 = cn.n * (cn.X - cn.partner_X - cn.obstacle_u);
           }
@@ -81,7 +81,7 @@ namespace clearjoint::fe::detail
               // otherwise leave it by its Poisson expansion)
               Tensor<1, dim> u;
               for (unsigned int c = 0; c + 1 < dim; ++c)
-                u[c] = solution_[cn.dofs[c]];
+                u[c] = state_.u()[cn.dofs[c]];
               double g = 0.0;
               if (!obstacle_gap(cn.X + u, delta, g, cn.n))
                 throw NumericalError("fe_stage: a contact-surface node left the rolling "
@@ -103,8 +103,7 @@ namespace clearjoint::fe::detail
 
   void ContactModel::start_from_rest()
   {
-    solution_owned_ = 0.0;
-    solution_ = 0.0;
+    state_.set_zero();
     for (auto &cn : contact_.nodes())
       {
         cn.active = false;
@@ -118,8 +117,8 @@ namespace clearjoint::fe::detail
   /// traction K u − b is read in evaluate_contact): the friction rows' constant part (below).
   void ContactModel::set_contact_load_offsets()
   {
-    TrilinosWrappers::MPI::Vector load = dynamic_load_;
-    condense_hanging(load);
+    TrilinosWrappers::MPI::Vector load = system_.load();
+    dofs_.condense_hanging(load);
     TrilinosWrappers::MPI::Vector load_ghosted(dofs_.owned(), dofs_.relevant(), comm_);
     load_ghosted = load;
     for (auto &cn : contact_.nodes())
@@ -140,13 +139,13 @@ namespace clearjoint::fe::detail
   /// hang from s, as the condensed equations and the evaluation see them), the c·Q·s_T term
   /// once per node in friction_node_matrix. The contact cell's matrix is extended by the
   /// partners' rows and condensed as a whole (so the constraints' inhomogeneities reach the
-  /// right-hand side too). This makes A_ non-symmetric (GMRES). Returns false if the cell
+  /// right-hand side too). This makes the system non-symmetric (GMRES). Returns false if the cell
   /// holds no slipping node.
   bool ContactModel::friction_cell_matrix(const unsigned int k, FullMatrix<double> &M,
                                           std::vector<types::global_dof_index> &ext) const
   {
-    const auto &dofs = contact_cell_dofs_[k];
-    const auto &Kc = contact_cell_matrices_[k];
+    const auto &dofs = system_.contact_cell_dofs(k);
+    const auto &Kc = system_.contact_cell_matrix(k);
     const unsigned int n = dofs.size();
     ext = dofs;
     // The slipping nodes whose force (K u)_s this cell adds to: those among its DoFs, and
@@ -294,7 +293,7 @@ namespace clearjoint::fe::detail
     // Dynamic and elastoplastic: the traction is K u − b, so F(u) has the constant part
     // F_b = −μŵ (n·b_s) − κ Q M b_s (b_s the load at the node), moved to the right-hand side
     // of the node's rows (+) and its partners' (−w_p Qᵀ).
-    if (plastic_ || dynamic_)
+    if (system_.has_load())
       {
         const Tensor<1, dim> Fb = -scene_.contact.mu * (cn.n * cn.load_offset) * cn.slip_direction -
                                   cn.kappa * (Q * contact_.held_components(cn, cn.load_offset));

@@ -224,10 +224,10 @@ namespace clearjoint::fe::detail
 
     if (plan_.deformable_partner && n_ranks_ > 1)
       ghost_partners(dofs_, contact_.nodes(), comm_);
+    std::vector<int> contact_cell_of;
     const unsigned int n =
       mark_contact_cells(dofs_, contact_.nodes(), bodies_.triangulation().n_active_cells(),
-                         contact_cell_of_);
-    contact_cell_matrices_.resize(n);
-    contact_cell_dofs_.resize(n);
+                         contact_cell_of);
+    system_.set_contact_cells(std::move(contact_cell_of), n);
   }
 }  // namespace clearjoint::fe::detail

@@ -23,7 +23,7 @@ namespace clearjoint::fe::detail
     std::map<types::global_dof_index, Point<dim>> support;
     DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
     std::map<types::global_dof_index, ContactNode> fresh;
-    find_mortar_contact_nodes(support, fresh, &solution_);
+    find_mortar_contact_nodes(support, fresh, &state_.u());
 
     // the new couplings fit the pattern when every new candidate was one in the pattern, with
     // the same constrained component and its new partners among the pattern's
@@ -87,8 +87,8 @@ namespace clearjoint::fe::detail
         }
     else
       {
-        const TrilinosWrappers::MPI::Vector u_owned = solution_owned_;
-        const TrilinosWrappers::MPI::Vector u_ghosted = solution_;  // the old ghost layout
+        const TrilinosWrappers::MPI::Vector u_owned = state_.u_owned();
+        const TrilinosWrappers::MPI::Vector u_ghosted = state_.u();  // the old ghost layout
         std::map<types::global_dof_index, ContactNode> old_state;
         for (const auto &cn : contact_.nodes())
           old_state.emplace(cn.dofs[0], cn);
@@ -96,8 +96,8 @@ namespace clearjoint::fe::detail
         search_displacement_ = &u_ghosted;
         prepare_mesh();
         search_displacement_ = nullptr;
-        solution_owned_ = u_owned;
-        solution_ = solution_owned_;
+        state_.u_owned() = u_owned;
+        state_.publish();
         for (auto &cn : contact_.nodes())
           {
             const auto it = old_state.find(cn.dofs[0]);
@@ -106,8 +106,8 @@ namespace clearjoint::fe::detail
             cn.active = it->second.active && cn.candidate;
             cn.stick = it->second.stick;
           }
-        if (plastic_)
-          keep_elastic_operator();  // the new pattern's elastic matrices
+        if (elastoplastic())
+          system_.keep_elastic_operator();  // the new pattern's elastic matrices
         ++n_sliding_rebuilds_;
       }
     // Friction: the slip of the (re-solved or next) increment counts from its start, u_start,

@@ -1,32 +1,55 @@
-// Linear-elastic stiffness: the static part once (cells without contact nodes), and the system
-// of one active-set iteration (contact cells condensed with the iteration's constraints).
-#include "fe_stage/core/contact_model.h"
+// The operator's assembly: the static part once per mesh (cells without contact nodes), the
+// dynamic operator, and the condensed system of one active-set iteration (core/assembler.h).
+#include "fe_stage/core/assembler.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/sparsity_tools.h>
 
 namespace clearjoint::fe::detail
 {
-  /// The operator once per mesh (and per time step size): the unconstrained K_ and the
-  /// condensed part of the cells without contact nodes. Quasi-static: the stiffness K; dynamic
-  /// (dynamic_): c_m M + c_k K, with M and K also kept apart for the step's right-hand side and
-  /// the energies.
-  void ContactModel::assemble_static()
+  Assembler::Assembler(const FeScene &scene, const Bodies &bodies, const DofSpace &dofs,
+                       MPI_Comm comm)
+    : scene_(scene)
+    , bodies_(bodies)
+    , dofs_(dofs)
+    , comm_(comm)
+  {}
+
+  void Assembler::reinit(const DynamicSparsityPattern &dsp)
   {
+    K_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
+    A_static_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
+    A_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
+    rhs_.reinit(dofs_.owned(), comm_);
+    rhs_static_unit_.reinit(dofs_.owned(), comm_);
+  }
+
+  void Assembler::set_contact_cells(std::vector<int> cell_of, const unsigned int n)
+  {
+    contact_cell_of_ = std::move(cell_of);
+    contact_cell_matrices_.resize(n);
+    contact_cell_dofs_.resize(n);
+  }
+
+  unsigned int Assembler::n_q_points() const { return QGauss<dim>(dofs_.fe().degree + 1).size(); }
+
+  /// Quasi-static (and tangent, before any yielding): the stiffness K; dynamic: c_m M + c_k K,
+  /// with M and K also kept apart for the step's right-hand side and the energies.
+  void Assembler::assemble_static(const LinearElastic &C,
+                                  const std::set<types::global_dof_index> &surface_dofs)
+  {
+    const bool dynamic = kind_ == Operator::dynamic;
     const unsigned int p = dofs_.fe().degree;
     const QGauss<dim> quadrature(p + 1);
     FEValues<dim> fe_values(bodies_.mapping(), dofs_.fe(), quadrature,
                             update_gradients | update_JxW_values |
-                              (dynamic_ ? update_values : update_default));
+                              (dynamic ? update_values : update_default));
     const unsigned int n_dofs = dofs_.fe().n_dofs_per_cell();
-    const double c_m = dynamic_ ? operator_coefficients_.mass : 0.0;
-    const double c_k = dynamic_ ? operator_coefficients_.stiffness : 1.0;
+    const double c_m = dynamic ? c_mass_ : 0.0;
+    const double c_k = dynamic ? c_stiffness_ : 1.0;
     const double rho = scene_.material.rho;
     FullMatrix<double> cell_matrix(n_dofs, n_dofs), cell_mass(n_dofs, n_dofs);
-    // the contact surface's DoFs (every node of contact_.nodes(), candidate or watched): massless with
-    // impact.mass = redistributed
-    std::set<types::global_dof_index> surface_dofs;
-    if (dynamic_ && scene_.impact.mass == Impact::Mass::redistributed)
-      for (const auto &cn : contact_.nodes())
-        surface_dofs.insert(cn.dofs.begin(), cn.dofs.end());
-    const LinearElastic &C = material_->elastic();
     Vector<double> cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dofs(n_dofs);
     const FEValuesExtractors::Vector u(0);
@@ -55,7 +78,7 @@ namespace clearjoint::fe::detail
             for (unsigned int j = 0; j < i; ++j)
               cell_matrix(i, j) = cell_matrix(j, i);
           cell->get_dof_indices(dofs);
-          if (dynamic_)
+          if (dynamic)
             {
               // consistent mass: ρ φ_i·φ_j (a vector element: only equal components couple)
               cell_mass = 0.0;
@@ -90,7 +113,7 @@ namespace clearjoint::fe::detail
             }
         }
     K_.compress(VectorOperation::add);
-    if (dynamic_)
+    if (dynamic)
       {
         elastic_.K.compress(VectorOperation::add);
         M_.compress(VectorOperation::add);
@@ -99,45 +122,46 @@ namespace clearjoint::fe::detail
     rhs_static_unit_.compress(VectorOperation::add);  // from the journal load at δ = 1
   }
 
-  /// The condensed system of this iteration: the static part, plus the contact cells condensed
-  /// with this iteration's constraints (with the friction rows of slipping nodes), plus the
-  /// slip terms of the slipping nodes (c: the complementarity constant [N/m]).
-  void ContactModel::assemble_system(const double delta, const double c)
+  void Assembler::begin_system()
   {
-    ScopedTimer timer(t_assemble_);
     A_.copy_from(A_static_);
     rhs_ = 0.0;  // the static part δ·rhs_static_unit_ is added after compress(): adding
                  // into a vector whose last operation was an assignment is collective
-    Vector<double> cell_rhs(dofs_.fe().n_dofs_per_cell());
-    contact_.collect_slipping();
-    FullMatrix<double> friction_matrix;
-    std::vector<types::global_dof_index> friction_dofs;
-    for (unsigned int k = 0; k < contact_cell_matrices_.size(); ++k)
-      if (contact_.friction() && friction_cell_matrix(k, friction_matrix, friction_dofs))
-        {
-          Vector<double> zero(friction_dofs.size());
-          constraints_.distribute_local_to_global(friction_matrix, zero, friction_dofs, A_, rhs_);
-        }
-      else
-        {
-          cell_rhs = 0.0;
-          constraints_.distribute_local_to_global(contact_cell_matrices_[k], cell_rhs,
-                                                  contact_cell_dofs_[k], A_, rhs_);
-        }
-    Vector<double> node_rhs;
-    for (const unsigned int i : contact_.slipping())
-      if (contact_.nodes()[i].owned)  // once per node over all ranks
-        {
-          friction_node_matrix(contact_.nodes()[i], contact_.tangential_scale() * c, delta,
-                               friction_matrix, node_rhs, friction_dofs);
-          constraints_.distribute_local_to_global(friction_matrix, node_rhs, friction_dofs, A_,
-                                                  rhs_);
-        }
+  }
+
+  void Assembler::add_to_system(const AffineConstraints<double> &constraints,
+                                const FullMatrix<double> &matrix, const Vector<double> &rhs,
+                                const std::vector<types::global_dof_index> &dofs)
+  {
+    constraints.distribute_local_to_global(matrix, rhs, dofs, A_, rhs_);
+  }
+
+  /// Then the known load b, condensed: rhs += C^T b, a constrained DoF's entry of b moved to
+  /// its masters with the constraint's coefficients (as distribute_local_to_global does with a
+  /// cell vector). Every rank moves the entries of the lines of the DoFs it owns.
+  void Assembler::finish_system(const double delta, const AffineConstraints<double> &constraints)
+  {
     A_.compress(VectorOperation::add);
     rhs_.compress(VectorOperation::add);
     rhs_.add(delta, rhs_static_unit_);
-    if (dynamic_ || plastic_)
-      add_condensed(dynamic_load_, rhs_);
+    if (!has_load())
+      return;
+    TrilinosWrappers::MPI::Vector ghosted(dofs_.owned(), dofs_.relevant(), comm_);
+    ghosted = load_;
+    TrilinosWrappers::MPI::Vector moved;
+    moved.reinit(dofs_.owned(), dofs_.relevant(), comm_,
+                 true);  // writable: masters owned elsewhere
+    for (const auto &line : constraints.get_lines())
+      if (dofs_.owned().is_element(line.index))
+        {
+          const double bi = ghosted[line.index];
+          for (const auto &[m, c] : line.entries)
+            moved[m] += c * bi;
+          moved[line.index] -= bi;
+        }
+    moved.compress(VectorOperation::add);
+    rhs_ += load_;
+    rhs_ += moved;
   }
 
   /// Row-sum lumping of a cell's consistent mass (positive for Lagrange Q1 and Q2: the tensor
@@ -148,9 +172,9 @@ namespace clearjoint::fe::detail
   /// closing node receives an impulse over one time step, so the contact force oscillates and
   /// its peak keeps growing as Δt falls (measured from T_c/20 to T_c/160: docs/fe.md); without
   /// it the semi-discrete problem is well posed and the force converges with Δt.
-  void ContactModel::lump_and_redistribute(FullMatrix<double> &cell_mass,
-                                           const std::vector<types::global_dof_index> &dofs,
-                                           const std::set<types::global_dof_index> &surface) const
+  void Assembler::lump_and_redistribute(FullMatrix<double> &cell_mass,
+                                        const std::vector<types::global_dof_index> &dofs,
+                                        const std::set<types::global_dof_index> &surface) const
   {
     const unsigned int n = cell_mass.m();
     std::vector<double> m(n, 0.0);
@@ -179,44 +203,22 @@ namespace clearjoint::fe::detail
       cell_mass(i, i) = m[i];
   }
 
-  void ContactModel::set_dynamic_operator(const MatrixCoefficients &c)
+  void Assembler::set_dynamic_operator(const double c_mass, const double c_stiffness,
+                                       const LinearElastic &C,
+                                       const std::set<types::global_dof_index> &massless)
   {
-    dynamic_ = true;
-    operator_coefficients_ = c;
+    kind_ = Operator::dynamic;
+    c_mass_ = c_mass;
+    c_stiffness_ = c_stiffness;
     for (auto *m : {&K_, &A_static_})
       *m = 0.0;
     M_.reinit(K_);  // K_'s pattern (a new setup may have changed it)
     elastic_.K.reinit(K_);
-    dynamic_load_.reinit(dofs_.owned(), comm_);
+    load_.reinit(dofs_.owned(), comm_);
     M_ = 0.0;
     elastic_.K = 0.0;
     rhs_static_unit_ = 0.0;
-    assemble_static();
-    solver_.invalidate();  // its AMG was built for the previous operator
-  }
-
-  /// The condensed system's right-hand side gets C^T b: a constrained DoF's entry of b moves to
-  /// its masters with the constraint's coefficients (as distribute_local_to_global does with a
-  /// cell vector). Every rank moves the entries of the lines of the DoFs it owns.
-  void ContactModel::add_condensed(const TrilinosWrappers::MPI::Vector &b,
-                                   TrilinosWrappers::MPI::Vector &rhs)
-  {
-    TrilinosWrappers::MPI::Vector ghosted(dofs_.owned(), dofs_.relevant(), comm_);
-    ghosted = b;
-    TrilinosWrappers::MPI::Vector moved;
-    moved.reinit(dofs_.owned(), dofs_.relevant(), comm_,
-                 true);  // writable: masters owned elsewhere
-    for (const auto &line : constraints_.get_lines())
-      if (dofs_.owned().is_element(line.index))
-        {
-          const double bi = ghosted[line.index];
-          for (const auto &[m, c] : line.entries)
-            moved[m] += c * bi;
-          moved[line.index] -= bi;
-        }
-    moved.compress(VectorOperation::add);
-    rhs += b;
-    rhs += moved;
+    assemble_static(C, massless);
   }
 
 }  // namespace clearjoint::fe::detail

@@ -5,7 +5,9 @@
 //
 // The class is being dissolved into objects that own their state (issue 29, FE_DESIGN §4.1).
 // Owners so far, each in its own header: the meshed bodies (Bodies, mesh/bodies.h), the DoF
-// space and its fixed constraints (DofSpace, core/dof_space.h), the linear solver and its AMG
+// space and its fixed constraints (DofSpace, core/dof_space.h), the operator, its load, the
+// elastic cache and each iteration's condensed system (Assembler, core/assembler.h), the
+// contact nodes and their active set (ContactProblem, contact/contact_problem.h), the linear solver and its AMG
 // (SystemSolver, solve/linear_solver.h), the material law with its quadrature-point history
 // (MaterialLaw, material/material_law.h), the steppers' step-size policy (StepController,
 // solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's coefficients and
@@ -14,8 +16,8 @@
 // Method (docs/fe.md has the equations):
 //   - small strain, FE_Q(p)^3 on hexahedra with a curved mapping MappingQ(max(2,p)) and
 //     cylindrical manifolds, parallel::distributed::Triangulation, Trilinos matrices; linear
-//     elastic, or J2 elastoplastic with history (the rolling study: K_ then holds the tangent,
-//     dynamic_load_ the linearisation's load);
+//     elastic, or J2 elastoplastic with history (the rolling study: the operator is then the
+//     tangent, with the linearisation's load; core/assembler.h);
 //   - contact enforced EXACTLY at the contact nodes by a primal–dual active set (as deal.II's
 //     step-41/42): an active node gets the linearised non-penetration constraint as an
 //     AffineConstraints line on its dominant displacement component; the contact force at a
@@ -31,8 +33,10 @@
 #include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
+#include "fe_stage/core/assembler.h"
 #include "fe_stage/core/dof_space.h"
 #include "fe_stage/core/scoped_timer.h"
+#include "fe_stage/core/state.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/material_law.h"
@@ -137,7 +141,10 @@ namespace clearjoint::fe::detail
     IncrementRecord settle_sliding(double delta, const TrilinosWrappers::MPI::Vector &u_start,
                                    IncrementRecord rec);
     void make_matrices();
-    void assemble_static();
+    /// The contact surface's DoFs, massless in an operator of this kind (the impact study's
+    /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
+    /// otherwise.
+    std::set<types::global_dof_index> massless_dofs(Assembler::Operator kind) const;
     void compute_nodal_weights();
     void set_obstacle_position(double delta);
     bool push_through(const std::vector<double> &targets, std::string &message,
@@ -145,22 +152,17 @@ namespace clearjoint::fe::detail
     void prepare_mesh();
     /// Study impact (solve/impact_stepping.cc): the static curve, then HHT-α time steps.
     RunResult run_impact();
-    /// Switches the assembled operator to c_m M + c_k K (dynamic_ on) and reassembles.
+    /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
+    /// built again).
     void set_dynamic_operator(const MatrixCoefficients &c);
-    /// rhs += C^T b: b moved off the DoFs constrained in constraints_ onto their masters.
-    void add_condensed(const TrilinosWrappers::MPI::Vector &b, TrilinosWrappers::MPI::Vector &rhs);
-    void lump_and_redistribute(FullMatrix<double> &cell_mass,
-                               const std::vector<types::global_dof_index> &dofs,
-                               const std::set<types::global_dof_index> &surface) const;
     /// Study rolling (solve/rolling_stepping.cc): the bearing turning, the journal's spin from
     /// its torque balance, elastoplastic (core/plastic_assembly.cc).
     RunResult run_rolling();
     void init_plasticity();
-    struct PlasticAssembly
-    {
-      unsigned int n_plastic_points = 0;  // quadrature points yielding in this iteration
-    };
-    PlasticAssembly assemble_plastic();
+    /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
+    /// then the contact nodes' share of the load. Returns the number of yielding points.
+    unsigned int assemble_plastic();
+    bool elastoplastic() const { return system_.kind() == Assembler::Operator::tangent; }
     struct PlasticEnergies
     {
       double plastic_work_step = 0.0;  // [J] full body
@@ -175,6 +177,17 @@ namespace clearjoint::fe::detail
                              Vector<float> &alpha_max, Vector<float> &vm_max) const;
     std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
                                                    double half_angle) const;
+    /// The material Newton iteration at the push δ (solve/material_newton.cc): tangent and
+    /// load at the current u, the active-set contact solve, until the correction is below
+    /// 1e-7 δ_max; at most max_it iterations. Throws StepFailure.
+    struct MaterialSolve
+    {
+      IncrementRecord record;  // of the last contact solve
+      unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
+    };
+    MaterialSolve solve_material_state(double delta, unsigned int max_it);
+    /// A converged state's trial states made the points' history.
+    void commit_material();
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.
     struct RollingSolve
@@ -221,7 +234,6 @@ namespace clearjoint::fe::detail
                               std::vector<types::global_dof_index> &ext) const;
     void friction_node_matrix(const ContactNode &cn, double c, double delta, FullMatrix<double> &M,
                               Vector<double> &rhs, std::vector<types::global_dof_index> &ext) const;
-    void condense_hanging(TrilinosWrappers::MPI::Vector &r);
     /// Every study's start: zero displacement, no contact, every node sticking with no slip
     /// history and the obstacle's surface points unmoved.
     void start_from_rest();
@@ -235,14 +247,17 @@ namespace clearjoint::fe::detail
       std::vector<ContactNode> nodes;
       unsigned int sliding_rebuilds = 0;
     };
-    Snapshot save_state() const { return {solution_owned_, contact_.nodes(), n_sliding_rebuilds_}; }
+    Snapshot save_state() const
+    {
+      return {state_.u_owned(), contact_.nodes(), n_sliding_rebuilds_};
+    }
     void restore_state(const Snapshot &s);
     /// [s] since the model was made (the runs' setup and wall times).
     double elapsed() const
     {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
-    /// Each contact node's share of the step's known load b (dynamic_load_: the traction is
+    /// Each contact node's share of the step's known load b (system_.load(): the traction is
     /// K u − b in the dynamic and elastoplastic solves), for the friction rows (collective).
     void set_contact_load_offsets();
     void write_fields(unsigned int counter, double delta);
@@ -266,18 +281,11 @@ namespace clearjoint::fe::detail
     /// linear elastic); material_->elastic() is the law of the static operator.
     std::unique_ptr<MaterialLaw> material_;
 
-    TrilinosWrappers::MPI::Vector rhs_static_unit_;  // static cells' right-hand side at δ = 1
-    bool journal_driven_ = true;                     // false: a deformable journal is free
-    AffineConstraints<double> constraints_;          // + contact lines of the active set
-    TrilinosWrappers::SparseMatrix K_;               // unconstrained stiffness (reactions);
-                                                     // dynamic: c_m M + c_k K
-    // Implicit dynamics (study impact): the operator K_ and the condensed matrices hold
-    // c_m M + c_k K; the residual K_ u − dynamic_load_ is then the constraint forces.
-    bool dynamic_ = false;
-    // Elastoplastic (study rolling): K_ holds the tangent, dynamic_load_ the linearisation's
-    // load, so that K_ u − dynamic_load_ is again the constraint forces.
-    bool plastic_ = false;
-    unsigned int n_q_ = 0;  // quadrature points per cell: material_'s point = cell · n_q_ + q
+    bool journal_driven_ = true;             // false: a deformable journal is free
+    AffineConstraints<double> constraints_;  // + contact lines of the active set
+    /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
+    /// cells' matrices, the elastic cache and each iteration's condensed system.
+    Assembler system_;
     /// The rolling study's journal as the contact sees it (the bearing's frame angle, the
     /// journal's centre and turn; identity elsewhere): set by the spin stepper.
     JournalFrame frame_;
@@ -303,30 +311,7 @@ namespace clearjoint::fe::detail
       std::set<types::global_dof_index> partners;
     };
     std::map<types::global_dof_index, PatternEntry> pattern_partners_;
-    /// After a new sparsity pattern (follow_sliding's rebuild) the elastic operator that every
-    /// elastoplastic assembly starts from is copied again.
-    void keep_elastic_operator();
-    MatrixCoefficients operator_coefficients_;  // {mass 0, stiffness 1}: quasi-static
-    /// The elastic operator, kept apart from K_ where K_ means something else: the dynamic
-    /// study's K (K_ holds c_m M + c_k K; assembled with it), the elastoplastic study's elastic
-    /// K, condensed static part and contact cells (every tangent assembly starts from them;
-    /// keep_elastic_operator). One cache for both.
-    struct ElasticOperator
-    {
-      TrilinosWrappers::SparseMatrix K;         // unconstrained
-      TrilinosWrappers::SparseMatrix A_static;  // condensed, cells without contact nodes
-      std::vector<FullMatrix<double>> contact_cells;
-    } elastic_;
-    TrilinosWrappers::SparseMatrix M_;            // mass (unconstrained; dynamic)
-    TrilinosWrappers::MPI::Vector dynamic_load_;  // owned: the known part of the step's rhs
-    TrilinosWrappers::SparseMatrix A_static_;     // condensed, cells without contact nodes
-    TrilinosWrappers::SparseMatrix A_;            // condensed system of this iteration
-    TrilinosWrappers::MPI::Vector solution_owned_, rhs_, residual_owned_;
-    TrilinosWrappers::MPI::Vector solution_, residual_;  // ghosted
-
-    std::vector<int> contact_cell_of_;  // active_cell_index → index or −1
-    std::vector<FullMatrix<double>> contact_cell_matrices_;
-    std::vector<std::vector<types::global_dof_index>> contact_cell_dofs_;
+    State state_;  // u (owned and ghosted) and the nodal forces it leaves
 
     SystemSolver solver_;  // KLU or CG/GMRES with the AMG it owns
 

@@ -174,4 +174,23 @@ namespace clearjoint::fe::detail
       if (line.inhomogeneity != 0.0)
         fixed_delta_.set_inhomogeneity(line.index, delta * line.inhomogeneity);
   }
+
+  void DofSpace::condense_hanging(TrilinosWrappers::MPI::Vector &r) const
+  {
+    // ghosted copy: the hanging DoF's value on whichever rank owns its line
+    TrilinosWrappers::MPI::Vector ghosted(owned_, relevant_, comm_);
+    ghosted = r;
+    TrilinosWrappers::MPI::Vector moved;
+    moved.reinit(owned_, relevant_, comm_, true);  // writable: entries of masters elsewhere
+    for (const auto &line : hanging_.get_lines())
+      if (owned_.is_element(line.index))
+        {
+          const double rh = ghosted[line.index];
+          for (const auto &[m, c] : line.entries)
+            moved[m] += c * rh;
+          moved[line.index] -= rh;
+        }
+    moved.compress(VectorOperation::add);
+    r += moved;
+  }
 }  // namespace clearjoint::fe::detail

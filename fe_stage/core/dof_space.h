@@ -17,6 +17,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <algorithm>
 #include <memory>
@@ -38,6 +39,12 @@ namespace clearjoint::fe::detail
     void add_relevant(const IndexSet &extra);
     /// The fixed constraints at the push δ [m] (fixed_at_delta()).
     void set_delta(double delta);
+    /// Moves the nodal forces of hanging DoFs in r (owned) to their masters (r_m += c_hm r_h,
+    /// r_h = 0), as the condensed equations see them: a hanging node inside the contact zone
+    /// passes its share of the contact force to the contact nodes it hangs from, and supports
+    /// count the share of hanging support nodes. Without it the contact force misses those
+    /// shares. Collective.
+    void condense_hanging(TrilinosWrappers::MPI::Vector &r) const;
 
     const FESystem<dim> &fe() const { return *fe_; }
     const DoFHandler<dim> &handler() const { return handler_; }

@@ -107,16 +107,9 @@ namespace clearjoint::fe::detail
           }
     }
     SparsityTools::distribute_sparsity_pattern(dsp, dofs_.owned(), comm_, dofs_.relevant());
-    K_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
-    A_static_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
-    A_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
+    system_.reinit(dsp);
 
-    solution_owned_.reinit(dofs_.owned(), comm_);
-    rhs_.reinit(dofs_.owned(), comm_);
-    rhs_static_unit_.reinit(dofs_.owned(), comm_);
-    residual_owned_.reinit(dofs_.owned(), comm_);
-    solution_.reinit(dofs_.owned(), dofs_.relevant(), comm_);
-    residual_.reinit(dofs_.owned(), dofs_.relevant(), comm_);
+    state_.reinit(dofs_, comm_);
 
     const auto n_dofs = dofs_.handler().n_dofs();
     bool direct = false;

@@ -42,6 +42,7 @@ namespace clearjoint::fe::detail
 
   J2Law::J2Law(J2Plasticity law, const LinearElastic &elastic)
     : law_(std::move(law))
+    , finite_(law_)
     , elastic_(elastic)
     , elastic_tangent_(to_deal(law_.elastic_tangent()))
   {}
@@ -60,6 +61,53 @@ namespace clearjoint::fe::detail
     m.plastic_work = r.plastic_work;
     if (r.plastic)
       m.tangent = to_deal(r.tangent);
+    return m;
+  }
+
+  FiniteResponse J2Law::evaluate_finite(const std::size_t point, const dealii::Tensor<2, 3> &grad_u)
+  {
+    Eigen::Matrix3d H;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        H(i, j) = grad_u[i][j];
+    const FiniteJ2Response r = finite_.evaluate_displacement_gradient(H, history_[point]);
+    FiniteResponse m;
+    m.converged = r.status.converged;
+    if (!m.converged)
+      {
+        m.reason = r.status.reason;
+        return m;
+      }
+    m.yielding = r.plastic;
+    m.plastic_work = r.plastic_work;
+    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + H;
+    const Eigen::Matrix3d &S = r.stress_pk2;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int J = 0; J < 3; ++J)
+        m.stress[i][J] = r.stress_pk1(i, J);
+    // A_iJkL = δ_ik S_JL + Σ_IK F_iI ℂ_IJKL F_kK (ℂ = dS/dE_GL, minor-symmetric: the Voigt
+    // entry of (I, J) and (K, L) with no factors); first G_IJkL = Σ_K ℂ_IJKL F_kK
+    double G[3][3][3][3];
+    for (unsigned int I = 0; I < 3; ++I)
+      for (unsigned int J = 0; J < 3; ++J)
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int L = 0; L < 3; ++L)
+            {
+              double g = 0.0;
+              for (unsigned int K = 0; K < 3; ++K)
+                g += r.tangent(voigt_of(I, J), voigt_of(K, L)) * F(k, K);
+              G[I][J][k][L] = g;
+            }
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int J = 0; J < 3; ++J)
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int L = 0; L < 3; ++L)
+            {
+              double a = i == k ? S(J, L) : 0.0;
+              for (unsigned int I = 0; I < 3; ++I)
+                a += F(i, I) * G[I][J][k][L];
+              m.tangent[i][J][k][L] = a;
+            }
     return m;
   }
 

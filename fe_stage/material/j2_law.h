@@ -3,6 +3,7 @@
 // types on this side, Eigen inside the return map.
 #pragma once
 
+#include "fe_stage/material/finite_j2.h"
 #include "fe_stage/material/j2_plasticity.h"
 #include "fe_stage/material/material_law.h"
 
@@ -21,6 +22,7 @@ namespace clearjoint::fe::detail
     bool has_history() const override { return true; }
     void resize(std::size_t n_points) override;
     MaterialResponse evaluate(std::size_t point, const dealii::SymmetricTensor<2, 3> &eps) override;
+    FiniteResponse evaluate_finite(std::size_t point, const dealii::Tensor<2, 3> &grad_u) override;
     void commit(std::size_t point) override { history_[point].commit(); }
     dealii::SymmetricTensor<2, 3> plastic_strain(std::size_t point,
                                                  bool trial = false) const override;
@@ -30,6 +32,7 @@ namespace clearjoint::fe::detail
 
   private:
     J2Plasticity law_;
+    FiniteJ2 finite_;  // the same law in the logarithmic strain space
     LinearElastic elastic_;
     dealii::SymmetricTensor<4, 3> elastic_tangent_;  // the law's own K 1⊗1 + 2G I_dev
     std::vector<J2History> history_;

@@ -9,16 +9,21 @@
 // evaluate() writes the trial state only; commit() makes it the point's history after a
 // converged step; a failed step simply evaluates again from the committed state.
 //
-// Small strain today (ε the symmetric gradient); the finite-strain seam (FE_DESIGN §4.2) is an
-// implementation that takes F and returns S and ℂ, beside these.
+// Two kinematics (material.kinematics): small strain, evaluate() from ε = sym ∇u; finite strain
+// (FE_DESIGN §4.2), evaluate_finite() from the displacement gradient ∇u = F − I, giving the
+// first Piola stress and its derivative dP/dF for a total-Lagrangian assembly. Only the J2 law
+// has the finite one (the scene allows finite with it only).
 #pragma once
 
 #include "fe_stage/material/linear_elastic.h"
 
 #include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
 
 #include <cstddef>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace clearjoint::fe
 {
@@ -35,6 +40,17 @@ namespace clearjoint::fe::detail
     bool yielding = false;      ///< the point yields in this step (tangent ≠ elastic)
     bool converged = true;      ///< false: the local return did not converge (cut the step)
     double plastic_work = 0.0;  ///< [J/m³] σ : Δε_p of the step
+  };
+
+  /// A point's response to a displacement gradient (finite kinematics).
+  struct FiniteResponse
+  {
+    dealii::Tensor<2, 3> stress;   ///< first Piola–Kirchhoff P = F S [Pa]
+    dealii::Tensor<4, 3> tangent;  ///< A_iJkL = dP_iJ/dF_kL [Pa]: δ_ik S_JL + F_iI ℂ_IJKL F_kK
+    bool yielding = false;         ///< the point yields in this step
+    bool converged = true;         ///< false: see `reason` (cut the step)
+    std::string reason;
+    double plastic_work = 0.0;  ///< [J/m³ of reference volume] in this step
   };
 
   class MaterialLaw
@@ -60,6 +76,10 @@ namespace clearjoint::fe::detail
     virtual MaterialResponse evaluate(std::size_t point,
                                       const dealii::SymmetricTensor<2, 3> &eps) = 0;
     /// Trial → committed at `point`.
+    /// Finite kinematics: P and dP/dF at the displacement gradient ∇u (trial state written
+    /// as evaluate() does).
+    virtual FiniteResponse evaluate_finite(std::size_t point,
+                                           const dealii::Tensor<2, 3> &grad_u) = 0;
     virtual void commit(std::size_t point) = 0;
 
     /// The plastic strain [-] of the point's trial or committed state (0: elastic law).
@@ -93,6 +113,11 @@ namespace clearjoint::fe::detail
       MaterialResponse r;
       r.stress = law_.stress(eps);
       return r;
+    }
+    FiniteResponse evaluate_finite(std::size_t, const dealii::Tensor<2, 3> &) override
+    {
+      // scene validation allows material.kinematics finite with the J2 law only
+      throw std::logic_error("fe_stage: finite kinematics needs the J2 law");
     }
     void commit(std::size_t) override {}
     dealii::SymmetricTensor<2, 3> plastic_strain(std::size_t, bool) const override { return {}; }

@@ -432,7 +432,7 @@ namespace clearjoint::fe::detail
   /// same for a bearing cell and the journal cell on the same rays); the misalignment study,
   /// whose contact is a small patch under one rim, the cells that hold contact candidates
   /// (a vertex within 2 δ_max of the journal pushed to δ_max; hanging nodes in the contact
-  /// zone pass their force to their masters, see condense_hanging); the rolling study, the
+  /// zone pass their force to their masters, see DofSpace::condense_hanging); the rolling study, the
   /// cells within the window of the arc the contact point travels over in the frame.
   void Bodies::refine_joint_mesh()
   {

@@ -105,16 +105,16 @@ namespace clearjoint::fe::detail
 
     std::vector<SymmetricTensor<2, dim>> mean_eps_p;
     Vector<float> alpha_max, vm_max;
-    if (plastic_)
+    if (elastoplastic())
       plastic_cell_fields(mean_eps_p, alpha_max, vm_max);
-    StressPostprocessor post(material_->elastic(), plastic_ ? &mean_eps_p : nullptr);
+    StressPostprocessor post(material_->elastic(), elastoplastic() ? &mean_eps_p : nullptr);
     DataOut<dim> out;
     out.attach_dof_handler(dofs_.handler());
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
       dim, DataComponentInterpretation::component_is_part_of_vector);
-    out.add_data_vector(solution_, std::vector<std::string>(dim, "displacement"),
+    out.add_data_vector(state_.u(), std::vector<std::string>(dim, "displacement"),
                         DataOut<dim>::type_dof_data, vec);
-    out.add_data_vector(solution_, post);
+    out.add_data_vector(state_.u(), post);
     std::vector<DataComponentInterpretation::DataComponentInterpretation> sc(
       dim, DataComponentInterpretation::component_is_scalar);
     out.add_data_vector(cf,
@@ -130,7 +130,7 @@ namespace clearjoint::fe::detail
     out.add_data_vector(subdomain, "subdomain");
     Vector<float> plastic_zone(
       bodies_.triangulation().n_active_cells());  // volume fraction above yield
-    if (plastic_)
+    if (elastoplastic())
       {
         // the elastoplastic model's own plastic zone: its equivalent plastic strain
         out.add_data_vector(alpha_max, "equivalent_plastic_strain");

@@ -8,49 +8,28 @@ namespace clearjoint::fe::detail
   /// so every rank evaluates the same numbers for the nodes it shares).
   void ContactModel::evaluate_contact(const double /*delta: in each node's g0, obstacle_u*/)
   {
-    K_.vmult(residual_owned_, solution_owned_);
+    system_.operator_matrix().vmult(state_.forces(), state_.u_owned());
     // the constraint forces: dynamic (c_m M + c_k K) u − b; elastoplastic K_t u − b
-    if (dynamic_ || plastic_)
-      residual_owned_ -= dynamic_load_;
-    condense_hanging(residual_owned_);
-    residual_ = residual_owned_;
+    if (system_.has_load())
+      state_.forces() -= system_.load();
+    dofs_.condense_hanging(state_.forces());
+    TrilinosWrappers::MPI::Vector forces(dofs_.owned(), dofs_.relevant(), comm_);
+    forces = state_.forces();
     for (auto &cn : contact_.nodes())
       {
         for (unsigned int c = 0; c < dim; ++c)
           {
-            cn.traction[c] = residual_[cn.dofs[c]];
-            cn.relative[c] = solution_[cn.dofs[c]];
+            cn.traction[c] = forces[cn.dofs[c]];
+            cn.relative[c] = state_.u()[cn.dofs[c]];
           }
         // the partners (turned into the slave's frame), and the rigid motion of the obstacle's
         // surface point or of the partners' frame (0 for two bodies at rest)
-        cn.relative -= partner_displacement(cn, solution_) + cn.obstacle_u;
+        cn.relative -= partner_displacement(cn, state_.u()) + cn.obstacle_u;
         cn.lambda = cn.traction * cn.n;
         // ĝ = g0 + n·(u − Σ w Q u_p); the obstacle's (or the partners' frame's) motion is
         // already in g0
         cn.gap = cn.g0 + cn.n * (cn.relative + cn.obstacle_u);
       }
-  }
-
-  /// Moves the nodal forces K u of hanging DoFs to their masters (r_m += c_hm r_h, r_h = 0),
-  /// as the condensed equations see them: a hanging node inside the contact zone passes its
-  /// share of the contact force to the contact nodes it hangs from, and supports count the
-  /// share of hanging support nodes. Without it the contact force misses those shares.
-  void ContactModel::condense_hanging(TrilinosWrappers::MPI::Vector &r)
-  {
-    residual_ = r;  // ghosted copy: the hanging DoF's value on whichever rank owns its line
-    TrilinosWrappers::MPI::Vector moved;
-    moved.reinit(dofs_.owned(), dofs_.relevant(), comm_,
-                 true);  // writable: entries of masters elsewhere
-    for (const auto &line : dofs_.hanging().get_lines())
-      if (dofs_.owned().is_element(line.index))
-        {
-          const double rh = residual_[line.index];
-          for (const auto &[m, c] : line.entries)
-            moved[m] += c * rh;
-          moved[line.index] -= rh;
-        }
-    moved.compress(VectorOperation::add);
-    r += moved;
   }
 
   /// The increment's forces (contact, supports, loaded set; full body), active and slipping
@@ -87,9 +66,9 @@ namespace clearjoint::fe::detail
         }
     double f_support = 0.0, f_load = 0.0;
     for (const auto d : dofs_.support_y_dofs())
-      f_support += residual_owned_[d];
+      f_support += state_.forces()[d];
     for (const auto d : dofs_.loaded_y_dofs())
-      f_load -= residual_owned_[d];
+      f_load -= state_.forces()[d];
     // Where a contact partner's y-DoF is itself driven (the journal's rim on its end face),
     // the contact force reaches that DoF through the constraint, not through K u: add it.
     for (const auto &cn : contact_.nodes())

@@ -23,7 +23,7 @@ namespace clearjoint::fe::detail
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
-          fv[u].get_function_symmetric_gradients(solution_, eps);
+          fv[u].get_function_symmetric_gradients(state_.u(), eps);
           const unsigned int b = cell->material_id() == 1 ? 1 : 0;
           double cell_volume = 0.0, cell_above = 0.0;
           for (const unsigned int q : fv.quadrature_point_indices())

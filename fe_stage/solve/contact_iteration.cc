@@ -4,6 +4,40 @@
 
 namespace clearjoint::fe::detail
 {
+  /// The condensed system of this iteration: the static part, plus the contact cells condensed
+  /// with this iteration's constraints (with the friction rows of slipping nodes), plus the
+  /// slip terms of the slipping nodes (c: the complementarity constant [N/m]).
+  void ContactModel::assemble_system(const double delta, const double c)
+  {
+    ScopedTimer timer(t_assemble_);
+    system_.begin_system();
+    Vector<double> cell_rhs(dofs_.fe().n_dofs_per_cell());
+    contact_.collect_slipping();
+    FullMatrix<double> friction_matrix;
+    std::vector<types::global_dof_index> friction_dofs;
+    for (unsigned int k = 0; k < system_.n_contact_cells(); ++k)
+      if (contact_.friction() && friction_cell_matrix(k, friction_matrix, friction_dofs))
+        {
+          Vector<double> zero(friction_dofs.size());
+          system_.add_to_system(constraints_, friction_matrix, zero, friction_dofs);
+        }
+      else
+        {
+          cell_rhs = 0.0;
+          system_.add_to_system(constraints_, system_.contact_cell_matrix(k), cell_rhs,
+                                system_.contact_cell_dofs(k));
+        }
+    Vector<double> node_rhs;
+    for (const unsigned int i : contact_.slipping())
+      if (contact_.nodes()[i].owned)  // once per node over all ranks
+        {
+          friction_node_matrix(contact_.nodes()[i], contact_.tangential_scale() * c, delta,
+                               friction_matrix, node_rhs, friction_dofs);
+          system_.add_to_system(constraints_, friction_matrix, node_rhs, friction_dofs);
+        }
+    system_.finish_system(delta, constraints_);
+  }
+
   IncrementRecord ContactModel::solve_increment(const double delta)
   {
     IncrementRecord rec;
@@ -43,16 +77,17 @@ namespace clearjoint::fe::detail
         build_contact_constraints(delta);
         assemble_system(delta, c);
 
-        constraints_.set_zero(solution_owned_);  // start from the previous solution
+        constraints_.set_zero(state_.u_owned());  // start from the previous solution
         {
           ScopedTimer timer(t_solve_);
           rec.linear_iterations +=
-            solver_.solve(A_, contact_.nonsymmetric(), dofs_.handler(), bodies_.mapping(),
-                          solution_owned_, rhs_, loose ? loose_tolerance : scene_.solver.tolerance);
+            solver_.solve(system_.system(), contact_.nonsymmetric(), dofs_.handler(),
+                          bodies_.mapping(), state_.u_owned(), system_.rhs(),
+                          loose ? loose_tolerance : scene_.solver.tolerance);
         }
         ScopedTimer eval_timer(t_evaluate_);
-        constraints_.distribute(solution_owned_);
-        solution_ = solution_owned_;
+        constraints_.distribute(state_.u_owned());
+        state_.publish();
         evaluate_contact(delta);
         if (contact_.friction() && log::level() <= log::Level::debug)
           {

@@ -45,7 +45,7 @@ namespace clearjoint::fe::detail
             }
         journal_mask_.compress(VectorOperation::insert);
         journal_y_.compress(VectorOperation::insert);
-        m_.M_.vmult(tmp_, journal_y_);
+        m_.system_.mass().vmult(tmp_, journal_y_);
         journal_mass_modelled_ = journal_y_ * tmp_;
         journal_mass_ = m_.bodies_.symmetry_factor() * journal_mass_modelled_;
         v_.add(-velocity, journal_y_);
@@ -75,7 +75,7 @@ namespace clearjoint::fe::detail
 
   double HhtStepper::centre_of_mass_y(const TrilinosWrappers::MPI::Vector &x)
   {
-    m_.M_.vmult(tmp_, x);
+    m_.system_.mass().vmult(tmp_, x);
     return -(journal_y_ * tmp_) / journal_mass_modelled_;
   }
 
@@ -130,16 +130,16 @@ namespace clearjoint::fe::detail
     // the predictor û and the known part b = c_m M û + α(K u_n − λ_n)
     TrilinosWrappers::MPI::Vector u_hat(m_.dofs_.owned(), m_.comm_);
     hht_.predict(u_, v_, a_, dt, u_hat, HhtAlpha::Predictor::newmark);
-    m_.M_.vmult(m_.dynamic_load_, u_hat);
-    m_.dynamic_load_ *= c_m;
-    m_.elastic_.K.vmult(tmp_, u_);
+    m_.system_.mass().vmult(m_.system_.load(), u_hat);
+    m_.system_.load() *= c_m;
+    m_.system_.elastic_stiffness().vmult(tmp_, u_);
     tmp_ -= lambda_;
-    m_.dynamic_load_.add(hht_.alpha(), tmp_);
+    m_.system_.load().add(hht_.alpha(), tmp_);
     m_.set_contact_load_offsets();  // the friction rows read the traction K u − b
     double d_hat = 0.0;
     hht_.predict(d_, d_rate_, d_acc_, dt, d_hat, HhtAlpha::Predictor::newmark);
-    m_.solution_owned_ = u_hat;
-    m_.solution_ = m_.solution_owned_;
+    m_.state_.u_owned() = u_hat;
+    m_.state_.publish();
     if (deformable_)
       {
         // the journal is part of the FE system: one contact solve (δ from its centre of mass)
@@ -173,9 +173,9 @@ namespace clearjoint::fe::detail
                            DynamicStepRecord &rec)
   {
     // the Newmark updates, the new contact forces
-    u_new_ = m_.solution_owned_;
+    u_new_ = m_.state_.u_owned();
     hht_.update_rates(u_new_, u_, v_, a_, dt, v_new_, a_new_);
-    lambda_new_ = m_.residual_owned_;  // (1+α)λ_{n+1} at the constrained DoFs
+    lambda_new_ = m_.state_.forces();  // (1+α)λ_{n+1} at the constrained DoFs
     lambda_new_ *= 1.0 / hht_.weight_new();
     const double F_new = inc.force / hht_.weight_new();
     double d_rate_new = 0.0, d_acc_new = 0.0;
@@ -195,10 +195,11 @@ namespace clearjoint::fe::detail
     const double w_journal = deformable_ ? 0.0 : -0.5 * (d_new - d_) * (F_ + F_new);
     work_contact_ += w_bodies + w_journal;
     // the energies
-    const double strain_total = energy(m_.elastic_.K, u_new_, false);
-    const double strain_j = deformable_ ? energy(m_.elastic_.K, u_new_, true) : 0.0;
-    const double kinetic_total = energy(m_.M_, v_new_, false);
-    const double kinetic_fe_journal = deformable_ ? energy(m_.M_, v_new_, true) : 0.0;
+    const double strain_total = energy(m_.system_.elastic_stiffness(), u_new_, false);
+    const double strain_j =
+      deformable_ ? energy(m_.system_.elastic_stiffness(), u_new_, true) : 0.0;
+    const double kinetic_total = energy(m_.system_.mass(), v_new_, false);
+    const double kinetic_fe_journal = deformable_ ? energy(m_.system_.mass(), v_new_, true) : 0.0;
     const double kinetic_b = kinetic_total - kinetic_fe_journal;
     const double kinetic_j =
       deformable_ ? kinetic_fe_journal : 0.5 * m_J_ * d_rate_new * d_rate_new;

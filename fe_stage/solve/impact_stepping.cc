@@ -155,6 +155,24 @@ namespace clearjoint::fe::detail
     }
   }  // namespace
 
+  std::set<types::global_dof_index> ContactModel::massless_dofs(
+    const Assembler::Operator kind) const
+  {
+    // the contact surface's DoFs (every node, candidate or watched)
+    std::set<types::global_dof_index> surface;
+    if (kind == Assembler::Operator::dynamic && scene_.impact.mass == Impact::Mass::redistributed)
+      for (const auto &cn : contact_.nodes())
+        surface.insert(cn.dofs.begin(), cn.dofs.end());
+    return surface;
+  }
+
+  void ContactModel::set_dynamic_operator(const MatrixCoefficients &c)
+  {
+    system_.set_dynamic_operator(c.mass, c.stiffness, material_->elastic(),
+                                 massless_dofs(Assembler::Operator::dynamic));
+    solver_.invalidate();  // its AMG was built for the previous operator
+  }
+
   RunResult ContactModel::run_impact()
   {
     RunResult result;
@@ -325,8 +343,8 @@ namespace clearjoint::fe::detail
     // the yield check where the force peaked
     if (have_peak)
       {
-        solution_owned_ = u_peak;
-        solution_ = solution_owned_;
+        state_.u_owned() = u_peak;
+        state_.publish();
         result.yield_check = check_yield(nullptr);
         log_yield_check(result.yield_check);
       }

@@ -16,46 +16,11 @@ namespace clearjoint::fe::detail
   ContactModel::RollingSolve ContactModel::solve_rolling_state(const double delta)
   {
     RollingSolve rs;
-    // Material Newton converged when the correction is below 1e-7 of the push (δ_max = 1 mm:
-    // 0.1 nm), far below the discretisation error; quadratic convergence reaches it in a few
-    // iterations once the plastic zone and the active set have settled.
-    const double tolerance = 1e-7 * scene_.loading.delta_max;
-    const unsigned int max_it = scene_.rolling.max_newton_iterations;
-    TrilinosWrappers::MPI::Vector before(dofs_.owned(), comm_);
-    double last_correction = 0.0;
-    unsigned int growths = 0;
-    for (unsigned int k = 0;; ++k)
-      {
-        const PlasticAssembly pa = assemble_plastic();
-        before = solution_owned_;
-        rs.record = solve_increment(delta);
-        rs.contact_iterations += rs.record.contact_iterations;
-        rs.linear_iterations += rs.record.linear_iterations;
-        rs.newton_iterations = k + 1;
-        before -= solution_owned_;
-        const double correction = before.linfty_norm();
-        if (log::level() <= log::Level::debug && rank_ == 0)
-          log::debug("  material Newton iteration " + std::to_string(k + 1) + ": correction " +
-                     format_value(correction) + " m, " + std::to_string(pa.n_plastic_points) +
-                     " quadrature points yielding, contact force " + format_value(rs.record.force) +
-                     " N");
-        if (!std::isfinite(correction))
-          throw StepFailure{"non-finite displacement in the material Newton iteration"};
-        if (correction <= tolerance)
-          break;
-        // diverging (the correction grew in each of the last three iterations): give up at
-        // once, so that the step is cut instead of running out its iterations
-        growths = k > 0 && correction > last_correction ? growths + 1 : 0;
-        last_correction = correction;
-        if (growths >= 3)
-          throw StepFailure{"the material Newton iteration diverges (the correction grew in "
-                            "three iterations running, to " +
-                            format_value(correction) + " m)"};
-        if (k + 1 >= max_it)
-          throw StepFailure{"the material Newton iteration did not converge in " +
-                            std::to_string(max_it) + " iterations (last correction " +
-                            format_value(correction) + " m)"};
-      }
+    const MaterialSolve m = solve_material_state(delta, scene_.rolling.max_newton_iterations);
+    rs.record = m.record;
+    rs.newton_iterations = m.newton_iterations;
+    rs.contact_iterations = m.contact_iterations;
+    rs.linear_iterations = m.linear_iterations;
     // the contact's torque on the journal about its axis: the force on the journal is −t at
     // its surface point c' + R_J n (z-moments are the same in every frame turned about z)
     // (only the friction force has a moment: the normal n passes through the journal's axis)
@@ -68,7 +33,7 @@ namespace clearjoint::fe::detail
           Tensor<1, dim> arm = scene_.geometry.R_J() * cn.n;
           if (rolling_deformable_journal())
             for (unsigned int c = 0; c + 1 < dim; ++c)
-              arm[c] = cn.X[c] + solution_[cn.dofs[c]] - frame_.centre[c];
+              arm[c] = cn.X[c] + state_.u()[cn.dofs[c]] - frame_.centre[c];
           torque -= arm[0] * t[1] - arm[1] * t[0];
         }
     rs.torque_journal = bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
@@ -378,13 +343,13 @@ namespace clearjoint::fe::detail
         // torques; then commit the material and the contact's reference state
         const double t1 = t + dt;
         const ContactStep cs =
-          close_contact_step(contact_, solution_, bodies_.symmetry_factor(), frame_work, comm_);
+          close_contact_step(contact_, state_.u(), bodies_.symmetry_factor(), frame_work, comm_);
         const auto on_journal =
           rolling::rotate_z({-cs.force_frame[0], -cs.force_frame[1], 0.0}, motion.phi(t1));
-        const Vec3 u_tracked = tracked_displacement(paper.bore, paper.bore_dofs, solution_, comm_);
+        const Vec3 u_tracked = tracked_displacement(paper.bore, paper.bore_dofs, state_.u(), comm_);
         // in the journal's frame (0: rigid)
         const Vec3 u_journal =
-          tracked_displacement(paper.journal, paper.journal_dofs, solution_, comm_);
+          tracked_displacement(paper.journal, paper.journal_dofs, state_.u(), comm_);
         frame_.psi_converged += frame_.delta_psi;
         frame_.delta_psi = 0.0;
         const PlasticEnergies pe = commit_plasticity();
@@ -403,7 +368,7 @@ namespace clearjoint::fe::detail
         rec.slip_speed = motion.slip_speed(t1, rate_new);
         double r_bearing = 0.0, r_journal = 0.0;  // ω_B r_B − γ̇ r_J where both give way
         if (rolling_deformable_journal() &&
-            contact_radii(contact_, solution_, frame_.centre, r_bearing, r_journal, comm_))
+            contact_radii(contact_, state_.u(), frame_.centre, r_bearing, r_journal, comm_))
           rec.slip_speed = R.omega_B * r_bearing - rate_new * r_journal;
         rec.torque_journal = rs.torque_journal;
         rec.torque_drive = -cs.torque_bearing;

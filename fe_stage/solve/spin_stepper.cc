@@ -71,9 +71,9 @@ namespace clearjoint::fe::detail
               const auto start_from = [&](const TrilinosWrappers::MPI::Vector &last,
                                           const TrilinosWrappers::MPI::Vector &before,
                                           const double w) {
-                m_.solution_owned_ = last;
-                m_.solution_owned_.sadd(1.0 + w, -w, before);
-                m_.solution_ = m_.solution_owned_;
+                m_.state_.u_owned() = last;
+                m_.state_.u_owned().sadd(1.0 + w, -w, before);
+                m_.state_.publish();
               };
               if (n_evaluated == 0 && have_previous_ && predict_in_time)
                 {
@@ -100,7 +100,7 @@ namespace clearjoint::fe::detail
                            " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) + " s)");
               rs = m_.solve_rolling_state(delta1);
               u_before.swap(u_last);
-              u_last = m_.solution_owned_;
+              u_last = m_.state_.u_owned();
               rate_before = rate_last;
               rate_last = rate;
               ++n_evaluated;

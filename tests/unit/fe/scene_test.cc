@@ -448,3 +448,35 @@ TEST(FeScene, RollingStudy)
   expect_error("schema: clearjoint.fe/1\nmaterial: {model: elastoplastic}\n",
                {"material.model", "rolling"});
 }
+
+// Issue 30: material.kinematics (small | finite) and the elastoplastic patch test; finite only
+// with the J2 law and, so far, in the patch test; solver.max_newton_iterations in [1, 1000].
+TEST(FeScene, KinematicsAndTheElastoplasticPatchTest)
+{
+  const std::string patch = "schema: clearjoint.fe/1\nstudy: patch\n";
+  EXPECT_EQ(parse(patch).material.kinematics, Material::Kinematics::small);  // the default
+  const FeScene s =
+    parse(patch + "material: {model: elastoplastic, kinematics: finite}\n"
+                  "solver: {max_newton_iterations: 40}\n");
+  EXPECT_EQ(s.material.model, Material::Model::elastoplastic);
+  EXPECT_EQ(s.material.kinematics, Material::Kinematics::finite);
+  EXPECT_EQ(s.solver.max_newton_iterations, 40u);
+  EXPECT_EQ(parse(patch + "material: {model: elastoplastic, kinematics: small}\n")
+              .material.kinematics,
+            Material::Kinematics::small);
+  expect_error(patch + "material: {model: elastoplastic, kinematics: large}\n",
+               {"material.kinematics", "small", "finite"});
+  expect_error(patch + "material: {kinematics: finite}\n",
+               {"material.kinematics", "elastoplastic"});
+  expect_error("schema: clearjoint.fe/1\nmaterial: {model: elastoplastic, kinematics: finite}\n",
+               {"material.model"});  // radial: not elastoplastic at all
+  expect_error("schema: clearjoint.fe/1\nstudy: rolling\nmaterial: {kinematics: finite}\n",
+               {"material.kinematics", "small for study rolling"});
+  expect_error(patch + "material: {model: elastoplastic}\n"
+                       "verification: {indenter: deformable}\n",
+               {"verification.indenter", "rigid flat"});
+  expect_error(patch + "material: {model: elastoplastic}\nmesh: {adaptive_cycles: 1}\n",
+               {"mesh.adaptive_cycles", "history"});
+  expect_error(patch + "solver: {max_newton_iterations: 0}\n",
+               {"solver.max_newton_iterations"});
+}

@@ -1,0 +1,183 @@
+// The elastoplastic bodies' quadrature-point history seen from the model (study rolling):
+// committing a converged step with its energies, and the per-cell and mid-plane fields that
+// the output and the rolling study's strain profiles read from it.
+#include "fe_stage/core/contact_model.h"
+
+namespace clearjoint::fe::detail
+{
+  void ContactModel::init_plasticity()
+  {
+    if (!material_->has_history())
+      throw NumericalError("fe_stage: the elastoplastic assembly needs a material law with "
+                           "history (make_material)");
+    material_->resize(std::size_t(bodies_.triangulation().n_active_cells()) * system_.n_q_points());
+    system_.use_tangent();
+  }
+
+  /// Trial → committed at every quadrature point (after a converged step), and the step's
+  /// energies from the committed states.
+  ContactModel::PlasticEnergies ContactModel::commit_plasticity()
+  {
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    const unsigned int n_q = quadrature.size();
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
+                     update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<SymmetricTensor<2, dim>> eps(n_q);
+    PlasticEnergies e;
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[u].get_function_symmetric_gradients(state_.u(), eps);
+          const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
+          double cell_plastic_volume = 0.0;
+          const bool bearing = cell->material_id() == 0;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const std::size_t point = first + q;
+              const MaterialResponse r = material_->evaluate(point, eps[q]);
+              e.plastic_work_step += r.plastic_work * fv.JxW(q);
+              material_->commit(point);
+              const double elastic = material_->elastic_energy(point, eps[q]) * fv.JxW(q);
+              e.elastic_energy += elastic;
+              if (bearing)
+                {
+                  e.bearing_plastic_work_step += r.plastic_work * fv.JxW(q);
+                  e.bearing_elastic_energy += elastic;
+                }
+              const double alpha = material_->equivalent_plastic_strain(point);
+              e.max_plastic_strain = std::max(e.max_plastic_strain, alpha);
+              if (alpha > 0.0)
+                cell_plastic_volume += fv.JxW(q);
+              const auto ev = eigenvalues(eps[q]);
+              e.max_strain = std::max({e.max_strain, std::abs(ev[0]), std::abs(ev[2])});
+            }
+          e.plastic_volume += cell_plastic_volume;
+        }
+    e.plastic_work_step =
+      bodies_.symmetry_factor() * Utilities::MPI::sum(e.plastic_work_step, comm_);
+    e.elastic_energy = bodies_.symmetry_factor() * Utilities::MPI::sum(e.elastic_energy, comm_);
+    e.bearing_plastic_work_step =
+      bodies_.symmetry_factor() * Utilities::MPI::sum(e.bearing_plastic_work_step, comm_);
+    e.bearing_elastic_energy =
+      bodies_.symmetry_factor() * Utilities::MPI::sum(e.bearing_elastic_energy, comm_);
+    e.plastic_volume = bodies_.symmetry_factor() * Utilities::MPI::sum(e.plastic_volume, comm_);
+    e.max_plastic_strain = Utilities::MPI::max(e.max_plastic_strain, comm_);
+    e.max_strain = Utilities::MPI::max(e.max_strain, comm_);
+    return e;
+  }
+
+  /// Per cell: the quadrature points' mean plastic strain tensor (the fields' stress is
+  /// C (ε − ε̄_p)), their largest equivalent plastic strain, and the largest von Mises stress of
+  /// the committed states.
+  void ContactModel::plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
+                                         Vector<float> &alpha_max, Vector<float> &vm_max) const
+  {
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
+    const unsigned int n_q = quadrature.size();
+    const FEValuesExtractors::Vector u(0);
+    std::vector<SymmetricTensor<2, dim>> eps(n_q);
+    mean_eps_p.assign(bodies_.triangulation().n_active_cells(), SymmetricTensor<2, dim>());
+    alpha_max.reinit(bodies_.triangulation().n_active_cells());
+    vm_max.reinit(bodies_.triangulation().n_active_cells());
+    const LinearElastic &C = material_->elastic();
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[u].get_function_symmetric_gradients(state_.u(), eps);
+          const unsigned int c = cell->active_cell_index();
+          const std::size_t first = std::size_t(c) * n_q;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const SymmetricTensor<2, dim> ep = material_->plastic_strain(first + q);
+              mean_eps_p[c] += ep / double(n_q);
+              alpha_max[c] =
+                std::max(alpha_max[c], float(material_->equivalent_plastic_strain(first + q)));
+              vm_max[c] = std::max(vm_max[c], float(von_mises(C.stress(eps[q] - ep))));
+            }
+        }
+  }
+
+  /// A body's strains at the axial mid-plane within ±half_angle of the contact point, which
+  /// sits at the body's frame angle −turn (the fixed-frame bottom; turn = φ for the bearing,
+  /// γ for the deformable journal, angles about the body's own axis): the face quadrature
+  /// points of the contact-surface faces that touch z = 0, nearest row to the plane.
+  /// Collective; every rank gets the sorted profile.
+  std::vector<StrainProfilePoint> ContactModel::strain_profile(const unsigned int body,
+                                                               const double turn,
+                                                               const double half_angle) const
+  {
+    const QGauss<dim - 1> fq(dofs_.fe().degree + 2);
+    FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq,
+                         update_gradients | update_quadrature_points);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<SymmetricTensor<2, dim>> eps(fq.size());
+    std::vector<double> mine;
+    const unsigned int n_q = system_.n_q_points();  // the material points of a cell
+    const double R = body == 0 ? scene_.geometry.R_B : scene_.geometry.R_J();
+    const double axis_y = body == 0 ? 0.0 : -scene_.geometry.c_r;  // the body's axis (x = 0)
+    const types::boundary_id surface = body == 0 ? bid_contact : bid_journal_surface;
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
+      if (cell->is_locally_owned() && cell->material_id() == body)
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == surface)
+            {
+              double z_min = std::numeric_limits<double>::max();
+              for (const auto v : cell->face(f)->vertex_indices())
+                z_min = std::min(z_min, std::abs(cell->face(f)->vertex(v)[2]));
+              if (z_min > 1e-9 * R)
+                continue;  // not at the mid-plane
+              fv.reinit(cell, f);
+              fv[u].get_function_symmetric_gradients(state_.u(), eps);
+              double z_row = std::numeric_limits<double>::max();
+              for (const unsigned int q : fv.quadrature_point_indices())
+                z_row = std::min(z_row, std::abs(fv.quadrature_point(q)[2]));
+              const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
+              double alpha = 0.0;
+              SymmetricTensor<2, dim> mean_eps_p;
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  alpha = std::max(alpha, material_->equivalent_plastic_strain(first + q));
+                  mean_eps_p += material_->plastic_strain(first + q) / double(n_q);
+                }
+              for (const unsigned int q : fv.quadrature_point_indices())
+                {
+                  Point<dim> p = fv.quadrature_point(q);
+                  if (std::abs(p[2]) > z_row + 1e-12 * R)
+                    continue;
+                  p[1] -= axis_y;
+                  double a = std::atan2(p[0], -p[1]) + turn;  // from the contact point
+                  a = std::remainder(a, 2.0 * units::pi);
+                  if (std::abs(a) > half_angle)
+                    continue;
+                  const double r = std::hypot(p[0], p[1]);
+                  const Tensor<1, dim> er({p[0] / r, p[1] / r, 0.0});
+                  const Tensor<1, dim> et({-p[1] / r, p[0] / r, 0.0});
+                  mine.insert(mine.end(),
+                              {a, er * (eps[q] * er), et * (eps[q] * et), eps[q][2][2], alpha,
+                               von_mises(material_->elastic().stress(eps[q] - mean_eps_p))});
+                }
+            }
+    std::vector<StrainProfilePoint> profile;
+    for (const auto &part : Utilities::MPI::all_gather(comm_, mine))
+      for (std::size_t i = 0; i + 6 <= part.size(); i += 6)
+        {
+          StrainProfilePoint s;
+          s.angle = part[i];
+          s.arc = R * part[i];
+          s.strain_radial = part[i + 1];
+          s.strain_tangential = part[i + 2];
+          s.strain_axial = part[i + 3];
+          s.plastic_strain = part[i + 4];
+          s.von_mises = part[i + 5];
+          s.body = body;
+          profile.push_back(s);
+        }
+    std::sort(profile.begin(), profile.end(),
+              [](const auto &a, const auto &b) { return a.angle < b.angle; });
+    return profile;
+  }
+}  // namespace clearjoint::fe::detail
