@@ -324,7 +324,16 @@ namespace clearjoint::fe
     void read_impact(StrictObject o, Impact &I)
     {
       I.velocity = o.number_or("velocity", I.velocity, Range::open(0.0, 100.0, "m/s"));
-      I.alpha = o.number_or("alpha", I.alpha, Range::closed(-1.0 / 3.0, 0.0, ""));
+      {
+        const std::string app = o.string_or(
+          "application", application_name(I.application),
+          {"transient_fidelity", "moderate_dissipation", "quasi_static"});
+        I.application = app == "transient_fidelity" ? DynamicApplication::transient_fidelity :
+                        app == "quasi_static"       ? DynamicApplication::quasi_static :
+                                                      DynamicApplication::moderate_dissipation;
+      }
+      if (o.has("alpha"))
+        I.alpha = o.number("alpha", Range::closed(HhtAlpha::alpha_min, HhtAlpha::alpha_max, ""));
       I.steps_per_period = uint_or(o, "steps_per_period", I.steps_per_period, 10, 100000);
       if (o.has("time_step"))
         I.time_step = o.number("time_step", Range::positive("s"));
@@ -502,10 +511,15 @@ namespace clearjoint::fe
       const std::string &f = s.source_file;
       if (!(I.velocity > 0.0 && I.velocity < 100.0))
         throw InputError(f, "impact.velocity", format_value(I.velocity), "(0, 100) m/s");
-      if (!(I.alpha >= -1.0 / 3.0 && I.alpha <= 0.0))
-        throw InputError(f, "impact.alpha", format_value(I.alpha), "[-1/3, 0]",
-                         "Hilber-Hughes-Taylor alpha; 0 = trapezoidal rule, no numerical "
-                         "damping");
+      if (I.alpha && !(*I.alpha >= HhtAlpha::alpha_min && *I.alpha <= HhtAlpha::alpha_max))
+        throw InputError(f, "impact.alpha", format_value(*I.alpha), "[-1/2, 0]",
+                         "Hilber-Hughes-Taylor alpha (Abaqus's range), overriding "
+                         "impact.application's; 0 = trapezoidal rule, no numerical damping");
+      if (I.alpha && I.application == DynamicApplication::quasi_static)
+        throw InputError(f, "impact.alpha", format_value(*I.alpha),
+                         "no value with impact.application quasi_static",
+                         "quasi_static is backward Euler, which has no alpha; give alpha with "
+                         "transient_fidelity or moderate_dissipation");
       if (I.steps_per_period < 10)
         throw InputError(f, "impact.steps_per_period", std::to_string(I.steps_per_period), ">= 10",
                          "the time step must resolve the contact period (dt/T <= 1/10)");
@@ -1070,8 +1084,16 @@ namespace clearjoint::fe
            "first\n"
         << "                      #   touch moving toward the bearing (-y)\n"
         << "  velocity: " << d.impact.velocity << "       # [m/s] speed at first touch, (0, 100)\n"
-        << "  alpha: " << d.impact.alpha
-        << "         # HHT alpha in [-1/3, 0] (0: trapezoidal rule)\n"
+        << "  application: " << application_name(d.impact.application)
+        << "  # Abaqus/Standard's *DYNAMIC, APPLICATION=:\n"
+        << "                      #   transient_fidelity (HHT alpha -0.05, beta 0.275625, gamma "
+           "0.55) |\n"
+        << "                      #   moderate_dissipation (HHT alpha -0.41421, beta 0.5, gamma "
+           "0.91421;\n"
+        << "                      #   the paper's) | quasi_static (backward Euler)\n"
+        << "  # alpha: -0.2         # HHT alpha in [-1/2, 0] overriding the application's (beta, "
+           "gamma\n"
+        << "                      #   follow); not with quasi_static\n"
         << "  steps_per_period: " << d.impact.steps_per_period
         << "  # >= 10: dt = T_c/this, T_c = 2 pi sqrt(m_J/k_c), k_c measured\n"
         << "  # time_step: 1.0e-6   # [s] > 0: a fixed dt instead\n"
@@ -1231,7 +1253,7 @@ namespace clearjoint::fe
     if (s.study == Study::impact)
       {
         j["impact"] = {{"velocity", s.impact.velocity},
-                       {"alpha", s.impact.alpha},
+                       {"application", application_name(s.impact.application)},
                        {"steps_per_period", s.impact.steps_per_period},
                        {"max_steps", s.impact.max_steps},
                        {"field_stride", s.impact.field_stride},
@@ -1244,6 +1266,8 @@ namespace clearjoint::fe
           j["impact"]["end_time"] = s.impact.end_time;
         if (s.impact.journal_mass > 0.0)
           j["impact"]["journal_mass"] = s.impact.journal_mass;
+        if (s.impact.alpha)
+          j["impact"]["alpha"] = *s.impact.alpha;
       }
     return j;
   }

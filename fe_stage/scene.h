@@ -7,11 +7,13 @@
 #pragma once
 
 #include "fe_stage/material/hardening_table.h"
+#include "fe_stage/solve/hht.h"
 #include "geometry/joint_geometry.h"
 
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -234,7 +236,13 @@ namespace clearjoint::fe
   struct Impact
   {
     double velocity = 0.10;  // [m/s] speed at first touch, (0, 100)
-    double alpha = -0.05;    // [1] HHT α in [−1/3, 0] (solve/hht.h says why this default)
+    /// Abaqus/Standard's dynamic application (solve/hht.h): the operator and its α, β, γ —
+    /// transient_fidelity (HHT, α = −0.05), moderate_dissipation (HHT, α = 1 − √2 = −0.41421,
+    /// the paper's and the default) or quasi_static (backward Euler)
+    DynamicApplication application = HhtAlpha::default_application;
+    /// [1] HHT α in [−1/2, 0] overriding the application's (β, γ follow from it), as Abaqus's
+    /// *DYNAMIC, ALPHA=; not with quasi_static. Empty: the application's.
+    std::optional<double> alpha;
     /// Δt = T_c / steps_per_period, T_c = 2π √(m_J/k_c) the period of the journal's mass on
     /// the contact's secant stiffness k_c at the expected δ_max (measured by a static push on
     /// the same mesh): ≥ 10, the Δt/T ≤ 1/10.

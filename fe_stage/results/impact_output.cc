@@ -4,6 +4,22 @@
 
 namespace clearjoint::fe
 {
+  namespace
+  {
+    /// "moderate_dissipation: HHT alpha = …, beta = …, gamma = …" (α overridden: said so), or
+    /// "quasi_static: backward Euler". The scene is valid here.
+    std::string integrator_description(const FeScene &scene)
+    {
+      const auto &I = scene.impact;
+      const HhtAlpha h = HhtAlpha::for_application(I.application, I.alpha);
+      std::string s = std::string("Abaqus application ") + application_name(I.application) + ": ";
+      if (h.op() == HhtAlpha::Operator::backward_euler)
+        return s + "backward Euler";
+      return s + "HHT alpha = " + format_value(h.alpha()) + (I.alpha ? " (given)" : "") +
+             ", beta = " + format_value(h.beta()) + ", gamma = " + format_value(h.gamma());
+    }
+  }  // namespace
+
   Columns<DynamicStepRecord> impact_history_columns()
   {
     using R = DynamicStepRecord;
@@ -35,7 +51,7 @@ namespace clearjoint::fe
         " journal launched at first touch "
         "toward the bearing (-y) at " +
         format_value(scene.impact.velocity) +
-        " m/s; HHT alpha = " + format_value(scene.impact.alpha),
+        " m/s; " + integrator_description(scene),
       "delta = the journal's displacement toward the bearing beyond first touch (a deformable "
       "journal's centre of mass); delta_rate > 0 approaching",
       "force = contact force on the journal (full body); force_support = the bearing supports' "

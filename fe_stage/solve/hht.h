@@ -1,5 +1,6 @@
-// Hilber–Hughes–Taylor α time integration: coefficients, predictor, Newmark updates of u, v, a,
-// and the energy ledger whose residual is the scheme's numerical dissipation. Issue 12 item 1,
+// Hilber–Hughes–Taylor α time integration as Abaqus/Standard offers it (its three dynamic
+// applications, issue 31 item 1): coefficients, predictor, Newmark updates of u, v, a, and the
+// energy ledger whose residual is the scheme's numerical dissipation. Issue 12 item 1,
 // FE_DESIGN §3.4 (TimeIntegrator: "the only place α, β, γ exist"). No deal.II: the vector
 // functions are templates that work for Eigen vectors and for deal.II/Trilinos vectors (which
 // have add(a, x) and operator*=); hht_test checks them on Eigen::VectorXd and on a vector type
@@ -7,21 +8,39 @@
 //
 // Theory: H. M. Hilber, T. J. R. Hughes, R. L. Taylor, "Improved numerical dissipation for
 // time integration algorithms in structural dynamics", Earthq. Eng. Struct. Dyn. 5 (1977)
-// 283–292. For M a + C v + f_int(u) = f_ext(t), with α ∈ [−1/3, 0], β = (1 − α)²/4,
-// γ = 1/2 − α, the step n → n+1 solves for u_{n+1}
+// 283–292. For M a + C v + f_int(u) = f_ext(t) the step n → n+1 solves for u_{n+1}
 //   r(u_{n+1}) = M a_{n+1} + (1+α)[C v_{n+1} + f_int(u_{n+1}) − f_ext,n+1]
 //                           −   α [C v_n     + f_int(u_n)     − f_ext,n]     = 0,
-// with the Newmark relations
-//   a_{n+1} = (u_{n+1} − u_n − Δt v_n − Δt²(1/2 − β) a_n) / (β Δt²),
-//   v_{n+1} = v_n + Δt[(1 − γ) a_n + γ a_{n+1}].
-// The weighted load (1+α)f_{n+1} − α f_n is HHT's original form; f_ext(t_n + (1+α)Δt)
-// (load_time()) is the same for loads linear in t. α = 0 is the trapezoidal rule (β = 1/4,
-// γ = 1/2): no numerical dissipation for a linear system. α < 0 damps high frequencies; the
-// spectral radius at ωΔt → ∞ is (1 + α)/(1 − α) (0.5 at α = −1/3). Second order for every α.
+// with the (generalised) Newmark relations
+//   u_{n+1} = u_n + Δt v_n + Δt²[κ a_n + β a_{n+1}],
+//   v_{n+1} = v_n + Δt[(1 − γ) a_n + γ a_{n+1}],
+// κ = 1/2 − β for Newmark and HHT. The weighted load (1+α)f_{n+1} − α f_n is HHT's original
+// form; f_ext(t_n + (1+α)Δt) (load_time()) is the same for loads linear in t.
+//
+// Abaqus/Standard's *DYNAMIC, APPLICATION= (Abaqus 2016 Keywords Reference, *DYNAMIC; Abaqus
+// 2017 Analysis User's Guide, "Implicit dynamic analysis using direct integration"):
+//   transient_fidelity   HHT-TF: α = −0.05, β = (1 − α)²/4 = 0.275625, γ = 1/2 − α = 0.55;
+//                        Abaqus's default for models without contact.
+//   moderate_dissipation HHT-MD: α = −0.41421, β = 0.5, γ = 0.91421 — the same formulas at
+//                        α = 1 − √2 (used here, so that β = 1/2 exactly); Abaqus's default for
+//                        models with contact, the paper's setting and ours.
+//   quasi_static         backward Euler: v_{n+1} = v_n + Δt a_{n+1}, u_{n+1} = u_n + Δt v_{n+1},
+//                        i.e. α = 0, β = γ = 1, κ = 0 in the form above (first order, every
+//                        high-frequency mode annihilated: ρ∞ = 0).
+// Abaqus accepts α ∈ [−1/2, 0] ("−0.333 provides maximum damping"). Why: the amplification
+// matrix of ü + ω²u = 0 has, as ωΔt → ∞, a double principal root −(1+α)/(1−α) and a third, real
+// root α/(1+α) (from (1+α)K u_{n+1} = αK u_n when inertia no longer counts). So
+//   ρ∞ = max((1+α)/(1−α), |α|/(1+α)):
+// 0.905 at α = −0.05; 0.5 at −1/3 (the minimum, all three roots meet); 1/√2 = 0.707 at
+// HHT-MD's 1 − √2, where the principal pair has 0.414 = √2 − 1 but the third root dominates;
+// 1 at −1/2 (stable, no longer asymptotically damping); > 1 below −1/2 (unstable).
+// spectral_radius_limit() gives it for any (α, β, γ, κ) in closed form; hht_test checks it
+// against the amplification matrix. Second order for every HHT α; backward Euler first order.
 //
 // Units: SI; t and Δt in s; u, v, a in the caller's units (m, m/s, m/s²).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -75,32 +94,95 @@ namespace clearjoint::fe
     }
   }  // namespace hht_detail
 
+  /// Abaqus/Standard's *DYNAMIC, APPLICATION=: the implicit operator and its parameters.
+  enum class DynamicApplication
+  {
+    transient_fidelity,    ///< HHT-TF, α = −0.05
+    moderate_dissipation,  ///< HHT-MD, α = 1 − √2 (the paper's, our default)
+    quasi_static,          ///< backward Euler
+  };
+
+  /// The scene's word for an application ("transient_fidelity", …). Inline: the scene reader
+  /// (which does not link this file's library) uses it too.
+  inline const char *application_name(const DynamicApplication a)
+  {
+    switch (a)
+      {
+        case DynamicApplication::transient_fidelity:
+          return "transient_fidelity";
+        case DynamicApplication::moderate_dissipation:
+          return "moderate_dissipation";
+        case DynamicApplication::quasi_static:
+          return "quasi_static";
+      }
+    return "?";
+  }
+
   class HhtAlpha
   {
   public:
-    /// Abaqus/Standard's default for transient fidelity (−0.05): a little high-frequency
-    /// damping (spectral radius 0.905 at ωΔt → ∞) to calm the contact chatter of an impact
-    /// while keeping the low modes almost undamped.
-    static constexpr double default_alpha = -0.05;
+    /// Abaqus's range of α for HHT: [−1/2, 0] (unconditionally stable over it; ρ∞ above).
+    static constexpr double alpha_min = -0.5;
+    static constexpr double alpha_max = 0.0;
+    /// HHT-TF's α: a little high-frequency damping (ρ∞ = 0.905).
+    static constexpr double transient_fidelity_alpha = -0.05;
+    /// HHT-MD's α = 1 − √2 (Abaqus prints −0.41421, β = 0.5, γ = 0.91421): ρ∞ = 1/√2.
+    static constexpr double moderate_dissipation_alpha = -0.41421356237309504880;
+    /// The impact study's default: moderate dissipation, as the paper ran it (Abaqus's default
+    /// for models with contact).
+    static constexpr DynamicApplication default_application =
+      DynamicApplication::moderate_dissipation;
+
+    /// The operator's form: HHT-α (κ = 1/2 − β) or backward Euler (κ = 0, β = γ = 1, α = 0).
+    enum class Operator
+    {
+      hht,
+      backward_euler,
+    };
+
+    /// HHT with β = (1 − α)²/4, γ = 1/2 − α (second order, unconditionally stable); α ∈
+    /// [−1/2, 0], else an InputError naming `key_path` (e.g. "impact.alpha") and the range.
+    explicit HhtAlpha(double alpha = moderate_dissipation_alpha,
+                      const std::string &key_path = "impact.alpha", const std::string &file = "");
+
+    /// HHT with explicit Newmark parameters (not a scene's keys: std::invalid_argument unless
+    /// α ∈ [−1/2, 0], β > 0 and γ ≥ 1/2, all finite — necessary, not sufficient, for stability;
+    /// spectral_radius_limit() tells the rest).
+    HhtAlpha(double alpha, double beta, double gamma);
+
+    /// Abaqus's application: its operator and parameters; an explicit α overrides the
+    /// application's for HHT-TF and HHT-MD (as *DYNAMIC, ALPHA= does; β and γ then follow from
+    /// it) and is an InputError on `alpha_key` for quasi_static (backward Euler has no α).
+    static HhtAlpha for_application(DynamicApplication application,
+                                    std::optional<double> alpha = std::nullopt,
+                                    const std::string &alpha_key = "impact.alpha",
+                                    const std::string &file = "");
+
+    /// Backward Euler (Abaqus's quasi-static application).
+    static HhtAlpha backward_euler();
+
+    Operator op() const { return op_; }
+    double alpha() const { return alpha_; }
+    double beta() const { return beta_; }
+    double gamma() const { return gamma_; }
+    /// κ, the weight of Δt² a_n in u_{n+1}: 1/2 − β for HHT, 0 for backward Euler.
+    double kappa() const { return kappa_; }
+
+    /// Spectral radius of the amplification matrix of ü + ω²u = 0 as ωΔt → ∞, closed form for
+    /// these (α, β, γ, κ): max(|α/(1+α)|, the moduli of the roots of λ² − Tλ + D) with
+    /// T = 1 − (γ + κ)/β, D = (1 − γ − κ)/β (header comment; derived in docs/fe.md).
+    double spectral_radius_limit() const;
 
     /// What the predictor assumes for the new step.
     enum class Predictor
     {
       same_displacement,  ///< u_{n+1} = u_n
       same_acceleration,  ///< a_{n+1} = a_n: u_{n+1} = u_n + Δt v_n + Δt²/2 a_n
-      /// Newmark's ũ = u_n + Δt v_n + Δt²(½ − β) a_n: the part of u_{n+1} known before
-      /// a_{n+1} (u_{n+1} = ũ + βΔt² a_{n+1}); the impact study's step starts there and builds
-      /// its known load c_m M ũ from it.
+      /// Newmark's ũ = u_n + Δt v_n + Δt² κ a_n (κ = ½ − β; 0 for backward Euler): the part of
+      /// u_{n+1} known before a_{n+1} (u_{n+1} = ũ + βΔt² a_{n+1}); the impact study's step
+      /// starts there and builds its known load c_m M ũ from it.
       newmark,
     };
-
-    /// α ∈ [−1/3, 0], else an InputError naming `key_path` (e.g. "time.alpha") and the range.
-    explicit HhtAlpha(double alpha = default_alpha, const std::string &key_path = "time.alpha",
-                      const std::string &file = "");
-
-    double alpha() const { return alpha_; }
-    double beta() const { return beta_; }
-    double gamma() const { return gamma_; }
 
     /// Weights of the new and old force states in r: (1+α) and −α.
     double weight_new() const { return 1.0 + alpha_; }
@@ -127,7 +209,7 @@ namespace clearjoint::fe
       else if (p == Predictor::newmark)
         {
           hht_detail::axpy(u_new, dt, v_n);
-          hht_detail::axpy(u_new, dt * dt * (0.5 - beta_), a_n);
+          hht_detail::axpy(u_new, dt * dt * kappa_, a_n);
         }
     }
 
@@ -143,15 +225,17 @@ namespace clearjoint::fe
       hht_detail::axpy(a_new, -1.0, u_n);
       a_new *= 1.0 / bdt2;
       hht_detail::axpy(a_new, -1.0 / (beta_ * dt), v_n);
-      hht_detail::axpy(a_new, -(0.5 - beta_) / beta_, a_n);
+      hht_detail::axpy(a_new, -kappa_ / beta_, a_n);
       v_new = v_n;
       hht_detail::axpy(v_new, dt * (1.0 - gamma_), a_n);
       hht_detail::axpy(v_new, dt * gamma_, a_new);
     }
 
   private:
+    HhtAlpha(Operator op, double alpha, double beta, double gamma, double kappa);
     static void check_dt(double dt);
-    double alpha_, beta_, gamma_;
+    Operator op_ = Operator::hht;
+    double alpha_, beta_, gamma_, kappa_;
   };
 
   /// Work of a force over one step by the trapezoidal rule, (u_{n+1} − u_n)·(f_n + f_{n+1})/2.
@@ -171,8 +255,9 @@ namespace clearjoint::fe
   /// contact, each sign as it acts on the body). What is left,
   ///     D_step = W_applied − ΔT − W_internal,
   /// is the energy the time integrator removed: exactly 0 (round-off) for α = 0 on a linear
-  /// system, and ≥ 0 on average for α < 0. The balance T + W_internal + D = T_0 + W_applied
-  /// then closes by construction; its content is D.
+  /// system, ≥ 0 on average for α < 0, and ≥ 0 in every step for backward Euler on a linear
+  /// free system (ΔE = −½(|Δv|²_M + |Δu|²_K) there). The balance
+  /// T + W_internal + D = T_0 + W_applied then closes by construction; its content is D.
   struct EnergyLedger
   {
     double kinetic_initial = 0.0;  ///< T_0 [J]

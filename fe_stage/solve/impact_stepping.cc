@@ -189,8 +189,10 @@ namespace clearjoint::fe::detail
     result.setup_time = elapsed();
     S.velocity_in = I.velocity;
     S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, below
-    // HHT-α's α, β, γ (α checked against its range here, before the static curve's cost)
-    const HhtAlpha hht(I.alpha, "impact.alpha", scene_.source_file);
+    // the application's operator and α, β, γ (an explicit α checked here, before the static
+    // curve's cost)
+    const HhtAlpha hht =
+      HhtAlpha::for_application(I.application, I.alpha, "impact.alpha", scene_.source_file);
     S.alpha = hht.alpha();
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
     const double m_J = S.journal_mass;

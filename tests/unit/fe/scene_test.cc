@@ -214,6 +214,21 @@ TEST(FeStageCli, BadInputExitsOneAndWritesNothing)
   const std::string text((std::istreambuf_iterator<char>(log)), {});
   EXPECT_NE(text.find("geometry.t_B"), std::string::npos) << text;
 
+  // the same for the impact's new keys (issue 31 item 6): an unknown application, α out of
+  // Abaqus's range, α with backward Euler
+  for (const std::string &impact : {"{application: moderate}", "{alpha: -0.6}",
+                                    "{application: quasi_static, alpha: -0.05}"})
+    {
+      std::ofstream(scene) << "schema: clearjoint.fe/1\nstudy: impact\nimpact: " << impact << "\n";
+      const int st = std::system(cmd.c_str());
+      ASSERT_TRUE(WIFEXITED(st));
+      EXPECT_EQ(WEXITSTATUS(st), 1) << impact;
+      EXPECT_FALSE(std::filesystem::exists(out)) << impact;
+      std::ifstream l(dir / "log.txt");
+      const std::string t((std::istreambuf_iterator<char>(l)), {});
+      EXPECT_NE(t.find("impact."), std::string::npos) << t;
+    }
+
   // --print-defaults exits 0 and prints the schema line
   const std::string cmd2 = std::string(FE_STAGE_EXE) + " --print-defaults > " +
                            (dir / "defaults.yaml").string() + " 2>&1";
@@ -342,8 +357,9 @@ TEST(FeScene, YieldStressDefaultsToTheHardeningTablesFirstPoint)
                {"material.yield_stress", "-1"});
 }
 
-// Study impact (issue 12 item 6): v ≤ 0, α outside [−1/3, 0], a time step or end time ≤ 0 are
-// input errors naming the key and its range; the sweep over velocities is read.
+// Study impact (issue 12 item 6, issue 31 items 1 and 6): v ≤ 0, α outside Abaqus's [−1/2, 0], an
+// unknown application, α with quasi_static (backward Euler has no α), a time step or end time
+// ≤ 0 are input errors naming the key and its range; the sweep over velocities is read.
 TEST(FeScene, ImpactStudy)
 {
   const std::string head = "schema: clearjoint.fe/1\nstudy: impact\n";
@@ -353,18 +369,41 @@ TEST(FeScene, ImpactStudy)
   EXPECT_EQ(s.study, Study::impact);
   EXPECT_EQ(s.loading.journal, JournalLoading::rigid);
   EXPECT_DOUBLE_EQ(s.impact.velocity, 0.15);
-  EXPECT_DOUBLE_EQ(s.impact.alpha, -0.1);
+  ASSERT_TRUE(s.impact.alpha.has_value());
+  EXPECT_DOUBLE_EQ(*s.impact.alpha, -0.1);
+  EXPECT_EQ(s.impact.application, DynamicApplication::moderate_dissipation);
   EXPECT_DOUBLE_EQ(s.impact.time_step, 1.0e-6);
   EXPECT_DOUBLE_EQ(s.impact.end_time, 2.0e-4);
   EXPECT_EQ(s.impact.mass, Impact::Mass::consistent);
   EXPECT_EQ(s.sweep_velocity, (std::vector<double>{0.05, 0.2}));
   const FeScene d = parse(head);
-  EXPECT_DOUBLE_EQ(d.impact.alpha, HhtAlpha::default_alpha);
+  // the paper's and Abaqus's default for models with contact; α from it
+  EXPECT_EQ(d.impact.application, DynamicApplication::moderate_dissipation);
+  EXPECT_FALSE(d.impact.alpha.has_value());
+  for (const auto &[word, app] :
+       {std::pair{"transient_fidelity", DynamicApplication::transient_fidelity},
+        std::pair{"moderate_dissipation", DynamicApplication::moderate_dissipation},
+        std::pair{"quasi_static", DynamicApplication::quasi_static}})
+    {
+      const FeScene a = parse(head + "impact: {application: " + word + "}\n");
+      EXPECT_EQ(a.impact.application, app) << word;
+      EXPECT_STREQ(application_name(a.impact.application), word);
+    }
+  // Abaqus's range [−1/2, 0]: its ends are accepted, with an HHT application
+  EXPECT_DOUBLE_EQ(*parse(head + "impact: {alpha: -0.5}\n").impact.alpha, -0.5);
+  EXPECT_DOUBLE_EQ(
+    *parse(head + "impact: {application: transient_fidelity, alpha: 0}\n").impact.alpha, 0.0);
   EXPECT_EQ(d.impact.mass, Impact::Mass::redistributed);
   expect_error(head + "impact: {velocity: 0}\n", {"impact.velocity", "(0, 100) m/s"});
   expect_error(head + "impact: {velocity: -0.1}\n", {"impact.velocity", "-0.1"});
-  expect_error(head + "impact: {alpha: -0.5}\n", {"impact.alpha", "-0.5"});
-  expect_error(head + "impact: {alpha: 0.1}\n", {"impact.alpha", "0.1"});
+  expect_error(head + "impact: {alpha: -0.51}\n", {"impact.alpha", "-0.51", "[-0.5, 0]"});
+  expect_error(head + "impact: {alpha: 0.1}\n", {"impact.alpha", "0.1", "[-0.5, 0]"});
+  expect_error(head + "impact: {application: hht_md}\n",
+               {"impact.application", "hht_md", "transient_fidelity", "moderate_dissipation",
+                "quasi_static"});
+  expect_error(head + "impact: {application: 1}\n", {"impact.application"});
+  expect_error(head + "impact: {application: quasi_static, alpha: -0.1}\n",
+               {"impact.alpha", "-0.1", "quasi_static"});
   expect_error(head + "impact: {time_step: 0}\n", {"impact.time_step", "s"});
   expect_error(head + "impact: {time_step: -1.0e-6}\n", {"impact.time_step"});
   expect_error(head + "impact: {end_time: 0}\n", {"impact.end_time", "s"});
