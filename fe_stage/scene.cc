@@ -325,9 +325,9 @@ namespace clearjoint::fe
     {
       I.velocity = o.number_or("velocity", I.velocity, Range::open(0.0, 100.0, "m/s"));
       {
-        const std::string app = o.string_or(
-          "application", application_name(I.application),
-          {"transient_fidelity", "moderate_dissipation", "quasi_static"});
+        const std::string app =
+          o.string_or("application", application_name(I.application),
+                      {"transient_fidelity", "moderate_dissipation", "quasi_static"});
         I.application = app == "transient_fidelity" ? DynamicApplication::transient_fidelity :
                         app == "quasi_static"       ? DynamicApplication::quasi_static :
                                                       DynamicApplication::moderate_dissipation;
@@ -604,19 +604,11 @@ namespace clearjoint::fe
         throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
                          "0 with material.model elastoplastic",
                          "the quadrature-point history is not carried to a refined mesh");
-      if (s.material.kinematics == Material::Kinematics::finite)
-        {
-          if (!elastoplastic)
-            throw InputError(f, "material.kinematics", "finite",
-                             "small with material.model elastic",
-                             "finite strain is implemented for the J2 law "
-                             "(material.model: elastoplastic)");
-          if (!patch)
-            throw InputError(f, "material.kinematics", "finite",
-                             "small for study " + to_string(s.study),
-                             "finite strain runs in the patch test so far; the rolling study's "
-                             "follows (issue 30)");
-        }
+      // (elastoplastic: the patch test and the rolling study, above)
+      if (s.material.kinematics == Material::Kinematics::finite && !elastoplastic)
+        throw InputError(f, "material.kinematics", "finite", "small with material.model elastic",
+                         "finite strain is implemented for the J2 law "
+                         "(material.model: elastoplastic)");
     }
 
     /// Study misalignment: the journal's loading and the tilt (with the swept tilts).
@@ -966,7 +958,7 @@ namespace clearjoint::fe
         << "  model: elastic      # elastic | elastoplastic (study rolling, and patch: von\n"
         << "                      #   Mises, isotropic hardening, radial return)\n"
         << "  kinematics: small   # small | finite (total Lagrangian, J2 in the logarithmic\n"
-        << "                      #   strain space; elastoplastic, study patch so far)\n"
+        << "                      #   strain space; elastoplastic: patch, rolling)\n"
         << "  # hardening: [[0, 168.2e6], [0.1, 196.225e6], ...]  # [eps_p, sigma_y Pa] points,\n"
         << "                      #   linear between, extended beyond the last; default SPEC 2:\n"
         << "                      #   168.2 + 280.25 eps_p MPa at eps_p = 0, 0.1, ..., 1.0\n"

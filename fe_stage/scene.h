@@ -105,7 +105,7 @@ namespace clearjoint::fe
     /// The kinematics: `small` (ε = sym ∇u about the reference configuration) or `finite`
     /// (total Lagrangian: F = I + ∇u, first Piola stress and geometric stiffness, the J2 law
     /// lifted to the logarithmic strain space, material/finite_j2.h). Finite needs
-    /// model elastoplastic; so far the patch study (issue 30 brings it to the rolling study).
+    /// model elastoplastic (the patch test and the rolling study).
     enum class Kinematics
     {
       small,

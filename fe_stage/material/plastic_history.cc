@@ -2,6 +2,7 @@
 // committing a converged step with its energies, and the per-cell and mid-plane fields that
 // the output and the rolling study's strain profiles read from it.
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/material/strain_measure.h"
 
 namespace clearjoint::fe::detail
 {
@@ -23,27 +24,34 @@ namespace clearjoint::fe::detail
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
                      update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, dim>> grad_u(n_q);
     std::vector<SymmetricTensor<2, dim>> eps(n_q);
+    const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
     PlasticEnergies e;
     for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
-          fv[u].get_function_symmetric_gradients(state_.u(), eps);
+          fv[u].get_function_gradients(state_.u(), grad_u);
+          for (unsigned int q = 0; q < n_q; ++q)
+            eps[q] = strain_measure(grad_u[q], finite);  // the Hencky strain if finite
           const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
           double cell_plastic_volume = 0.0;
           const bool bearing = cell->material_id() == 0;
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const std::size_t point = first + q;
-              const MaterialResponse r = material_->evaluate(point, eps[q]);
-              e.plastic_work_step += r.plastic_work * fv.JxW(q);
+              // the trial state at the converged u (the same return map as the assembly's)
+              const double plastic_work =
+                finite ? material_->evaluate_finite(point, grad_u[q]).plastic_work :
+                         material_->evaluate(point, eps[q]).plastic_work;
+              e.plastic_work_step += plastic_work * fv.JxW(q);
               material_->commit(point);
               const double elastic = material_->elastic_energy(point, eps[q]) * fv.JxW(q);
               e.elastic_energy += elastic;
               if (bearing)
                 {
-                  e.bearing_plastic_work_step += r.plastic_work * fv.JxW(q);
+                  e.bearing_plastic_work_step += plastic_work * fv.JxW(q);
                   e.bearing_elastic_energy += elastic;
                 }
               const double alpha = material_->equivalent_plastic_strain(point);
@@ -78,7 +86,9 @@ namespace clearjoint::fe::detail
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
     const unsigned int n_q = quadrature.size();
     const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, dim>> grad_u(n_q);
     std::vector<SymmetricTensor<2, dim>> eps(n_q);
+    const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
     mean_eps_p.assign(bodies_.triangulation().n_active_cells(), SymmetricTensor<2, dim>());
     alpha_max.reinit(bodies_.triangulation().n_active_cells());
     vm_max.reinit(bodies_.triangulation().n_active_cells());
@@ -87,7 +97,9 @@ namespace clearjoint::fe::detail
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
-          fv[u].get_function_symmetric_gradients(state_.u(), eps);
+          fv[u].get_function_gradients(state_.u(), grad_u);
+          for (unsigned int q = 0; q < n_q; ++q)
+            eps[q] = strain_measure(grad_u[q], finite);
           const unsigned int c = cell->active_cell_index();
           const std::size_t first = std::size_t(c) * n_q;
           for (unsigned int q = 0; q < n_q; ++q)
@@ -114,7 +126,9 @@ namespace clearjoint::fe::detail
     FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq,
                          update_gradients | update_quadrature_points);
     const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, dim>> grad_u(fq.size());
     std::vector<SymmetricTensor<2, dim>> eps(fq.size());
+    const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
     std::vector<double> mine;
     const unsigned int n_q = system_.n_q_points();  // the material points of a cell
     const double R = body == 0 ? scene_.geometry.R_B : scene_.geometry.R_J();
@@ -131,7 +145,9 @@ namespace clearjoint::fe::detail
               if (z_min > 1e-9 * R)
                 continue;  // not at the mid-plane
               fv.reinit(cell, f);
-              fv[u].get_function_symmetric_gradients(state_.u(), eps);
+              fv[u].get_function_gradients(state_.u(), grad_u);
+              for (const unsigned int q : fv.quadrature_point_indices())
+                eps[q] = strain_measure(grad_u[q], finite);
               double z_row = std::numeric_limits<double>::max();
               for (const unsigned int q : fv.quadrature_point_indices())
                 z_row = std::min(z_row, std::abs(fv.quadrature_point(q)[2]));

@@ -2,6 +2,7 @@
 // plastic_zone (the yield check), contact pressure/gap/status/shear/slip as Abaqus's
 // CPRESS/COPEN/CSTATUS/CSHEAR/CSLIP, subdomain.
 #include "fe_stage/core/contact_model.h"
+#include "fe_stage/material/strain_measure.h"
 #include "fe_stage/results/vtu_files.h"
 
 #include <deal.II/numerics/data_out.h>
@@ -10,14 +11,18 @@
 namespace clearjoint::fe::detail
 {
   /// Stress, strain, von Mises stress and principal strains from the displacement gradient.
+  /// The strain is the material law's (material/strain_measure.h): ε = sym ∇u, or with finite
+  /// kinematics the Hencky strain E = ½ ln C, whose stress C (E − ε̄_p) is the rotated
+  /// Kirchhoff stress of the J2 law in the logarithmic strain space.
   class StressPostprocessor : public DataPostprocessor<dim>
   {
   public:
     /// mean_eps_p (elastoplastic, by active cell index): the stress is C (ε − ε̄_p), ε̄_p the
     /// cell's mean plastic strain over its quadrature points; nullptr: elastic, C ε.
-    StressPostprocessor(const LinearElastic &material,
+    StressPostprocessor(const LinearElastic &material, const bool finite,
                         const std::vector<SymmetricTensor<2, dim>> *mean_eps_p = nullptr)
       : material_(material)
+      , finite_(finite)
       , mean_eps_p_(mean_eps_p)
     {}
 
@@ -29,7 +34,7 @@ namespace clearjoint::fe::detail
           Tensor<2, dim> grad;
           for (unsigned int i = 0; i < dim; ++i)
             grad[i] = in.solution_gradients[q][i];
-          const SymmetricTensor<2, dim> eps = symmetrize(grad);
+          const SymmetricTensor<2, dim> eps = strain_measure(grad, finite_);
           SymmetricTensor<2, dim> elastic = eps;
           if (mean_eps_p_)
             elastic -= (*mean_eps_p_)[in.template get_cell<dim>()->active_cell_index()];
@@ -72,6 +77,7 @@ namespace clearjoint::fe::detail
 
   private:
     LinearElastic material_;
+    bool finite_;
     const std::vector<SymmetricTensor<2, dim>> *mean_eps_p_;
   };
 
@@ -107,7 +113,9 @@ namespace clearjoint::fe::detail
     Vector<float> alpha_max, vm_max;
     if (elastoplastic())
       plastic_cell_fields(mean_eps_p, alpha_max, vm_max);
-    StressPostprocessor post(material_->elastic(), elastoplastic() ? &mean_eps_p : nullptr);
+    StressPostprocessor post(material_->elastic(),
+                             scene_.material.kinematics == Material::Kinematics::finite,
+                             elastoplastic() ? &mean_eps_p : nullptr);
     DataOut<dim> out;
     out.attach_dof_handler(dofs_.handler());
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(

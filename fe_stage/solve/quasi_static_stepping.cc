@@ -311,10 +311,6 @@ namespace clearjoint::fe::detail
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
       std::filesystem::create_directories(options_.output_dir + "/fields");
-    if (fields && rank_ == 0 && scene_.material.kinematics == Material::Kinematics::finite)
-      log::warning("fe_stage: material.kinematics finite: the fields' stress and strain are "
-                   "still the small-strain measures of the displacement gradient (the "
-                   "displacement is exact); the finite-strain stress fields follow (issue 30)");
     const unsigned int n_candidates = Utilities::MPI::sum(
       (unsigned int)std::count_if(contact_.nodes().begin(), contact_.nodes().end(),
                                   [](const ContactNode &c) { return c.owned && c.candidate; }),

@@ -36,6 +36,13 @@ namespace clearjoint::fe::rolling
     return 2.0 * std::asin(std::min(1.0, 0.5 * u / R));     // Eq. 5 / 6
   }
 
+  double unwrap_paper_angle(const double chord, const bool positive, const double previous)
+  {
+    const double turn = 2.0 * std::acos(-1.0);
+    const double a = positive ? chord : -chord;  // θ ≡ a (mod 2π)
+    return a + turn * std::round((previous - a) / turn);
+  }
+
   SlipStages slip_stages(const std::vector<double> &t, const std::vector<double> &v,
                          const double fall_fraction, const double settle_band)
   {

@@ -62,6 +62,14 @@ namespace clearjoint::fe::rolling
   /// up to half a turn).
   double paper_angle(const Vec3 &U, double R);
 
+  /// Eqs. 5–6 past half a turn: the chord gives the turned angle only up to its sign and
+  /// modulo a turn (2 asin(|U|/2R) ∈ [0, π] folds back once the point has turned more than π,
+  /// at γ ≈ 3.3 rad in the paper's case). With the sense of the turn (`positive`: the point's
+  /// sin θ ≥ 0 about its own centre, from its start and end radii), θ ≡ ±chord (mod 2π); of
+  /// those angles the one nearest `previous` (the last step's unwrapped angle, 0 at the start).
+  /// Exact while a step turns the point by less than π — any usable time step. [rad]
+  double unwrap_paper_angle(double chord, bool positive, double previous);
+
   /// The three slip stages of the paper (§3.4) located on the relative surface speed
   /// v(t) = ω_B R_B − γ̇ R_J of the converged steps: (i) slip, from the start until the speed
   /// first falls below `fall_fraction` of its largest value; (ii) the fall, until it stays

@@ -390,12 +390,21 @@ namespace clearjoint::fe::detail
         const Vec3 X0{0.0, -G.R_B, 0.0};
         const Vec3 xB =
           rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0}, rec.phi);
-        rec.phi_paper = rolling::paper_angle({xB[0] - X0[0], xB[1] - X0[1], 0.0}, G.R_B);
+        // (unwrapped past half a turn by continuity with the last step, with the sense of the
+        // turn from the point's start and end radii about its own centre)
+        const auto *previous =
+          result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back();
+        rec.phi_paper = rolling::unwrap_paper_angle(
+          rolling::paper_angle({xB[0] - X0[0], xB[1] - X0[1], 0.0}, G.R_B),
+          X0[0] * xB[1] - X0[1] * xB[0] >= 0.0, previous ? previous->phi_paper : 0.0);
         const Vec3 c0 = motion.centre_fixed(0.0), c1 = motion.centre_fixed(t1);
         const Vec3 pJ = rolling::rotate_z({u_journal[0], -G.R_J() + u_journal[1], 0.0}, rec.gamma);
         rec.gamma_paper =
-          rolling::paper_angle({c1[0] + pJ[0] - c0[0], c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0},
-                               G.R_J());
+          rolling::unwrap_paper_angle(rolling::paper_angle({c1[0] + pJ[0] - c0[0],
+                                                            c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0},
+                                                           G.R_J()),
+                                      G.R_J() * pJ[0] >= 0.0,  // (0, −R_J) × pJ
+                                      previous ? previous->gamma_paper : 0.0);
         rec.phi_rate_paper = rec.phi_paper / t1;
         rec.gamma_rate_paper = rec.gamma_paper / t1;
         rec.wall_time = elapsed();

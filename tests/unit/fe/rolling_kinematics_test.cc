@@ -17,11 +17,8 @@ namespace
 
   // SPEC §2's joint: R_B = 10 mm, c_r = 0.5 mm, R_J = 9.5 mm; ω_B and the ramp of the rolling
   // study
-  Motion spec_motion()
-  {
-    return Motion{12.56, 0.25, 1e-3, 0.5e-3, 10e-3, 9.5e-3};
-  }
-} // namespace
+  Motion spec_motion() { return Motion{12.56, 0.25, 1e-3, 0.5e-3, 10e-3, 9.5e-3}; }
+}  // namespace
 
 TEST(RollingKinematics, RotationAndFrame)
 {
@@ -32,7 +29,7 @@ TEST(RollingKinematics, RotationAndFrame)
 
   const Motion m = spec_motion();
   EXPECT_DOUBLE_EQ(m.delta(0.125), 0.5e-3);
-  EXPECT_DOUBLE_EQ(m.delta(0.5), 1e-3);   // held after the ramp
+  EXPECT_DOUBLE_EQ(m.delta(0.5), 1e-3);  // held after the ramp
   EXPECT_DOUBLE_EQ(m.delta(-1.0), 0.0);
   EXPECT_DOUBLE_EQ(m.rolling_rate(0.0), 12.56 * 10.0 / 9.5);   // first touch: at R_B
   EXPECT_DOUBLE_EQ(m.rolling_rate(0.25), 12.56 * 11.0 / 9.5);  // pushed 1 mm into the bore
@@ -89,6 +86,31 @@ TEST(RollingKinematics, PaperAnglesMatchTheExactRotation)
     }
 }
 
+// Issue 30 item 5: past half a turn the chord folds back (a point turned by 3.3 rad has the
+// chord of 2π − 3.3); unwrapped by continuity from the previous step's angle, the paper's
+// angle follows the exact rotation through several turns, forwards and backwards.
+TEST(RollingKinematics, PaperAngleUnwrapsPastHalfATurn)
+{
+  const double R = 10e-3;
+  const Vec3 X{0.0, -R, 0.0};
+  for (const double rate : {0.21, -0.37})  // [rad] per step (the paper's case: ~0.2)
+    {
+      double unwrapped = 0.0;
+      for (int step = 1; step <= 60; ++step)  // to 12.6 and −22 rad: several turns
+        {
+          const double theta = rate * step;
+          const Vec3 x = rotate_z(X, theta);
+          const double chord = paper_angle({x[0] - X[0], x[1] - X[1], 0.0}, R);
+          EXPECT_LE(chord, pi + 1e-12);                            // the fold itself
+          const bool positive = X[0] * x[1] - X[1] * x[0] >= 0.0;  // sin θ from the radii
+          unwrapped = unwrap_paper_angle(chord, positive, unwrapped);
+          // 1e-7: the chord's own accuracy near a half turn (asin near 1, previous test)
+          EXPECT_NEAR(unwrapped, theta, 1e-7) << "step " << step << ", rate " << rate;
+        }
+    }
+  EXPECT_DOUBLE_EQ(unwrap_paper_angle(0.5, true, 0.0), 0.5);  // below half a turn: the chord
+}
+
 TEST(RollingKinematics, SlipStagesOnASyntheticHistory)
 {
   // v = 1 until 0.1 s, falling linearly to 0.02 by 0.2 s, then 0.02: the fall crosses 0.5 at
@@ -106,7 +128,7 @@ TEST(RollingKinematics, SlipStagesOnASyntheticHistory)
   EXPECT_DOUBLE_EQ(s.v_final, 0.02);
   EXPECT_NEAR(s.end_of_slip, 0.1 + 0.1 * 0.5 / 0.98, 1.01e-3);  // one sample of 1 ms
   EXPECT_NEAR(s.settled, 0.2 - 0.1 * 0.05 / 0.98, 1.01e-3);
-  EXPECT_FALSE(slip_stages({0.0, 1.0}, {1.0, 1.0}).found);          // too short
+  EXPECT_FALSE(slip_stages({0.0, 1.0}, {1.0, 1.0}).found);            // too short
   EXPECT_FALSE(slip_stages({0.0, 1.0, 2.0}, {0.0, 0.0, 0.0}).found);  // no slip at all
   // the speed rises to its largest value at the end and never falls: no stage is located
   // (before, both stages were reported at the last sample)

@@ -489,7 +489,8 @@ TEST(FeScene, RollingStudy)
 }
 
 // Issue 30: material.kinematics (small | finite) and the elastoplastic patch test; finite only
-// with the J2 law and, so far, in the patch test; solver.max_newton_iterations in [1, 1000].
+// with the J2 law (the patch test and the rolling study); solver.max_newton_iterations in
+// [1, 1000].
 TEST(FeScene, KinematicsAndTheElastoplasticPatchTest)
 {
   const std::string patch = "schema: clearjoint.fe/1\nstudy: patch\n";
@@ -509,8 +510,10 @@ TEST(FeScene, KinematicsAndTheElastoplasticPatchTest)
                {"material.kinematics", "elastoplastic"});
   expect_error("schema: clearjoint.fe/1\nmaterial: {model: elastoplastic, kinematics: finite}\n",
                {"material.model"});  // radial: not elastoplastic at all
-  expect_error("schema: clearjoint.fe/1\nstudy: rolling\nmaterial: {kinematics: finite}\n",
-               {"material.kinematics", "small for study rolling"});
+  // the rolling study is elastoplastic by default: finite is accepted there
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nstudy: rolling\nmaterial: {kinematics: finite}\n")
+              .material.kinematics,
+            Material::Kinematics::finite);
   expect_error(patch + "material: {model: elastoplastic}\n"
                        "verification: {indenter: deformable}\n",
                {"verification.indenter", "rigid flat"});
