@@ -222,7 +222,8 @@ namespace clearjoint::fe::detail
           }
         if (target > 0.0)
           {
-            const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+            const AdaptiveEstimate e =
+              estimate_adaptive_error(result.adaptive_cycles, dofs_.fe().degree);
             if (rank_ == 0 && e.error >= 0.0)
               log::info("fe_stage: estimated error of F(delta_max) " +
                         format_value(100.0 * e.error) + " % (" + e.method + "), target " +
@@ -255,7 +256,7 @@ namespace clearjoint::fe::detail
       result.adaptive_cycles.back() = last;
     else
       result.adaptive_cycles.push_back(last);
-    const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+    const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles, dofs_.fe().degree);
     result.adaptive_error = e.error;
     result.adaptive_error_method = e.method;
     result.adaptive_order = e.order;
