@@ -56,16 +56,21 @@ namespace clearjoint::fe
       if (!(N[j] > N[j - 1]) || !((F[j - 1] - F[j]) * (F[k - 1] - F[k]) > 0.0))
         return e;
 
-    // q by the least squares: a scan of [1e-3, 20] (outside it the sequence is not of this
-    // form), then golden sections around the best point of the scan
+    // q by the least squares: a scan of [1e-3, 20], then golden sections around the best point
+    // of the scan. Best at 1e-3: no positive rate, the changes do not shrink as a power of N
+    // (not of the assumed form); at 20 the bound below applies anyway.
     const double q_lo = 1e-3, q_hi = 20.0;
     const int n_scan = 400;  // log-spaced: neighbouring points 2.5 % apart
     auto scan_point = [&](const int i) { return q_lo * std::pow(q_hi / q_lo, double(i) / n_scan); };
     int best = 0;
+    double best_misfit = misfit(N, F, first, k, q_lo);
     for (int i = 1; i <= n_scan; ++i)
-      if (misfit(N, F, first, k, scan_point(i)) < misfit(N, F, first, k, scan_point(best)))
-        best = i;
-    if (best == 0)  // no positive rate: the changes do not shrink as a power of N
+      if (const double m = misfit(N, F, first, k, scan_point(i)); m < best_misfit)
+        {
+          best = i;
+          best_misfit = m;
+        }
+    if (best == 0)
       return e;
     double a = scan_point(std::max(best - 1, 0)), b = scan_point(std::min(best + 1, n_scan));
     const double golden = 0.5 * (std::sqrt(5.0) - 1.0);

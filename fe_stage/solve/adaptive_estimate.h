@@ -38,13 +38,13 @@ namespace clearjoint::fe
   /// With three or more meshes: the rate q of F_k = F_∞ + C N_k^(−q) by least squares over the
   /// last (up to adaptive_fit_changes) changes, log|F_{j−1} − F_j| = log C + log(N_{j−1}^(−q) −
   /// N_j^(−q)) (exactly the three-mesh Richardson rate when there are three meshes), bounded
-  /// by max_order; the error of the last mesh is then the Richardson tail of the last two
-  /// cycles' change, |F_k − F_{k−2}| / ((N_k/N_{k−2})^q − 1). Bounding q makes it larger, never
-  /// smaller: for a sequence of the assumed form with any rate ≥ max_order it is an upper
-  /// bound. When the changes used are not all of one sign, the meshes do not grow, or no
-  /// positive rate fits (the changes grow), the estimate is the last cycle's change |F_k −
-  /// F_{k−1}| / |F_k|, which only bounds the error from below — `method` says which. Fewer
-  /// than two meshes: no estimate.
+  /// by max_order (fe_stage passes p/d, and `method` calls it so); the error of the last mesh
+  /// is then the Richardson tail of the last two cycles' change, |F_k − F_{k−2}| /
+  /// ((N_k/N_{k−2})^q − 1). Bounding q makes it larger, never smaller: for a sequence of the
+  /// assumed form with any rate ≥ max_order it is an upper bound. When the changes used are not
+  /// all of one sign, the meshes do not grow, or no positive rate fits (the changes grow), the
+  /// estimate is the last cycle's change |F_k − F_{k−1}| / |F_k|, which only bounds the error
+  /// from below — `method` says which. Fewer than two meshes: no estimate.
   AdaptiveEstimate estimate_adaptive_error(const std::vector<double> &n_dofs,
                                            const std::vector<double> &forces, double max_order);
 
