@@ -185,7 +185,7 @@ namespace clearjoint::fe::detail
     const std::vector<double> marking_targets =
       equal_steps(scene_.loading.delta_max, scene_.mesh.adaptive_increments);
     // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
-    // estimate, extrapolated through the last three, meets it — the curve is then computed on
+    // estimate, extrapolated from three or more, meets it — the curve is then computed on
     // that mesh — or at adaptive_cycles, the most allowed.
     const double target = scene_.mesh.adaptive_target_error;
     for (unsigned int cycle = 0; cycle <= scene_.mesh.adaptive_cycles; ++cycle)
