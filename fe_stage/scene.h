@@ -193,7 +193,7 @@ namespace clearjoint::fe
     /// F(δ_max) within 5e-6 (docs/fe.md); frictionless contact is path-independent.
     unsigned int adaptive_increments = 2;
     /// [1] > 0: refine until the estimated relative error of F(δ_max) is at most this (an
-    /// extrapolation over the last three meshes, solve/adaptive_estimate.h), adaptive_cycles
+    /// extrapolation from three or more meshes, solve/adaptive_estimate.h), adaptive_cycles
     /// then being the most cycles allowed; 0: exactly adaptive_cycles cycles.
     double adaptive_target_error = 0.0;
   };

@@ -1,45 +1,103 @@
 #include "fe_stage/solve/adaptive_estimate.h"
 
-#include "common/error.h"
-
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace clearjoint::fe
 {
+  namespace
+  {
+    std::string format_rate(const double q)
+    {
+      char buf[32];
+      std::snprintf(buf, sizeof(buf), "%.3g", q);
+      return buf;
+    }
+
+    /// log(N_a^(−q) − N_b^(−q)) for N_b > N_a, without underflow at large q.
+    double log_power_difference(const double N_a, const double N_b, const double q)
+    {
+      return -q * std::log(N_a) + std::log1p(-std::pow(N_a / N_b, q));
+    }
+
+    /// The sum of squares of the fit log|ΔF_j| = log C + log(N_{j−1}^(−q) − N_j^(−q)) over
+    /// the changes j of meshes [first, last], with log C eliminated (the mean of the residuals).
+    double misfit(const std::vector<double> &N, const std::vector<double> &F,
+                  const std::size_t first, const std::size_t last, const double q)
+    {
+      std::vector<double> g;
+      for (std::size_t j = first + 1; j <= last; ++j)
+        g.push_back(std::log(std::abs(F[j - 1] - F[j])) - log_power_difference(N[j - 1], N[j], q));
+      double mean = 0.0;
+      for (const double v : g)
+        mean += v / static_cast<double>(g.size());
+      double s = 0.0;
+      for (const double v : g)
+        s += (v - mean) * (v - mean);
+      return s;
+    }
+  }  // namespace
+
   AdaptiveEstimate estimate_adaptive_error(const std::vector<double> &N,
-                                           const std::vector<double> &F)
+                                           const std::vector<double> &F, const double max_order)
   {
     AdaptiveEstimate e;
     if (F.size() < 2 || N.size() != F.size())
       return e;
     const std::size_t k = F.size() - 1;
-    const double F2 = F[k], F1 = F[k - 1];
-    e.error = std::abs(F2 - F1) / std::abs(F2);
+    e.error = std::abs(F[k] - F[k - 1]) / std::abs(F[k]);
     e.method = "change in the last cycle (a lower bound)";
     if (F.size() < 3)
       return e;
-    const double F0 = F[k - 2];
-    const double N0 = N[k - 2], N1 = N[k - 1], N2 = N[k];
-    const double r = (F0 - F1) / (F1 - F2);
-    if (!(r > 0.0) || !(N2 > N1 && N1 > N0))
+    const std::size_t first = k - std::min<std::size_t>(k, adaptive_fit_changes);
+    // one sign of every change, meshes that grow: else no limit of the assumed form
+    for (std::size_t j = first + 1; j <= k; ++j)
+      if (!(N[j] > N[j - 1]) || !((F[j - 1] - F[j]) * (F[k - 1] - F[k]) > 0.0))
+        return e;
+
+    // q by the least squares: a scan of [1e-3, 20], then golden sections around the best point
+    // of the scan. Best at 1e-3: no positive rate, the changes do not shrink as a power of N
+    // (not of the assumed form); at 20 the bound below applies anyway.
+    const double q_lo = 1e-3, q_hi = 20.0;
+    const int n_scan = 400;  // log-spaced: neighbouring points 2.5 % apart
+    auto scan_point = [&](const int i) { return q_lo * std::pow(q_hi / q_lo, double(i) / n_scan); };
+    int best = 0;
+    double best_misfit = misfit(N, F, first, k, q_lo);
+    for (int i = 1; i <= n_scan; ++i)
+      if (const double m = misfit(N, F, first, k, scan_point(i)); m < best_misfit)
+        {
+          best = i;
+          best_misfit = m;
+        }
+    if (best == 0)
       return e;
-    auto ratio = [&](const double q) {
-      return (std::pow(N0, -q) - std::pow(N1, -q)) / (std::pow(N1, -q) - std::pow(N2, -q));
-    };
-    // ratio(q) grows with q from (log N1 − log N0)/(log N2 − log N1) at q → 0; outside
-    // [1e-3, 20] the sequence is not of this form (e.g. the differences grow)
-    double lo = 1e-3, hi = 20.0;
-    if (!(ratio(lo) < r && ratio(hi) > r))
-      return e;
-    for (int i = 0; i < 200 && hi - lo > 1e-12; ++i)  // bisection: 200 halvings bound it
-      (ratio(0.5 * (lo + hi)) < r ? lo : hi) = 0.5 * (lo + hi);
-    const double q = 0.5 * (lo + hi);
-    const double F_inf = F2 - (F1 - F2) * std::pow(N2, -q) / (std::pow(N1, -q) - std::pow(N2, -q));
+    double a = scan_point(std::max(best - 1, 0)), b = scan_point(std::min(best + 1, n_scan));
+    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int i = 0; i < 200 && b - a > 1e-12; ++i)  // 200 sections bound it
+      {
+        const double c = b - golden * (b - a), d = a + golden * (b - a);
+        if (misfit(N, F, first, k, c) < misfit(N, F, first, k, d))
+          b = d;
+        else
+          a = c;
+      }
+    const double q_fit = 0.5 * (a + b);
+    const double q = std::min(q_fit, max_order);
+
+    // the tail beyond the last mesh from the change over the last two cycles, F_{k−2} − F_k =
+    // C N_k^(−q) ((N_k/N_{k−2})^q − 1): one large and one small change of the odd/even
+    // alternation in every such pair, where the last change alone is one or the other
+    const double tail = (F[k - 2] - F[k]) / (std::pow(N[k] / N[k - 2], q) - 1.0);
     e.extrapolated = true;
+    e.fitted_order = q_fit;
     e.order = q;
-    e.extrapolated_force = F_inf;
-    e.error = std::abs(F2 - F_inf) / std::abs(F_inf);
-    e.method = "extrapolation of the last three meshes, F = F_inf + C N^-q, q = " + format_value(q);
+    e.n_meshes_fitted = static_cast<unsigned int>(k - first + 1);
+    e.extrapolated_force = F[k] - tail;
+    e.error = std::abs(tail) / std::abs(e.extrapolated_force);
+    e.method = "last two cycles extrapolated with F = F_inf + C N^-q, q = " + format_rate(q) +
+               (q < q_fit ? " (the bound p/d; " : " (") + "least squares over the last " +
+               std::to_string(e.n_meshes_fitted) + " meshes: " + format_rate(q_fit) + ")";
     return e;
   }
 }  // namespace clearjoint::fe

@@ -1,5 +1,6 @@
-// The error of F(δ_max) on the last adaptive mesh, from the sequence of meshes (issue 11 item 4),
-// and whether an adaptive run has reached its target error. No deal.II: unit-tested in seconds.
+// The error of F(δ_max) on the last adaptive mesh, from the sequence of meshes (issue 11 item 4,
+// issue 32 item 3), and whether an adaptive run has reached its target error. No deal.II:
+// unit-tested in seconds.
 #pragma once
 
 #include <string>
@@ -11,22 +12,47 @@ namespace clearjoint::fe
   {
     double error = -1.0;              // [1] estimated relative error of the last F; < 0: none
     std::string method;               // how it was obtained (a lower bound, or extrapolated)
-    bool extrapolated = false;        // from F = F_inf + C N^-q through the last three meshes
-    double order = 0.0;               // [1] q (extrapolated only)
+    bool extrapolated = false;        // from F = F_inf + C N^-q (see estimate_adaptive_error)
+    double order = 0.0;               // [1] q the estimate used (extrapolated only)
+    double fitted_order = 0.0;        // [1] q of the least-squares fit, before the bound
     double extrapolated_force = 0.0;  // [N] F_inf (extrapolated only)
+    unsigned int n_meshes_fitted = 0;  // meshes whose changes the fit used (extrapolated only)
   };
 
-  /// With three or more meshes, F_k = F_∞ + C N_k^(−q) through the last three (q by
-  /// bisection: a generalised Richardson extrapolation in the DoF count N, as the uniform
-  /// levels' in docs/benchmarks.md); otherwise, or when the last three do not approach a limit
-  /// monotonically, the last cycle's change |F_k − F_{k−1}| / |F_k|, which only bounds the
-  /// error from below — `method` says which. Fewer than two meshes: no estimate.
-  AdaptiveEstimate estimate_adaptive_error(const std::vector<double> &n_dofs,
-                                           const std::vector<double> &forces);
+  /// The fastest rate in the DoF count N that the estimate credits: p/d, the energy norm's
+  /// rate on optimally refined meshes of degree-p elements in d dimensions (Kelly's indicator
+  /// marks for the energy error). A functional such as F(δ_max) may converge faster (up to
+  /// 2p/d), but the measured adaptive sequences show that a faster rate fitted through a few
+  /// meshes is not to be trusted (docs/fe.md "Adaptive refinement").
+  inline double energy_norm_rate(const unsigned int degree, const unsigned int dim = 3)
+  {
+    return static_cast<double>(degree) / static_cast<double>(dim);
+  }
 
-  /// The same for a sequence of records with n_dofs and force (AdaptiveCycle of fe_model.h).
+  /// The most changes |F_k − F_{k−1}| the fit of the rate uses (the last ones): an even
+  /// number, so that the odd/even alternation of Kelly's sequences (a large change, then a
+  /// small one, measured on six meshes) cancels, and the coarsest, least asymptotic meshes
+  /// leave the fit as the sequence grows.
+  inline constexpr unsigned int adaptive_fit_changes = 4;
+
+  /// With three or more meshes: the rate q of F_k = F_∞ + C N_k^(−q) by least squares over the
+  /// last (up to adaptive_fit_changes) changes, log|F_{j−1} − F_j| = log C + log(N_{j−1}^(−q) −
+  /// N_j^(−q)) (exactly the three-mesh Richardson rate when there are three meshes), bounded
+  /// by max_order (fe_stage passes p/d, and `method` calls it so); the error of the last mesh
+  /// is then the Richardson tail of the last two cycles' change, |F_k − F_{k−2}| /
+  /// ((N_k/N_{k−2})^q − 1). Bounding q makes it larger, never smaller: for a sequence of the
+  /// assumed form with any rate ≥ max_order it is an upper bound. When the changes used are not
+  /// all of one sign, the meshes do not grow, or no positive rate fits (the changes grow), the
+  /// estimate is the last cycle's change |F_k − F_{k−1}| / |F_k|, which only bounds the error
+  /// from below — `method` says which. Fewer than two meshes: no estimate.
+  AdaptiveEstimate estimate_adaptive_error(const std::vector<double> &n_dofs,
+                                           const std::vector<double> &forces, double max_order);
+
+  /// The same for a sequence of records with n_dofs and force (AdaptiveCycle of fe_model.h)
+  /// computed with elements of polynomial degree `degree` in 3D.
   template <typename Cycle>
-  AdaptiveEstimate estimate_adaptive_error(const std::vector<Cycle> &cycles)
+  AdaptiveEstimate estimate_adaptive_error(const std::vector<Cycle> &cycles,
+                                           const unsigned int degree)
   {
     std::vector<double> n_dofs, forces;
     for (const auto &c : cycles)
@@ -34,7 +60,7 @@ namespace clearjoint::fe
         n_dofs.push_back(static_cast<double>(c.n_dofs));
         forces.push_back(c.force);
       }
-    return estimate_adaptive_error(n_dofs, forces);
+    return estimate_adaptive_error(n_dofs, forces, energy_norm_rate(degree));
   }
 
   /// Whether a target error (mesh.adaptive_target_error) is met: only an extrapolated estimate

@@ -196,7 +196,7 @@ namespace clearjoint::fe::detail
     const std::vector<double> marking_targets =
       equal_steps(scene_.loading.delta_max, scene_.mesh.adaptive_increments);
     // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
-    // estimate, extrapolated through the last three, meets it — the curve is then computed on
+    // estimate, extrapolated from three or more, meets it — the curve is then computed on
     // that mesh — or at adaptive_cycles, the most allowed.
     const double target = scene_.mesh.adaptive_target_error;
     for (unsigned int cycle = 0; cycle <= scene_.mesh.adaptive_cycles; ++cycle)
@@ -233,7 +233,8 @@ namespace clearjoint::fe::detail
           }
         if (target > 0.0)
           {
-            const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+            const AdaptiveEstimate e =
+              estimate_adaptive_error(result.adaptive_cycles, dofs_.fe().degree);
             if (rank_ == 0 && e.error >= 0.0)
               log::info("fe_stage: estimated error of F(delta_max) " +
                         format_value(100.0 * e.error) + " % (" + e.method + "), target " +
@@ -266,7 +267,7 @@ namespace clearjoint::fe::detail
       result.adaptive_cycles.back() = last;
     else
       result.adaptive_cycles.push_back(last);
-    const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles);
+    const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles, dofs_.fe().degree);
     result.adaptive_error = e.error;
     result.adaptive_error_method = e.method;
     result.adaptive_order = e.order;

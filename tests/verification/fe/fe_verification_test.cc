@@ -437,13 +437,15 @@ TEST(FeAdaptive, TargetErrorStopsTheCyclesWhereTheEstimateMeetsIt)
               r.adaptive_error_method.c_str(), 100.0 * error);
   EXPECT_TRUE(r.adaptive_target_reached);
   EXPECT_LE(r.adaptive_error, 0.01);
-  // an extrapolation needs three meshes; 1 % is met long before the fifth cycle (measured on
-  // the third mesh, 9 k DoFs: estimate 0.30 %)
+  // an extrapolation needs three meshes; 1 % is met before the fifth cycle (measured: on the
+  // fourth mesh, 21 k DoFs, estimate 0.69 %; the third's 2.3 % does not meet it)
   EXPECT_GE(r.adaptive_cycles.size(), 3u);
   EXPECT_LT(r.adaptive_cycles.size(), 6u);
   EXPECT_EQ(r.adaptive_cycles.back().n_dofs, r.n_dofs);  // the curve's mesh closes the list
   EXPECT_DOUBLE_EQ(r.adaptive_cycles.back().force, r.increments.back().force);
-  EXPECT_LT(error, 0.01);  // and the error itself meets the target (measured 0.52 %)
+  // and the error itself meets the target (measured 0.037 % against F_ref; F_ref is too high,
+  // the six-mesh run of docs/benchmarks.md puts this mesh's error at 0.46-0.61 %)
+  EXPECT_LT(error, 0.01);
 
   // out of reach in two cycles: every cycle runs, the run completes and says so
   const RunResult u = run(scene(base + "adaptive_cycles: 2, adaptive_target_error: 1e-5}\n"));
