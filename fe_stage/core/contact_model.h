@@ -7,17 +7,20 @@
 // Owners so far, each in its own header: the meshed bodies (Bodies, mesh/bodies.h), the DoF
 // space and its fixed constraints (DofSpace, core/dof_space.h), the operator, its load, the
 // elastic cache and each iteration's condensed system (Assembler, core/assembler.h), the
-// contact nodes and their active set (ContactProblem, contact/contact_problem.h), the linear solver and its AMG
+// iterate u and its nodal forces (State, core/state.h), the contact nodes and their active set
+// (ContactProblem, contact/contact_problem.h), the linear solver and its AMG
 // (SystemSolver, solve/linear_solver.h), the material law with its quadrature-point history
 // (MaterialLaw, material/material_law.h), the steppers' step-size policy (StepController,
 // solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's coefficients and
 // predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law (contact/coulomb_ssn.h).
 //
 // Method (docs/fe.md has the equations):
-//   - small strain, FE_Q(p)^3 on hexahedra with a curved mapping MappingQ(max(2,p)) and
-//     cylindrical manifolds, parallel::distributed::Triangulation, Trilinos matrices; linear
-//     elastic, or J2 elastoplastic with history (the rolling study: the operator is then the
-//     tangent, with the linearisation's load; core/assembler.h);
+//   - small strain, or finite strain (material.kinematics: total Lagrangian, the J2 law in the
+//     logarithmic strain space; core/finite_strain_assembly.cc); FE_Q(p)^3 on hexahedra with a
+//     curved mapping MappingQ(max(2,p)) and cylindrical manifolds,
+//     parallel::distributed::Triangulation, Trilinos matrices; linear elastic, or J2
+//     elastoplastic with history (the rolling study and the patch test: the operator is then
+//     the tangent, with the linearisation's load; core/assembler.h);
 //   - contact enforced EXACTLY at the contact nodes by a primal–dual active set (as deal.II's
 //     step-41/42): an active node gets the linearised non-penetration constraint as an
 //     AffineConstraints line on its dominant displacement component; the contact force at a
