@@ -146,20 +146,7 @@ namespace clearjoint::fe::detail
     rhs_.add(delta, rhs_static_unit_);
     if (!has_load())
       return;
-    TrilinosWrappers::MPI::Vector ghosted(dofs_.owned(), dofs_.relevant(), comm_);
-    ghosted = load_;
-    TrilinosWrappers::MPI::Vector moved;
-    moved.reinit(dofs_.owned(), dofs_.relevant(), comm_,
-                 true);  // writable: masters owned elsewhere
-    for (const auto &line : constraints.get_lines())
-      if (dofs_.owned().is_element(line.index))
-        {
-          const double bi = ghosted[line.index];
-          for (const auto &[m, c] : line.entries)
-            moved[m] += c * bi;
-          moved[line.index] -= bi;
-        }
-    moved.compress(VectorOperation::add);
+    const TrilinosWrappers::MPI::Vector moved = dofs_.moved_to_masters(constraints, load_);
     rhs_ += load_;
     rhs_ += moved;
   }

@@ -177,20 +177,26 @@ namespace clearjoint::fe::detail
 
   void DofSpace::condense_hanging(TrilinosWrappers::MPI::Vector &r) const
   {
-    // ghosted copy: the hanging DoF's value on whichever rank owns its line
+    r += moved_to_masters(hanging_, r);
+  }
+
+  TrilinosWrappers::MPI::Vector DofSpace::moved_to_masters(
+    const AffineConstraints<double> &constraints, const TrilinosWrappers::MPI::Vector &b) const
+  {
+    // ghosted copy: the constrained DoF's value on whichever rank owns its line
     TrilinosWrappers::MPI::Vector ghosted(owned_, relevant_, comm_);
-    ghosted = r;
+    ghosted = b;
     TrilinosWrappers::MPI::Vector moved;
     moved.reinit(owned_, relevant_, comm_, true);  // writable: entries of masters elsewhere
-    for (const auto &line : hanging_.get_lines())
+    for (const auto &line : constraints.get_lines())
       if (owned_.is_element(line.index))
         {
-          const double rh = ghosted[line.index];
+          const double bi = ghosted[line.index];
           for (const auto &[m, c] : line.entries)
-            moved[m] += c * rh;
-          moved[line.index] -= rh;
+            moved[m] += c * bi;
+          moved[line.index] -= bi;
         }
     moved.compress(VectorOperation::add);
-    r += moved;
+    return moved;
   }
 }  // namespace clearjoint::fe::detail

@@ -45,6 +45,11 @@ namespace clearjoint::fe::detail
     /// count the share of hanging support nodes. Without it the contact force misses those
     /// shares. Collective.
     void condense_hanging(TrilinosWrappers::MPI::Vector &r) const;
+    /// C^T b − b for `constraints` on this space: each owned constrained DoF's entry of b moved
+    /// to its masters with the line's coefficients, and taken off the DoF itself (as
+    /// distribute_local_to_global does with a cell vector). Collective.
+    TrilinosWrappers::MPI::Vector moved_to_masters(const AffineConstraints<double> &constraints,
+                                                   const TrilinosWrappers::MPI::Vector &b) const;
 
     const FESystem<dim> &fe() const { return *fe_; }
     const DoFHandler<dim> &handler() const { return handler_; }
