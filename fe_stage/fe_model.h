@@ -163,10 +163,12 @@ namespace clearjoint::fe
     double max_strain = 0.0;           // [1] largest principal total strain magnitude
     double plastic_volume = 0.0;       // [m^3] where ε_p > 0 (full body)
     unsigned int n_active = 0, n_slip = 0;
-    unsigned int spin_iterations = 0;    // torque-balance evaluations
-    unsigned int newton_iterations = 0;  // material Newton iterations over those
-    unsigned int contact_iterations = 0, linear_iterations = 0;
-    unsigned int cuts = 0;
+    // what the step cost, over its attempts (a failed one included as far as it got):
+    unsigned int spin_iterations = 0;    // torque-balance evaluations (coupled: iterations)
+    unsigned int newton_iterations = 0;  // material Newton iterations
+    unsigned int contact_iterations = 0, linear_iterations = 0;  // active-set, linear solver
+    unsigned int cuts = 0;                                       // halvings of Δt
+    bool spin_coupled = false;  // the coupled iteration solved it (else the root finder)
     // the paper's Eqs. 4–8 on the bore node and the journal point that touch at t = 0
     // (bottom, mid-plane): angles from their displacement vectors, and the rates φ/t, γ/t
     double phi_paper = 0.0, gamma_paper = 0.0;            // [rad]

@@ -364,6 +364,9 @@ namespace clearjoint::fe
           Rolling::Support::outer_surface;
       if (o.has("journal_inertia"))
         R.journal_inertia = o.number("journal_inertia", Range::open(0.0, 1.0e6, "kg m^2"));
+      R.spin_solver = o.string_or("spin_solver", "coupled", {"coupled", "nested"}) == "nested" ?
+                        Rolling::SpinSolver::nested :
+                        Rolling::SpinSolver::coupled;
       R.max_spin_iterations = uint_or(o, "max_spin_iterations", R.max_spin_iterations, 1, 10000);
       R.max_newton_iterations =
         uint_or(o, "max_newton_iterations", R.max_newton_iterations, 1, 1000);
@@ -1118,10 +1121,13 @@ namespace clearjoint::fe
         << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
         << "                      #   radial study's support, turning with the bearing)\n"
         << "  # journal_inertia: 1.8e-6  # [kg m^2] > 0: instead of 1/2 m R_J^2 of the journal\n"
+        << "  spin_solver: coupled  # the journal's spin: coupled (updated in each material "
+           "Newton\n"
+        << "                      #   iteration) | nested (a root finder around whole solves)\n"
         << "  max_spin_iterations: " << d.rolling.max_spin_iterations
-        << "   # torque-balance evaluations per step at most\n"
+        << "   # torque-balance evaluations per step at most (nested)\n"
         << "  max_newton_iterations: " << d.rolling.max_newton_iterations
-        << " # material Newton iterations per evaluation at most\n"
+        << " # material Newton iterations per solve at most\n"
         << "  field_stride: " << d.rolling.field_stride
         << "     # VTU fields every this many steps\n";
     }
@@ -1197,6 +1203,9 @@ namespace clearjoint::fe
                                     "upper_half" :
                                     "outer_surface"},
                       {"journal_inertia", rolling_journal_inertia(s)},
+                      {"spin_solver", s.rolling.spin_solver == Rolling::SpinSolver::nested ?
+                                        "nested" :
+                                        "coupled"},
                       {"max_spin_iterations", s.rolling.max_spin_iterations},
                       {"max_newton_iterations", s.rolling.max_newton_iterations},
                       {"field_stride", s.rolling.field_stride}};

@@ -189,6 +189,19 @@ namespace clearjoint::fe::detail
       unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
     };
     MaterialSolve solve_material_state(double delta, unsigned int max_it);
+    /// One material Newton iteration from the current u: the tangent, its load and the
+    /// active-set contact solve at the push δ; how far u moved [m]. Throws StepFailure.
+    struct MaterialIteration
+    {
+      IncrementRecord record;
+      double correction = 0.0;  // [m] max-norm of the change of u
+      unsigned int n_plastic_points = 0;
+    };
+    MaterialIteration material_iteration(double delta);
+    /// [m] Material Newton has converged when the correction is below 1e-7 of the push
+    /// (δ_max = 1 mm: 0.1 nm), far below the discretisation error; quadratic convergence
+    /// reaches it in a few iterations once the plastic zone and the active set have settled.
+    double material_tolerance() const { return 1e-7 * scene_.loading.delta_max; }
     /// A converged state's trial states made the points' history.
     void commit_material();
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
@@ -200,6 +213,8 @@ namespace clearjoint::fe::detail
       IncrementRecord record;
     };
     RollingSolve solve_rolling_state(double delta);
+    /// [N m] the contact's torque on the journal about its axis, full body (collective).
+    double journal_torque() const;
     void refine_adaptively();
     /// The quasi-static study's adaptive cycles before its curve, and the sequence closed
     /// after it (solve/quasi_static_stepping.cc).

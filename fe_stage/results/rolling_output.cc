@@ -37,6 +37,7 @@ namespace clearjoint::fe
             {"contact_iterations", "1", [](const R &r) { return double(r.contact_iterations); }},
             {"linear_iterations", "1", [](const R &r) { return double(r.linear_iterations); }},
             {"cuts", "1", [](const R &r) { return double(r.cuts); }},
+            {"spin_coupled", "1", [](const R &r) { return double(r.spin_coupled); }},
             {"phi_paper", "rad", [](const R &r) { return r.phi_paper; }},
             {"gamma_paper", "rad", [](const R &r) { return r.gamma_paper; }},
             {"phi_rate_paper", "rad/s", [](const R &r) { return r.phi_rate_paper; }},

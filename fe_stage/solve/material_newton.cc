@@ -21,34 +21,39 @@ namespace clearjoint::fe::detail
     return n_plastic_points;
   }
 
+  ContactModel::MaterialIteration ContactModel::material_iteration(const double delta)
+  {
+    MaterialIteration it;
+    it.n_plastic_points = assemble_plastic();
+    TrilinosWrappers::MPI::Vector before = state_.u_owned();
+    it.record = solve_increment(delta);
+    before -= state_.u_owned();
+    it.correction = before.linfty_norm();
+    if (!std::isfinite(it.correction))
+      throw StepFailure{"non-finite displacement in the material Newton iteration"};
+    return it;
+  }
+
   ContactModel::MaterialSolve ContactModel::solve_material_state(const double delta,
                                                                  const unsigned int max_it)
   {
     MaterialSolve ms;
-    // Material Newton converged when the correction is below 1e-7 of the push (δ_max = 1 mm:
-    // 0.1 nm), far below the discretisation error; quadratic convergence reaches it in a few
-    // iterations once the plastic zone and the active set have settled.
-    const double tolerance = 1e-7 * scene_.loading.delta_max;
-    TrilinosWrappers::MPI::Vector before(dofs_.owned(), comm_);
+    const double tolerance = material_tolerance();
     double last_correction = 0.0;
     unsigned int growths = 0;
     for (unsigned int k = 0;; ++k)
       {
-        const unsigned int n_plastic_points = assemble_plastic();
-        before = state_.u_owned();
-        ms.record = solve_increment(delta);
-        ms.contact_iterations += ms.record.contact_iterations;
-        ms.linear_iterations += ms.record.linear_iterations;
+        const MaterialIteration it = material_iteration(delta);
+        ms.record = it.record;
+        ms.contact_iterations += it.record.contact_iterations;
+        ms.linear_iterations += it.record.linear_iterations;
         ms.newton_iterations = k + 1;
-        before -= state_.u_owned();
-        const double correction = before.linfty_norm();
+        const double correction = it.correction;
         if (log::level() <= log::Level::debug && rank_ == 0)
           log::debug("  material Newton iteration " + std::to_string(k + 1) + ": correction " +
-                     format_value(correction) + " m, " + std::to_string(n_plastic_points) +
-                     " quadrature points yielding, contact force " + format_value(ms.record.force) +
+                     format_value(correction) + " m, " + std::to_string(it.n_plastic_points) +
+                     " quadrature points yielding, contact force " + format_value(it.record.force) +
                      " N");
-        if (!std::isfinite(correction))
-          throw StepFailure{"non-finite displacement in the material Newton iteration"};
         if (correction <= tolerance)
           break;
         // diverging (the correction grew in each of the last three iterations): give up at

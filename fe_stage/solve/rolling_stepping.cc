@@ -21,6 +21,12 @@ namespace clearjoint::fe::detail
     rs.newton_iterations = m.newton_iterations;
     rs.contact_iterations = m.contact_iterations;
     rs.linear_iterations = m.linear_iterations;
+    rs.torque_journal = journal_torque();
+    return rs;
+  }
+
+  double ContactModel::journal_torque() const
+  {
     // the contact's torque on the journal about its axis: the force on the journal is −t at
     // its surface point c' + R_J n (z-moments are the same in every frame turned about z)
     // (only the friction force has a moment: the normal n passes through the journal's axis)
@@ -36,8 +42,7 @@ namespace clearjoint::fe::detail
               arm[c] = cn.X[c] + state_.u()[cn.dofs[c]] - frame_.centre[c];
           torque -= arm[0] * t[1] - arm[1] * t[0];
         }
-    rs.torque_journal = bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
-    return rs;
+    return bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
   }
 
   namespace
@@ -382,9 +387,10 @@ namespace clearjoint::fe::detail
         rec.n_active = Utilities::MPI::sum(cs.n_active, comm_);
         rec.n_slip = Utilities::MPI::sum(cs.n_slip, comm_);
         rec.spin_iterations = solved.spin_evaluations;
-        rec.newton_iterations = rs.newton_iterations;
-        rec.contact_iterations = rs.contact_iterations;
-        rec.linear_iterations = rs.linear_iterations;
+        rec.newton_iterations = solved.newton_iterations;
+        rec.contact_iterations = solved.contact_iterations;
+        rec.linear_iterations = solved.linear_iterations;
+        rec.spin_coupled = solved.coupled;
         rec.cuts = solved.cuts;
         // paper Eqs. 4–8: N_B at X0 = (0, −R_B, 0), N_J the journal point under it at t = 0
         const Vec3 X0{0.0, -G.R_B, 0.0};
@@ -443,6 +449,15 @@ namespace clearjoint::fe::detail
         result.strain_profile.push_back(p);
     summarise(S, times, slips, result.rolling_steps);
     result.sliding_rebuilds = n_sliding_rebuilds_;
+    if (R.spin_solver == Rolling::SpinSolver::coupled && rank_ == 0)
+      log::info("fe_stage: the journal's spin: " +
+                std::to_string(std::count_if(result.rolling_steps.begin(),
+                                             result.rolling_steps.end(),
+                                             [](const auto &r) { return r.spin_coupled; })) +
+                " of " + std::to_string(result.rolling_steps.size()) +
+                " steps by the coupled iteration, " +
+                std::to_string(stepper.n_coupled_fallbacks()) +
+                " attempts by the root finder after it failed");
     if (rolling_deformable_journal() && rank_ == 0)
       log::info("fe_stage: the deformable journal's coupling: " +
                 std::to_string(stepper.n_searches()) + " mortar searches, " +

@@ -3,6 +3,8 @@
 #include "fe_stage/solve/root_finder.h"
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
@@ -21,6 +23,7 @@ namespace clearjoint::fe::detail
 
   bool SpinStepper::solve(Step &step, std::string &message)
   {
+    step = Step{};
     double &dt = step.dt;
     ContactModel::RollingSolve &rs = step.state;
     double &rate_new = step.rate;
@@ -52,6 +55,29 @@ namespace clearjoint::fe::detail
           u_before(m_.dofs_.owned(), m_.comm_);
         try
           {
+            // rolling.spin_solver coupled, once the last step gave the balance's slope (it
+            // is negative once known): one iteration for γ̇ and the state. Failed from the
+            // state predicted in time: the attempt is tried again from the last state (as
+            // the root finder's); failed from there: the root finder below, from the same
+            // start at the same Δt
+            if (m_.scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
+                torque_rate_slope_ < 0.0 && torque_scale > 0.0)
+              {
+                if (have_previous_ && predict_in_time)
+                  {
+                    predicted_in_time = true;
+                    m_.state_.u_owned() = saved_.u;
+                    m_.state_.u_owned().sadd(1.0 + dt / dt_previous_, -dt / dt_previous_,
+                                             u_previous_step_);
+                    m_.state_.publish();
+                  }
+                if (solve_coupled({dt, delta1, dphi, torque_scale}, step))
+                  break;
+                if (predicted_in_time)
+                  throw StepFailure{"the coupled iteration failed"};
+                m_.restore_state(saved_);
+                ++n_coupled_fallbacks_;
+              }
             // g(γ̇) / scale, the scale μ F R_J (+ the inertia_ term): the balance holds
             // to 1e-6 of the largest friction torque
             auto g = [&](const double rate) {
@@ -99,6 +125,9 @@ namespace clearjoint::fe::detail
                 log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
                            " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) + " s)");
               rs = m_.solve_rolling_state(delta1);
+              step.newton_iterations += rs.newton_iterations;
+              step.contact_iterations += rs.contact_iterations;
+              step.linear_iterations += rs.linear_iterations;
               u_before.swap(u_last);
               u_last = m_.state_.u_owned();
               rate_before = rate_last;
@@ -154,6 +183,122 @@ namespace clearjoint::fe::detail
     return true;
   }
 
+  /// The coupled iteration (rolling.spin_solver coupled) from the model's current state: each
+  /// material Newton iteration solves the bodies at the current γ̇ (the tangent, its load and
+  /// the active-set contact solve), then γ̇ takes a Newton step on the torque balance
+  ///   g(γ̇) = (I (γ̇ − γ̇_n)/Δt − M)/scale
+  /// with the slope dg/dγ̇ of the last converged step — the balance's total derivative along
+  /// converged states, which is what a Newton step on γ̇ needs once the bodies follow it —
+  /// replaced by the secant over the last two iterates when that lies within a factor of 5 of
+  /// it (the slope changes with the stick/slip pattern; a secant further off is taken for the
+  /// bodies' own convergence, not the balance's). Converged when the same iterate meets the
+  /// material Newton tolerance (ContactModel::material_tolerance) and the root finder's (|g|
+  /// ≤ 1e-6, or a γ̇ step below 1e-10 of the rolling rate). False when it diverges (the
+  /// correction grew three times running), a solve fails, or it runs out of
+  /// rolling.max_newton_iterations; the caller restores the state.
+  bool SpinStepper::solve_coupled(const Attempt &a, Step &step)
+  {
+    const double tolerance = m_.material_tolerance();
+    const double roll = motion_.rolling_rate(t_ + a.dt);
+    const unsigned int max_it = m_.scene_.rolling.max_newton_iterations;
+    const double slope_last = (inertia_ / a.dt - torque_rate_slope_) / a.torque_scale;  // [s/rad]
+    double slope = slope_last;
+    // γ̇ extrapolated linearly in time from the last two steps, as the state is (not from the
+    // first step's: it spins the journal up from rest, and twice its jump overshoots)
+    double rate = n_accepted_ >= 2 ? gamma_rate_ + (gamma_rate_ - gamma_rate_previous_) *
+                                                     a.dt / dt_previous_ :
+                                     gamma_rate_;
+    double rate_before = 0.0, g_before = 0.0, last_correction = 0.0;
+    std::vector<double> balances;  // |g| of each iteration, for the stall test
+    double rate_searched = std::numeric_limits<double>::quiet_NaN();
+    bool secant_taken = false;
+    unsigned int growths = 0;
+    try
+      {
+        for (unsigned int k = 0; k < max_it; ++k)
+          {
+            m_.frame_.delta_psi = rate * a.dt - a.dphi;
+            // the deformable journal's partners for this pose (as in the root finder's
+            // evaluations), found again whenever γ̇ moved
+            if (m_.rolling_deformable_journal() && !(rate == rate_searched))
+              {
+                ScopedTimer timer(search_time_);
+                m_.follow_sliding(saved_.u);
+                ++n_searches_;
+                rate_searched = rate;
+              }
+            const ContactModel::MaterialIteration it = m_.material_iteration(a.delta);
+            ++step.newton_iterations;
+            step.contact_iterations += it.record.contact_iterations;
+            step.linear_iterations += it.record.linear_iterations;
+            const double torque = m_.journal_torque();
+            const double g = (inertia_ * (rate - gamma_rate_) / a.dt - torque) / a.torque_scale;
+            if (k > 0 && rate != rate_before)
+              {
+                const double secant = (g - g_before) / (rate - rate_before);
+                if (secant > 0.2 * slope_last && secant < 5.0 * slope_last)
+                  slope = secant, secant_taken = true;
+              }
+            const double rate_step = std::abs(g) <= 1e-6 ? 0.0 : -g / slope;
+            if (log::level() <= log::Level::debug && m_.rank_ == 0)
+              log::debug("  coupled iteration " + std::to_string(k + 1) + ": spin " +
+                         format_value(rate) + " rad/s, balance " + format_value(g) +
+                         ", correction " + format_value(it.correction) + " m, " +
+                         std::to_string(it.n_plastic_points) + " quadrature points yielding");
+            if (it.correction <= tolerance && std::abs(rate_step) <= 1e-10 * roll)
+              {
+                step.rate = rate;
+                step.spin_evaluations = k + 1;
+                step.coupled = true;
+                step.state.record = it.record;
+                step.state.torque_journal = torque;
+                step.state.newton_iterations = k + 1;
+                step.state.contact_iterations = step.contact_iterations;
+                step.state.linear_iterations = step.linear_iterations;
+                if (secant_taken)
+                  torque_rate_slope_ = inertia_ / a.dt - slope * a.torque_scale;
+                last_force_ = std::abs(it.record.force);
+                last_torque_ = torque;
+                return true;
+              }
+            growths = k > 0 && it.correction > last_correction ? growths + 1 : 0;
+            last_correction = it.correction;
+            if (growths >= 3)
+              {
+                if (m_.rank_ == 0)
+                  log::debug(" the coupled iteration diverges; the root finder takes the step");
+                return false;
+              }
+            // stalled: the balance did not halve over the last four iterations (a slope far
+            // from the balance's, as when the journal spins up from rest: the reduced pipeline
+            // scene's step 2 crept 25 iterations at g ≈ 3.25); the root finder brackets instead
+            balances.push_back(std::abs(g));
+            if (balances.size() > 4 && std::abs(g) > 1e-6 &&
+                std::abs(g) > 0.5 * balances[balances.size() - 5])
+              {
+                if (m_.rank_ == 0)
+                  log::debug(" the coupled iteration stalls on the torque balance; the root "
+                             "finder takes the step");
+                return false;
+              }
+            rate_before = rate;
+            g_before = g;
+            rate += rate_step;
+          }
+      }
+    catch (const StepFailure &f)
+      {
+        if (m_.rank_ == 0)
+          log::debug(" the coupled iteration failed (" + f.reason +
+                     "); the root finder takes the step");
+        return false;
+      }
+    if (m_.rank_ == 0)
+      log::debug(" the coupled iteration did not converge in " + std::to_string(max_it) +
+                 " iterations; the root finder takes the step");
+    return false;
+  }
+
   /// After a failed attempt at Δt (the state restored): an attempt that started from the state
   /// predicted in time is tried again at the same Δt from the last state; otherwise the step
   /// is cut (the step controller's floor: a step that keeps failing would otherwise shrink
@@ -189,7 +334,9 @@ namespace clearjoint::fe::detail
   void SpinStepper::accept(const Step &step)
   {
     gamma_ += step.rate * step.dt;
+    gamma_rate_previous_ = gamma_rate_;
     gamma_rate_ = step.rate;
+    ++n_accepted_;
     t_ += step.dt;
     u_previous_step_ = saved_.u;
     dt_previous_ = step.dt;

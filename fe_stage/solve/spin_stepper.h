@@ -1,8 +1,14 @@
 // The rolling study's time stepper (paper §3.4): the bearing turned to φ = ω_B t and the
 // journal pushed to δ(t) (rolling::Motion), and the journal's spin rate γ̇ found from its
 // torque balance  I (γ̇ − γ̇_n)/Δt = M(γ̇)  (backward Euler; M the contact's torque on the
-// journal, which falls as γ̇ rises: one root, found by solve/root_finder.h). Every evaluation of
-// M is a state of the elastoplastic bodies (ContactModel::solve_rolling_state). It owns the
+// journal, which falls as γ̇ rises: one root). rolling.spin_solver chooses how:
+// - coupled (default): γ̇ and the bodies' state in one iteration — each material Newton
+//   iteration solves the bodies at the current γ̇, then γ̇ takes a Newton step on the balance
+//   with the slope dM/dγ̇ of the last step (secant-corrected); one nonlinear solve a step. Until
+//   a slope is known (the first step), and for a step where it fails, the root finder below;
+// - nested: a root finder on γ̇ (solve/root_finder.h) around whole material solves, each
+//   evaluation of M a converged state of the elastoplastic bodies
+//   (ContactModel::solve_rolling_state). It owns the
 // spin's state (t, γ, γ̇), what carries from step to step — the balance's scale and slope
 // dM/dγ̇, the state before the last step (the predictor in time), Δt (solve/step_controller.h)
 // — and the journal's search counters; the study (solve/rolling_stepping.cc) records each step
@@ -29,6 +35,10 @@ namespace clearjoint::fe::detail
       ContactModel::RollingSolve state;
       unsigned int spin_evaluations = 0;
       unsigned int cuts = 0;
+      /// what the step cost, failed attempts included: material Newton iterations, active-set
+      /// contact iterations, linear solver iterations
+      unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
+      bool coupled = false;  // the coupled iteration converged it (else the root finder)
     };
 
     SpinStepper(ContactModel &model, const rolling::Motion &motion, double t_end,
@@ -47,7 +57,17 @@ namespace clearjoint::fe::detail
     unsigned int n_searches() const { return n_searches_; }
     double search_time() const { return search_time_; }  // [s]
 
+    /// Steps whose coupled iteration failed and that the root finder solved instead.
+    unsigned int n_coupled_fallbacks() const { return n_coupled_fallbacks_; }
+
   private:
+    /// What an attempt at Δt solves for: the push δ at its end [m], the bearing's turn over
+    /// it [rad], the torque balance's scale [N m].
+    struct Attempt
+    {
+      double dt = 0.0, delta = 0.0, dphi = 0.0, torque_scale = 0.0;
+    };
+    bool solve_coupled(const Attempt &a, Step &step);
     bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
                std::string &message);
 
@@ -61,10 +81,12 @@ namespace clearjoint::fe::detail
     double last_force_ = 0.0, last_torque_ = 0.0, torque_rate_slope_ = 0.0;
     // the state before the last converged step, for the predictor in time
     TrilinosWrappers::MPI::Vector u_previous_step_;
-    double dt_previous_ = 0.0;
+    double dt_previous_ = 0.0, gamma_rate_previous_ = 0.0;
     bool have_previous_ = false;
+    unsigned int n_accepted_ = 0;  // steps accepted so far
     ContactModel::Snapshot saved_;  // the converged state the step in progress starts from
     double search_time_ = 0.0;      // [s] the deformable journal's searches and rebuilds
     unsigned int n_searches_ = 0;
+    unsigned int n_coupled_fallbacks_ = 0;
   };
 }  // namespace clearjoint::fe::detail
