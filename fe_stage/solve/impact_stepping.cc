@@ -135,6 +135,17 @@ namespace clearjoint::fe::detail
           const auto &e = steps.back();
           S.bearing_energy_left = e.kinetic_bearing + e.strain_bearing;
         }
+      // the impulse of the contact force (trapezoidal over the steps, from F = 0 at t = 0) and
+      // its mean over the contact
+      double t_prev = 0.0, f_prev = 0.0;
+      for (const auto &s : steps)
+        {
+          S.impulse += 0.5 * (f_prev + s.force) * (s.time - t_prev);
+          t_prev = s.time;
+          f_prev = s.force;
+        }
+      if (S.separated && S.contact_duration > 0.0)
+        S.mean_force = S.impulse / S.contact_duration;
       S.quasi_static_force_at_peak_delta = interpolate_curve(curve, S.delta_at_peak);
       S.dynamic_gap = S.quasi_static_force_at_peak_delta > 0.0 ?
                         S.peak_force / S.quasi_static_force_at_peak_delta - 1.0 :
