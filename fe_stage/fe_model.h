@@ -108,7 +108,7 @@ namespace clearjoint::fe
   struct ImpactSummary
   {
     double velocity_in = 0.0;        // [m/s] at first touch
-    double journal_mass = 0.0;       // [kg] full body ρ π R_J² L_J
+    double journal_mass = 0.0;       // [kg] full body (rigid: impact.journal_mass or ρ π R_J² L_J)
     double contact_stiffness = 0.0;  // [N/m] secant k_c = F(δ_est)/δ_est of the static curve
     double contact_period = 0.0;     // [s] T_c = 2π √(m_J/k_c)
     double time_step = 0.0;          // [s] Δt at the start
@@ -123,6 +123,8 @@ namespace clearjoint::fe
     double contact_duration = 0.0;       // [s] from first touch to F = 0 (interpolated)
     double velocity_out = 0.0;           // [m/s] journal speed away from the bearing (separated)
     double restitution = 0.0;            // [1] v_out / v_in (separated; else 0)
+    double impulse = 0.0;     // [N s] ∫F dt over the steps (trapezoidal; F = 0 at t = 0)
+    double mean_force = 0.0;  // [N] impulse / contact_duration (separated; else 0)
     double kinetic_initial = 0.0;        // [J] ½ m_J v²
     double bearing_energy_left = 0.0;    // [J] kinetic + strain of the bearing at the end
     double numerical_dissipation = 0.0;  // [J]

@@ -10,7 +10,9 @@
 // block, one such folder per swept value under DIR plus DIR/manifest.json, DIR/sweep.csv and
 // DIR/sweep.png (every case's curve). Study impact: force_penetration.csv is the quasi-static
 // reference curve, and DIR/impact_history.csv (one row per time step) and DIR/impact.png are
-// added; a sweep over impact.velocity writes DIR/impact_sweep.csv and DIR/impact_sweep.png.
+// added; a sweep over impact.velocity and/or impact.journal_mass (every pair; folders
+// m_<m>kg_v_<v>mps) writes DIR/impact_sweep.csv, DIR/impact_sweep.png and the paper's Fig. 5a
+// and 5b (DIR/fig5a.png, DIR/fig5b.png).
 // Everything is written into DIR.tmp.<pid> and renamed to DIR at the end (an earlier DIR is
 // replaced as a whole).
 // Exit codes: 0 success, 1 input error, 2 numerical failure (CSV and manifest marked incomplete),
@@ -318,7 +320,8 @@ namespace
     return work_ok;
   }
 
-  /// One case per swept value (t_B [m], θ [deg] or v [m/s]), each in its own folder.
+  /// One case per swept value (t_B [m], θ [deg]) or, for the impact study, per pair of velocity
+  /// [m/s] and journal mass [kg], each in its own folder (value: t_B, θ or v).
   struct Case
   {
     fe::FeScene scene;
@@ -341,17 +344,31 @@ namespace
         c.scene.misalignment.theta_deg = th;
         cases.push_back(c);
       }
-    for (const double v : scene.sweep_velocity)
-      {
-        Case c{scene, output_dir + "/v_" + fe::short_number(v) + "mps", v};
-        c.scene.impact.velocity = v;
-        cases.push_back(c);
-      }
+    // study impact: every velocity at every journal mass (the masses outside); a list that is
+    // not given is the scene's one value
+    const bool by_mass = !scene.sweep_journal_mass.empty(), by_v = !scene.sweep_velocity.empty();
+    const std::vector<double> masses = by_mass ? scene.sweep_journal_mass : std::vector<double>{0.0};
+    const std::vector<double> velocities =
+      by_v ? scene.sweep_velocity : std::vector<double>{scene.impact.velocity};
+    if (by_mass || by_v)
+      for (const double m : masses)
+        for (const double v : velocities)
+          {
+            std::string name = by_mass ? "m_" + fe::short_number(m) + "kg" : "";
+            if (by_v)
+              name += (name.empty() ? "" : "_") + std::string("v_") + fe::short_number(v) + "mps";
+            Case c{scene, output_dir + "/" + name, v};
+            c.scene.impact.velocity = v;
+            if (by_mass)
+              c.scene.impact.journal_mass = m;
+            cases.push_back(c);
+          }
     for (auto &c : cases)
       {
         c.scene.sweep_t_B.clear();
         c.scene.sweep_theta_deg.clear();
         c.scene.sweep_velocity.clear();
+        c.scene.sweep_journal_mass.clear();
       }
     return cases;
   }
@@ -407,7 +424,7 @@ namespace
     if (!make_work_folder(cl, root))
       return exit_input_error;  // nothing was made: no folder to remove
     bool complete = true;
-    if (scene.sweep_t_B.empty() && scene.sweep_theta_deg.empty() && scene.sweep_velocity.empty())
+    if (!fe::has_sweep(scene))
       {
         double f;
         complete = run_case(scene, cl.output_dir, argc, argv, !cl.no_plots, cl.preset, f);

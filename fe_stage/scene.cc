@@ -394,24 +394,58 @@ namespace clearjoint::fe
       return thetas;
     }
 
-    /// After the study and the geometry: one swept parameter, the study's own.
+    /// sweep.journal_mass: masses [kg] and the word `own` (the rigid journal's ρ π R_J² L_J
+    /// from the geometry and material read before).
+    std::vector<double> read_mass_list(StrictObject &w, const FeScene &s)
+    {
+      std::vector<double> masses;
+      const auto &raw = w.raw("journal_mass");
+      if (!raw.is_array() || raw.empty())
+        w.fail("journal_mass", raw.dump(), "a non-empty list of masses in kg (or 'own')");
+      for (std::size_t i = 0; i < raw.size(); ++i)
+        {
+          const std::string key = "journal_mass." + std::to_string(i);
+          if (raw[i].is_string() && raw[i].get<std::string>() == "own")
+            {
+              FeScene own = s;
+              own.impact.journal_mass = 0.0;
+              masses.push_back(rigid_journal_mass(own));
+            }
+          else if (raw[i].is_number() && raw[i].get<double>() > 0.0 &&
+                   std::isfinite(raw[i].get<double>()))
+            masses.push_back(raw[i].get<double>());
+          else
+            w.fail(key, raw[i].dump(), "(0, inf) kg or 'own' (the rigid journal's rho pi R_J^2 L_J)");
+        }
+      return masses;
+    }
+
+    /// After the study, the geometry, the material and the impact block: one swept parameter,
+    /// the study's own — or, for study impact, the velocity and the journal mass together
+    /// (every pair).
     void read_sweep(StrictObject w, FeScene &s)
     {
       if (w.has("velocity"))
         s.sweep_velocity = w.number_array("velocity", Range::open(0.0, 100.0, "m/s"), 1);
+      if (w.has("journal_mass"))
+        s.sweep_journal_mass = read_mass_list(w, s);
       if (w.has("t_B"))
         s.sweep_t_B = w.number_array("t_B", Range::positive("m"), 1);
       if (w.has("theta_deg"))
         s.sweep_theta_deg = read_theta_list(w, s.geometry);
-      if (s.sweep_t_B.empty() && s.sweep_theta_deg.empty() && s.sweep_velocity.empty())
-        w.fail("t_B", "(none)", "sweep needs t_B [m], theta_deg [deg] or velocity [m/s]");
-      if (int(!s.sweep_t_B.empty()) + int(!s.sweep_theta_deg.empty()) +
-            int(!s.sweep_velocity.empty()) >
-          1)
-        w.fail(s.sweep_velocity.empty() ? "theta_deg" : "velocity", "(given with another)",
-               "one swept parameter per scene");
+      const bool impact_sweep = !s.sweep_velocity.empty() || !s.sweep_journal_mass.empty();
+      if (s.sweep_t_B.empty() && s.sweep_theta_deg.empty() && !impact_sweep)
+        w.fail("t_B", "(none)",
+               "sweep needs t_B [m], theta_deg [deg], velocity [m/s] or journal_mass [kg]");
+      if (int(!s.sweep_t_B.empty()) + int(!s.sweep_theta_deg.empty()) + int(impact_sweep) > 1)
+        w.fail(impact_sweep ? (s.sweep_velocity.empty() ? "journal_mass" : "velocity") :
+                              "theta_deg",
+               "(given with another)",
+               "one swept parameter per scene (velocity and journal_mass together: study impact)");
       if (!s.sweep_velocity.empty() && s.study != Study::impact)
         w.fail("velocity", "(list)", "study impact only");
+      if (!s.sweep_journal_mass.empty() && s.study != Study::impact)
+        w.fail("journal_mass", "(list)", "study impact only");
       if (!s.sweep_theta_deg.empty() && s.study != Study::misalignment)
         w.fail("theta_deg", "(list)", "study misalignment only");
       w.finish();
@@ -505,6 +539,26 @@ namespace clearjoint::fe
       for (const double v : s.sweep_velocity)
         if (!(v > 0.0 && v < 100.0))
           throw InputError(s.source_file, "sweep.velocity", format_value(v), "(0, 100) m/s");
+    }
+
+    /// sweep.journal_mass: positive, the rigid journal only (a deformable journal's mass is its
+    /// mesh's), and not together with impact.journal_mass (which would be overridden).
+    void validate_sweep_journal_mass(const FeScene &s)
+    {
+      const std::string &f = s.source_file;
+      for (std::size_t i = 0; i < s.sweep_journal_mass.size(); ++i)
+        if (!(s.sweep_journal_mass[i] > 0.0 && std::isfinite(s.sweep_journal_mass[i])))
+          throw InputError(f, "sweep.journal_mass." + std::to_string(i),
+                           format_value(s.sweep_journal_mass[i]), "(0, inf) kg");
+      if (s.sweep_journal_mass.empty())
+        return;
+      if (s.loading.journal != JournalLoading::rigid)
+        throw InputError(f, "sweep.journal_mass", "(list)", "only with loading.journal: rigid",
+                         "a deformable journal's mass is its mesh's (material.rho)");
+      if (s.impact.journal_mass > 0.0)
+        throw InputError(f, "impact.journal_mass", format_value(s.impact.journal_mass),
+                         "absent when sweep.journal_mass is given",
+                         "the sweep sets the journal mass of every case");
     }
 
     /// Study impact.
@@ -779,6 +833,7 @@ namespace clearjoint::fe
       validate_rolling(s);
     validate_material(s);
     validate_sweep_velocity(s);
+    validate_sweep_journal_mass(s);
     if (s.study == Study::misalignment)
       validate_misalignment(s);
     validate_pairing(s);
@@ -894,6 +949,12 @@ namespace clearjoint::fe
       throw InputError(f, "geometry.mesh", G.mesh,
                        "a mesh of the whole length for study misalignment",
                        "the tilted journal breaks the z = 0 symmetry (mesh with quarter = 0)");
+  }
+
+  bool has_sweep(const FeScene &scene)
+  {
+    return !scene.sweep_t_B.empty() || !scene.sweep_theta_deg.empty() ||
+           !scene.sweep_velocity.empty() || !scene.sweep_journal_mass.empty();
   }
 
   double rigid_journal_mass(const FeScene &scene)
@@ -1140,7 +1201,10 @@ namespace clearjoint::fe
         << "# sweep:              # optional: one run (and output folder) per value\n"
         << "#   t_B: [2.0e-3, 4.0e-3, 6.0e-3, 8.0e-3, 10.0e-3]   # [m]\n"
         << "#   theta_deg: [1.0, 1.5, 2.0, 2.5, theta_max]       # [deg] (study misalignment)\n"
-        << "#   velocity: [0.05, 0.08, 0.10, 0.15, 0.20]         # [m/s] (study impact)\n";
+        << "#   velocity: [0.05, 0.08, 0.10, 0.15, 0.20]         # [m/s] (study impact)\n"
+        << "#   journal_mass: [own, 1.0, 25.0]   # [kg] (study impact, rigid journal; own: rho pi "
+           "R_J^2 L_J;\n"
+        << "#                                    # with velocity: every velocity at every mass)\n";
     }
   }  // namespace
 

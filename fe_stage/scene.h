@@ -252,7 +252,9 @@ namespace clearjoint::fe
                              //   free vibration); 0: stop once the journal has left, at the
                              //   latest at 4 T_c (twice a linear contact's duration)
     /// [kg] > 0: the rigid journal's mass instead of ρ π R_J² L_J (0: that) — e.g. the mass
-    /// that meets the bearing in a mechanism, the pin with the links it carries
+    /// that meets the bearing in a mechanism, the pin with the links it carries. Not with a
+    /// deformable journal (loading.journal end_faces, axis_line): its mass is its mesh's
+    /// (ρ and the geometry), and no density scaling is offered.
     double journal_mass = 0.0;
     unsigned int max_steps = 5000;  // time steps at most (a bound on the loop)
     unsigned int field_stride = 5;  // VTU fields every this many steps (and the last)
@@ -325,6 +327,10 @@ namespace clearjoint::fe
     std::vector<double> sweep_t_B;  // [m] if non-empty, one run per value, one folder each
     std::vector<double> sweep_theta_deg;  // [deg] the same for the misalignment angle
     std::vector<double> sweep_velocity;   // [m/s] the same for the impact velocity
+    /// [kg] the same for the impact study's rigid journal mass (impact.journal_mass; `own` in
+    /// the file: ρ π R_J² L_J); with sweep_velocity, one case per pair (every velocity at
+    /// every mass)
+    std::vector<double> sweep_journal_mass;
     std::string source_file;              // for messages and the manifest
   };
 
@@ -341,6 +347,8 @@ namespace clearjoint::fe
 
   /// [kg] the impact study's rigid journal mass: impact.journal_mass, or ρ π R_J² L_J.
   double rigid_journal_mass(const FeScene &scene);
+  /// Whether the scene has a sweep block (one run per value or pair of values).
+  bool has_sweep(const FeScene &scene);
   /// [kg m²] the rolling study's journal spin inertia: rolling.journal_inertia, or ½ m R_J²
   /// with m = ρ π R_J² L_J (the full journal).
   double rolling_journal_inertia(const FeScene &scene);

@@ -111,6 +111,8 @@ namespace clearjoint::fe::detail
 {
   using namespace dealii;
 
+  class HhtStepper;
+
   class ContactModel
   {
     // the impact study's stepper owns its loop and dynamic state; it works on the model's
@@ -155,6 +157,19 @@ namespace clearjoint::fe::detail
     void prepare_mesh();
     /// Study impact (solve/impact_stepping.cc): the static curve, then HHT-α time steps.
     RunResult run_impact();
+    /// Its steps: the mesh, the journal's mass and the integrator's α, β, γ (returned);
+    /// the static probe and the quasi-static reference curve with the contact period and Δt
+    /// they set; the time steps to the separation or the end time, keeping the displacement at
+    /// the peak force; the summary and the yield check at the peak. False: result.message says
+    /// why, result.wall_time is set.
+    HhtAlpha begin_impact(RunResult &result);
+    bool compute_impact_reference(RunResult &result);
+    bool march_impact(RunResult &result, HhtStepper &stepper,
+                      TrilinosWrappers::MPI::Vector &u_peak, bool &have_peak);
+    void finish_impact(RunResult &result, const HhtStepper &stepper,
+                       const TrilinosWrappers::MPI::Vector *u_peak);
+    /// [s] impact.end_time, or 4 T_c (twice a linear contact's duration).
+    double impact_end_time(double contact_period) const;
     /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
     /// built again).
     void set_dynamic_operator(const MatrixCoefficients &c);

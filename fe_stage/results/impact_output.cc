@@ -95,6 +95,8 @@ namespace clearjoint::fe
             {"quasi_static_force_at_peak_delta_N", "N",
              [](const S &s) { return s.quasi_static_force_at_peak_delta; }},
             {"dynamic_gap", "1", [](const S &s) { return s.dynamic_gap; }},
+            {"impulse_Ns", "N s", [](const S &s) { return s.impulse; }},
+            {"mean_force_N", "N", [](const S &s) { return s.mean_force; }},
             {"bearing_energy_left_J", "J", [](const S &s) { return s.bearing_energy_left; }},
             {"kinetic_initial_J", "J", [](const S &s) { return s.kinetic_initial; }},
             {"numerical_dissipation_J", "J", [](const S &s) { return s.numerical_dissipation; }},
@@ -107,7 +109,10 @@ namespace clearjoint::fe
 
   std::vector<std::string> impact_sweep_comments()
   {
-    return {"fe_stage impact sweep (paper 3.2); one folder per velocity",
+    return {"fe_stage impact sweep (paper 3.2); one folder per case (every velocity at every "
+            "journal mass)",
+            "impulse = integral of the contact force over the steps (trapezoidal); mean_force = "
+            "impulse / contact_duration",
             "dynamic_gap = peak force / quasi-static force at the same delta - 1; "
             "restitution = journal speed away / speed in (0 if it had not left the "
             "bearing: separated = 0)",
@@ -136,6 +141,8 @@ namespace clearjoint::fe
             {"contact_duration", q(s.contact_duration, "s")},
             {"velocity_out", q(s.velocity_out, "m/s")},
             {"restitution", q(s.restitution, "1")},
+            {"impulse", q(s.impulse, "N s")},
+            {"mean_force", q(s.mean_force, "N")},
             {"kinetic_initial", q(s.kinetic_initial, "J")},
             {"bearing_energy_left", q(s.bearing_energy_left, "J")},
             {"numerical_dissipation", q(s.numerical_dissipation, "J")},

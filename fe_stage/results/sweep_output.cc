@@ -11,8 +11,8 @@ namespace clearjoint::fe
 {
   SweepKind sweep_kind(const FeScene &scene)
   {
-    if (!scene.sweep_velocity.empty())
-      return SweepKind::velocity;
+    if (!scene.sweep_velocity.empty() || !scene.sweep_journal_mass.empty())
+      return SweepKind::impact;
     return scene.sweep_theta_deg.empty() ? SweepKind::thickness : SweepKind::theta;
   }
 
@@ -26,7 +26,7 @@ namespace clearjoint::fe
   Columns<SweepCase> sweep_columns(const SweepKind kind)
   {
     Columns<SweepCase> columns;
-    if (kind == SweepKind::velocity)
+    if (kind == SweepKind::impact)
       {
         for (auto &c : impact_sweep_columns())
           columns.push_back(
@@ -42,14 +42,14 @@ namespace clearjoint::fe
   SweepOutput::SweepOutput(const std::string &dir, const SweepKind kind,
                            const std::string &scene_path, const int argc, char **argv)
     : dir_(dir)
-    , table_path_(dir + (kind == SweepKind::velocity ? "/impact_sweep.csv" : "/sweep.csv"))
+    , table_path_(dir + (kind == SweepKind::impact ? "/impact_sweep.csv" : "/sweep.csv"))
     , kind_(kind)
   {
     std::filesystem::create_directories(dir);
     manifest_ = std::make_unique<Manifest>("fe_stage", dir + "/manifest.json", argc, argv);
     manifest_->add_input(scene_path);
     const std::vector<std::string> comments =
-      kind == SweepKind::velocity ?
+      kind == SweepKind::impact ?
         impact_sweep_comments() :
         std::vector<std::string>{std::string("fe_stage ") +
                                  (kind == SweepKind::theta ? "misalignment" : "thickness") +
@@ -70,11 +70,14 @@ namespace clearjoint::fe
   {
     table_->commit(complete, "a case failed; see its manifest");
     manifest_->add_output(table_path_);
-    if (kind_ == SweepKind::velocity)
+    if (kind_ == SweepKind::impact)
       {
+        // the sweep's quantities, and beside them the paper's Fig. 5a and 5b
         if (plots &&
             run_plot_script("fe_impact", {dir_ + "/impact_sweep.png", "--sweep", table_path_}))
-          manifest_->add_output(dir_ + "/impact_sweep.png");
+          for (const char *png : {"/impact_sweep.png", "/fig5a.png", "/fig5b.png"})
+            if (std::filesystem::exists(dir_ + png))
+              manifest_->add_output(dir_ + png);
       }
     else
       {

@@ -1,6 +1,6 @@
 // What a sweep writes into its top folder (no deal.II): sweep.csv (force at delta_max per
-// t_B or theta) or impact_sweep.csv (per impact velocity), its plot and the top manifest,
-// which lists every case's manifest. Each case's own folder is a CaseOutput's.
+// t_B or theta) or impact_sweep.csv (per impact case: velocity × journal mass), its plots and
+// the top manifest, which lists every case's manifest. Each case's own folder is a CaseOutput's.
 #pragma once
 
 #include "common/manifest.h"
@@ -13,12 +13,13 @@
 
 namespace clearjoint::fe
 {
-  /// The swept parameter: sweep.t_B, sweep.theta_deg or sweep.velocity.
+  /// The swept parameter: sweep.t_B, sweep.theta_deg, or sweep.velocity and/or
+  /// sweep.journal_mass (the impact study's).
   enum class SweepKind
   {
     thickness,
     theta,
-    velocity
+    impact
   };
   SweepKind sweep_kind(const FeScene &scene);
 
@@ -26,7 +27,7 @@ namespace clearjoint::fe
   std::string short_number(double v);
 
   /// One case of a sweep once run: its folder, the swept value (t_B [m], theta [deg] or v
-  /// [m/s]) and what the table records.
+  /// [m/s]; an impact case's journal mass is in `impact`) and what the table records.
   struct SweepCase
   {
     std::string folder;

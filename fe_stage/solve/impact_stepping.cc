@@ -135,6 +135,17 @@ namespace clearjoint::fe::detail
           const auto &e = steps.back();
           S.bearing_energy_left = e.kinetic_bearing + e.strain_bearing;
         }
+      // the impulse of the contact force (trapezoidal over the steps, from F = 0 at t = 0) and
+      // its mean over the contact
+      double t_prev = 0.0, f_prev = 0.0;
+      for (const auto &s : steps)
+        {
+          S.impulse += 0.5 * (f_prev + s.force) * (s.time - t_prev);
+          t_prev = s.time;
+          f_prev = s.force;
+        }
+      if (S.separated && S.contact_duration > 0.0)
+        S.mean_force = S.impulse / S.contact_duration;
       S.quasi_static_force_at_peak_delta = interpolate_curve(curve, S.delta_at_peak);
       S.dynamic_gap = S.quasi_static_force_at_peak_delta > 0.0 ?
                         S.peak_force / S.quasi_static_force_at_peak_delta - 1.0 :
@@ -176,9 +187,40 @@ namespace clearjoint::fe::detail
   RunResult ContactModel::run_impact()
   {
     RunResult result;
+    const HhtAlpha hht = begin_impact(result);
+    if (!compute_impact_reference(result))
+      return result;
+    // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
+    // loaded set (the static curve pushed it at its end faces or axis, as the thickness study).
+    const bool deformable = plan_.deformable_partner;
+    if (deformable)
+      {
+        journal_driven_ = false;
+        prepare_mesh();
+      }
+    auto &S = result.impact;
+    const auto &I = scene_.impact;
+    const double m_J = S.journal_mass;
+    HhtStepper stepper(*this, hht, S.time_step, scene_.loading.max_cuts, m_J, I.velocity,
+                       deformable);
+    S.journal_mass = stepper.journal_mass();
+    if (deformable && rank_ == 0)
+      log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +
+                " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
+    S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
+    TrilinosWrappers::MPI::Vector u_peak(dofs_.owned(), comm_);
+    bool have_peak = false;
+    if (!march_impact(result, stepper, u_peak, have_peak))
+      return result;
+    // 3. The summary and the yield check where the force peaked.
+    finish_impact(result, stepper, have_peak ? &u_peak : nullptr);
+    return result;
+  }
+
+  HhtAlpha ContactModel::begin_impact(RunResult &result)
+  {
     result.n_ranks = n_ranks_;
     const auto &I = scene_.impact;
-    const auto &L = scene_.loading;
     auto &S = result.impact;
     bodies_.build();
     prepare_mesh();
@@ -188,38 +230,42 @@ namespace clearjoint::fe::detail
     result.h_min = bodies_.h_min();
     result.setup_time = elapsed();
     S.velocity_in = I.velocity;
-    S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, below
+    S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, later
     // the application's operator and α, β, γ (an explicit α checked here, before the static
     // curve's cost)
     const HhtAlpha hht =
       HhtAlpha::for_application(I.application, I.alpha, "impact.alpha", scene_.source_file);
     S.alpha = hht.alpha();
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
-    const double m_J = S.journal_mass;
     if (rank_ == 0)
       log::info("fe_stage: impact: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs; " +
                 (plan_.deformable_partner ? "deformable" : "rigid") + " journal " +
-                format_value(m_J) + " kg at " + format_value(I.velocity) + " m/s, setup " +
-                log::format_duration(result.setup_time));
+                format_value(S.journal_mass) + " kg at " + format_value(I.velocity) +
+                " m/s, setup " + log::format_duration(result.setup_time));
+    return hht;
+  }
 
+  bool ContactModel::compute_impact_reference(RunResult &result)
+  {
+    const auto &I = scene_.impact;
+    const auto &L = scene_.loading;
+    auto &S = result.impact;
+    const double m_J = S.journal_mass;
+    const auto failed = [&](const std::string &message) {
+      result.message = message;
+      result.wall_time = elapsed();
+      return false;
+    };
     // 1. The static probe and the quasi-static reference curve on this mesh.
     const double delta_probe = 0.02 * L.delta_max;
     double f_probe = 0.0;
     if (!push_through({delta_probe}, result.message,
                       [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
-      {
-        result.message = "static probe of the contact stiffness: " + result.message;
-        result.wall_time = elapsed();
-        return result;
-      }
+      return failed("static probe of the contact stiffness: " + result.message);
     if (!(f_probe > 0.0))
-      {
-        result.message = "the static probe at delta = " + format_value(delta_probe) +
-                         " m found no contact force (mesh too coarse where the journal touches)";
-        result.wall_time = elapsed();
-        return result;
-      }
+      return failed("the static probe at delta = " + format_value(delta_probe) +
+                    " m found no contact force (mesh too coarse where the journal touches)");
     const double delta_estimate = I.velocity * std::sqrt(m_J * delta_probe / f_probe);
     const double delta_curve = 1.5 * delta_estimate;
     if (delta_curve > L.delta_max)
@@ -240,41 +286,37 @@ namespace clearjoint::fe::detail
           options_.on_increment(r);
       });
     if (!curve_ok)
-      {
-        result.message = "quasi-static reference curve: " + result.message;
-        result.wall_time = elapsed();
-        return result;
-      }
+      return failed("quasi-static reference curve: " + result.message);
+    // the time scales: the contact's secant stiffness at the expected δ_max and its period
     S.contact_stiffness = interpolate_curve(result.increments, delta_estimate) / delta_estimate;
     S.contact_period = 2.0 * numbers::PI * std::sqrt(m_J / S.contact_stiffness);
-    const double dt_nominal =
-      I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
-    S.time_step = dt_nominal;
-    const double t_end = I.end_time > 0.0 ? I.end_time : 4.0 * S.contact_period;
+    S.time_step = I.time_step > 0.0 ? I.time_step : S.contact_period / I.steps_per_period;
     if (rank_ == 0)
       log::info("fe_stage: impact: contact stiffness " + format_value(S.contact_stiffness) +
                 " N/m (static curve at the expected delta_max " + format_value(delta_estimate) +
                 " m), period T_c = " + format_value(S.contact_period) +
-                " s, dt = " + format_value(dt_nominal) + " s (T_c/" +
-                format_value(S.contact_period / dt_nominal) + "), end time " + format_value(t_end) +
-                " s");
+                " s, dt = " + format_value(S.time_step) + " s (T_c/" +
+                format_value(S.contact_period / S.time_step) + "), end time " +
+                format_value(impact_end_time(S.contact_period)) + " s");
+    return true;
+  }
 
-    // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
-    // loaded set (the static curve pushed it at its end faces or axis, as the thickness study).
-    const bool deformable = plan_.deformable_partner;
-    if (deformable)
-      {
-        journal_driven_ = false;
-        prepare_mesh();
-      }
-    HhtStepper stepper(*this, hht, dt_nominal, L.max_cuts, m_J, I.velocity, deformable);
-    S.journal_mass = stepper.journal_mass();
-    if (deformable && rank_ == 0)
-      log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +
-                " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
-    S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
-    TrilinosWrappers::MPI::Vector u_peak(dofs_.owned(), comm_);
-    bool have_peak = false;
+  double ContactModel::impact_end_time(const double contact_period) const
+  {
+    return scene_.impact.end_time > 0.0 ? scene_.impact.end_time : 4.0 * contact_period;
+  }
+
+  bool ContactModel::march_impact(RunResult &result, HhtStepper &stepper,
+                                  TrilinosWrappers::MPI::Vector &u_peak, bool &have_peak)
+  {
+    const auto &I = scene_.impact;
+    auto &S = result.impact;
+    const double t_end = impact_end_time(S.contact_period);
+    const auto failed = [&]() {
+      result.wall_time = elapsed();
+      result.field_files = field_files_;
+      return false;
+    };
     SeparationWatch watch;
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
@@ -295,9 +337,7 @@ namespace clearjoint::fe::detail
           {
             if (rank_ == 0)
               log::error("fe_stage: " + result.message);
-            result.wall_time = elapsed();
-            result.field_files = field_files_;
-            return result;
+            return failed();
           }
         const double t = stepper.time(), dt_step = rec.time_step, dt = stepper.next_dt();
         const double d = rec.delta, d_rate = rec.delta_rate, F = rec.force;
@@ -334,18 +374,22 @@ namespace clearjoint::fe::detail
         result.message = "impact.max_steps = " + std::to_string(I.max_steps) +
                          " reached at t = " + format_value(stepper.time()) +
                          " s before the end time";
-        result.wall_time = elapsed();
-        result.field_files = field_files_;
-        return result;
+        return failed();
       }
-    summarise(S, result.dynamic_steps, result.increments, I.velocity,
+    return true;
+  }
+
+  void ContactModel::finish_impact(RunResult &result, const HhtStepper &stepper,
+                                   const TrilinosWrappers::MPI::Vector *u_peak)
+  {
+    auto &S = result.impact;
+    summarise(S, result.dynamic_steps, result.increments, scene_.impact.velocity,
               stepper.numerical_dissipation(), stepper.work_contact());
     if (rank_ == 0)
       log_summary(S);
-    // the yield check where the force peaked
-    if (have_peak)
+    if (u_peak)
       {
-        state_.u_owned() = u_peak;
+        state_.u_owned() = *u_peak;
         state_.publish();
         result.yield_check = check_yield(nullptr);
         log_yield_check(result.yield_check);
@@ -353,8 +397,8 @@ namespace clearjoint::fe::detail
     result.complete = true;
     result.wall_time = elapsed();
     result.field_files = field_files_;
+    const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (rank_ == 0 && fields)
       result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
-    return result;
   }
 }  // namespace clearjoint::fe::detail

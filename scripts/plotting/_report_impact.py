@@ -1,10 +1,12 @@
-"""The report's impact section (issue 12): the FE impact sweep — peak force, δ_max, contact
-duration, restitution, energy left in the bearing and the dynamic peak's excess over the
-quasi-static force at the same δ — its sweep plot, each velocity's F(t), δ(t), F(δ) and energy
-plot folded away, and, where impact_compare ran, the MBD laws' comparison."""
+"""The report's impact section (issues 12, 31): the FE impact sweep per case (velocity × journal
+mass) — peak force, impulse, mean force, δ_max, contact time, restitution, the dynamic gap at the
+peak, energy left in the bearing; what does not change across the sweep stated once — the
+paper's two claims on the gap beside our numbers, Fig. 5a and 5b, each case's F(t), δ(t), F(δ)
+and energy plot folded away, and, where impact_compare ran, the MBD laws' comparison (the law of
+the same journal and mesh, c_e with its error bar from Δt and mesh)."""
 import os
 
-from plotting._common import read_table
+from plotting._impact_sweep import case_folders, paper_claims, read_sweep, split_quantities
 from plotting._report_common import details, esc, image_file_html, load_or_none, rel_link
 
 
@@ -17,42 +19,30 @@ def impact_section(impact, base, warnings):
              "<p>The journal is launched at first touch toward the bearing (t_B as in the "
              "impact scene) and followed through the impact by Hilber–Hughes–Taylor α implicit "
              "dynamics, with the exact active-set contact at every step and the contact nodes "
-             "massless (docs/fe.md). Beside each impact, the quasi-static curve of the same mesh: "
-             "the dynamic peak is compared with the quasi-static force at the same δ. The paper "
-             "reports that this gap vanishes as v → 0; in this linear-elastic model the whole "
-             "response scales with v, so the gap is the same at every velocity — it is the "
-             "bearing ring's inertia, which a quasi-static law cannot hold.</p>"]
+             "massless (docs/fe.md). The sweep runs every impact velocity with every journal "
+             "mass (sweep.velocity × sweep.journal_mass: a heavier journal stands for the mass a "
+             "mechanism puts on the pin), so that δ_max spans the quasi-static studies' range. "
+             "Beside each impact, the quasi-static curve of the same journal and mesh: the "
+             "dynamic peak is compared with the quasi-static force at the same δ (the dynamic "
+             "gap).</p>"]
     sweep = impact.get("sweep")
     if not sweep or not os.path.exists(sweep):
         warnings.add("impact study", f"no sweep table in {esc(fe_dir)} (did the FE task fail?)",
                      "impact")
         return "\n".join(parts)
-    _, _, s = read_table(sweep)
-    rows = ["<table><tr><th>v [m/s]</th><th>peak force [N]</th><th>δ_max [µm]</th>"
-            "<th>contact duration [µs]</th><th>restitution [1]</th>"
-            "<th>quasi-static F at the peak's δ [N]</th><th>dynamic gap</th>"
-            "<th>energy left in the bearing [% of ½mv²]</th></tr>"]
-    for i, v in enumerate(s["v_in_m_per_s"]):
-        separated = s["separated"][i] > 0.5
-        rows.append(
-            f"<tr><td>{v:.3g}</td><td>{s['peak_force_N'][i]:.4g}</td>"
-            f"<td>{s['delta_max_m'][i] * 1e6:.4g}</td>"
-            f"<td>{s['contact_duration_s'][i] * 1e6:.4g}</td>"
-            f"<td>{s['restitution'][i]:.4f}" + ("" if separated else " (still in contact)") +
-            f"</td><td>{s['quasi_static_force_at_peak_delta_N'][i]:.4g}</td>"
-            f"<td>{100 * s['dynamic_gap'][i]:+.2f} %</td>"
-            f"<td>{100 * s['bearing_energy_left_J'][i] / s['kinetic_initial_J'][i]:.2f}</td></tr>")
-        if not separated:
-            warnings.add(f"impact at v = {v:.3g} m/s",
-                         "the journal had not left the bearing at the end time", "impact")
-    rows.append("</table>")
-    parts.append("".join(rows))
-    png = os.path.join(fe_dir, "impact_sweep.png")
-    if os.path.exists(png):
-        parts.append(image_file_html(png, "Impact sweep: peak force (with the quasi-static force "
-                                          "at the same δ), δ_max, contact duration and "
-                                          "restitution against the impact velocity"))
-    cases = sorted(d for d in os.listdir(fe_dir) if d.startswith("v_"))
+    s = read_sweep(sweep)
+    parts.append(case_table(s, warnings))
+    parts.append(claims_html(s))
+    for name, caption in [
+            ("fig5a.png", "The paper's Fig. 5a: every case's F(δ) through the impact over the "
+                          "quasi-static curve of the same journal and mesh (log–log)"),
+            ("fig5b.png", "The paper's Fig. 5b as we read it: the peak force against the impact "
+                          "velocity beside the quasi-static force at the peak's δ, and the gap"),
+            ("impact_sweep.png", "Impact sweep: the quantities that change across the cases")]:
+        png = os.path.join(fe_dir, name)
+        if os.path.exists(png):
+            parts.append(image_file_html(png, caption))
+    cases = [os.path.basename(f) for f in case_folders(sweep)]
     for c in cases:
         # the linear-elastic model's validity at the peak force (its yield check)
         man = load_or_none(os.path.join(fe_dir, c, "manifest.json")) or {}
@@ -61,7 +51,7 @@ def impact_section(impact, base, warnings):
             worst = max(yc.get("bodies", []), key=lambda b: b["max_von_mises"]["value"],
                         default=None)
             if worst:
-                warnings.add(f"impact at v = {esc(c[2:].replace('mps', ''))} m/s",
+                warnings.add(f"impact {esc(c)}",
                              f"von Mises reaches {worst['max_von_mises']['value'] / 1e6:.4g} MPa "
                              f"in the {esc(worst['body'])} at the peak force, above the yield "
                              f"stress {yc['yield_stress']['value'] / 1e6:.4g} MPa: the linear-"
@@ -69,8 +59,7 @@ def impact_section(impact, base, warnings):
     for c in cases:
         img = os.path.join(fe_dir, c, "impact.png")
         if os.path.exists(img):
-            parts.append(details(f"v = {esc(c[2:].replace('mps', ''))} m/s: F(t), δ(t), F(δ), "
-                                 "energy balance",
+            parts.append(details(f"{esc(c)}: F(t), δ(t), F(δ), energy balance",
                                  image_file_html(img, f"{esc(c)}: impact history "
                                                       f"({rel_link(os.path.join(fe_dir, c), base)})")))
     compare = impact.get("compare_dir")
@@ -85,44 +74,51 @@ def impact_section(impact, base, warnings):
             warnings.add("impact comparison", "no manifest in " + esc(compare), "impact")
             return "\n".join(parts)
         fits = man.get("extra", {}).get("fitted_restitution_coefficient", {})
+        extra = man.get("extra", {})
+        own = extra.get("law_source") == "own_quasi_static_curve"
+        bar_from = extra.get("error_bar_from", {}).get("error_bar", "none given")
         if fits:
             rows = ["<p>The c_e with which each damping model's single impact (the journal's "
-                    "mass on the MBD law, bearing rigid) returns the FE restitution:</p><table>"
-                    "<tr><th>damping model</th><th>c_e (mean over v)</th><th>spread over v</th>"
-                    "<th>depends on v?</th></tr>"]
+                    "mass on the MBD law, bearing rigid) returns the FE restitution. The law: "
+                    + ("each case's own quasi-static curve (the same journal and mesh as the "
+                       "impact), fitted F = K δ^n" if own else
+                       "the law file given (not the impact's own curve)")
+                    + f". Error bar: {esc(bar_from)}.</p><table>"
+                    "<tr><th>damping model</th><th>c_e (mean over the cases)</th>"
+                    "<th>spread over the cases</th><th>error bar (Δt, mesh)</th></tr>"]
             for name, f in sorted(fits.items()):
+                bar = f.get("error_bar")
                 rows.append(f"<tr><td>{esc(name)}</td><td>{f['c_e_mean']:.5f}</td>"
-                            f"<td>{f['spread_over_v']:.2g}</td>"
-                            f"<td>{'yes' if f['depends_on_v'] else 'no'}</td></tr>")
+                            f"<td>{f.get('spread_over_cases', f['spread_over_v']):.2g}</td>"
+                            f"<td>{'—' if bar is None or not extra.get('error_bar_from', {}).get('levels') else f'± {bar:.2g}'}</td></tr>")
             rows.append("</table>")
             parts.append("".join(rows))
     return "\n".join(parts)
 
 
 def impact_headline(impact):
-    """One sentence for the report's summary: the dynamic peak against the quasi-static force,
-    the restitution, and the c_e that reproduces it; "" without an impact study."""
+    """One sentence for the report's summary: the range of δ_max and of the dynamic gap, the
+    restitution, the paper's claims found or not, and the c_e that reproduces the restitution;
+    "" without an impact study."""
     if not impact or not impact.get("sweep") or not os.path.exists(impact["sweep"]):
         return ""
-    _, _, s = read_table(impact["sweep"])
-    v = s["v_in_m_per_s"]
-    gaps = [100 * g for g in s["dynamic_gap"]]
-    e = s["restitution"]
+    s = read_sweep(impact["sweep"])
+    v, gaps, e = s["v_in_m_per_s"], [100 * g for g in s["dynamic_gap"]], s["restitution"]
     def span(values, fmt):
-        """'a–b', or 'a' at every v when they agree to the digits shown."""
+        """'a to b', or 'a' when they agree to the digits shown."""
         lo, hi = fmt.format(min(values)), fmt.format(max(values))
         return lo if lo == hi else f"{lo} to {hi}"
 
-    slow, fast = gaps[v.index(min(v))], gaps[v.index(max(v))]
-    if abs(slow) < 0.5 * abs(fast):
-        trend = "it shrinks as v falls, as the paper reports"
-    else:
-        trend = ("the bearing's inertia: it does not shrink as v falls, unlike the paper's "
-                 "claim (docs/fe.md)")
-    text = (f"<p>Impact (<a href='#impact'>FE impact study</a>), v = {min(v):.3g}–{max(v):.3g} m/s: "
-            f"peak force {min(s['peak_force_N']):.4g}–{max(s['peak_force_N']):.4g} N, "
+    claims = paper_claims(s)
+    found = "; ".join(f"“{esc(c)}”: {'yes' if ok else 'no' if ok is False else 'not tested'}"
+                      for c, _, _, ok in claims)
+    text = (f"<p>Impact (<a href='#impact'>FE impact study</a>), {len(v)} cases, "
+            f"v = {min(v):.3g}–{max(v):.3g} m/s, journal mass "
+            f"{min(s['journal_mass_kg']):.4g}–{max(s['journal_mass_kg']):.4g} kg: δ_max "
+            f"{span([d * 1e6 for d in s['delta_max_m']], '{:.3g}')} µm, peak force "
+            f"{min(s['peak_force_N']):.4g}–{max(s['peak_force_N']):.4g} N, "
             f"<strong>{span(gaps, '{:+.1f}')} % above the quasi-static force at the same δ"
-            f"</strong> ({trend}), restitution {span(e, '{:.4f}')}")
+            f"</strong>, restitution {span(e, '{:.4f}')}; the paper's claims: {found}")
     man = load_or_none(os.path.join(impact.get("compare_dir", ""), "manifest.json")) or {}
     fits = man.get("extra", {}).get("fitted_restitution_coefficient", {})
     if fits:
@@ -130,3 +126,43 @@ def impact_headline(impact):
                  ", ".join(f"{f['c_e_mean']:.4f} ({esc(n.replace('_', ' '))})"
                            for n, f in sorted(fits.items())))
     return text + ".</p>"
+
+
+def case_table(s, warnings):
+    """Per case the quantities that change across the sweep; those that do not, once below."""
+    varying, constant = split_quantities(s)
+    head = ("<table><tr><th>v [m/s]</th><th>journal mass [kg]</th>" +
+            "".join(f"<th>{esc(label)}</th>" for _, _, label, _ in varying) +
+            "<th>quasi-static F at the peak's δ [N]</th>"
+            "<th>energy left in the bearing [% of ½mv²]</th></tr>")
+    rows = [head]
+    for i, v in enumerate(s["v_in_m_per_s"]):
+        separated = s["separated"][i] > 0.5
+        m = s["journal_mass_kg"][i]
+        cells = "".join(f"<td>{fmt.format(s[key][i] * scale)}"
+                        + ("" if key != "restitution" or separated else " (still in contact)")
+                        + "</td>" for key, scale, _, fmt in varying)
+        rows.append(f"<tr><td>{v:.3g}</td><td>{m:.4g}</td>{cells}"
+                    f"<td>{s['quasi_static_force_at_peak_delta_N'][i]:.4g}</td>"
+                    f"<td>{100 * s['bearing_energy_left_J'][i] / s['kinetic_initial_J'][i]:.2f}"
+                    "</td></tr>")
+        if not separated:
+            warnings.add(f"impact at v = {v:.3g} m/s, m = {m:.4g} kg",
+                         "the journal had not left the bearing at the end time", "impact")
+    rows.append("</table>")
+    if constant:
+        rows.append("<p>The same in every case (to 1 part in 10⁴, so not plotted): " +
+                    "; ".join(f"{esc(label)} {fmt.format(c * scale)}"
+                              for (key, scale, label, fmt), c in constant) + ".</p>")
+    return "".join(rows)
+
+
+def claims_html(s):
+    """The paper's two claims on the dynamic gap beside our numbers."""
+    rows = ["<h3>The paper's claims beside ours</h3><table><tr><th>the paper (§3.2)</th>"
+            "<th>our numbers</th><th>what we find</th><th>agrees?</th></tr>"]
+    for claim, numbers, finding, ok in paper_claims(s):
+        rows.append(f"<tr><td>{esc(claim)}</td><td>{esc(numbers)}</td><td>{esc(finding)}</td>"
+                    f"<td>{'yes' if ok else 'no' if ok is False else '—'}</td></tr>")
+    rows.append("</table>")
+    return "".join(rows)

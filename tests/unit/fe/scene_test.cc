@@ -228,6 +228,22 @@ TEST(FeStageCli, BadInputExitsOneAndWritesNothing)
       const std::string t((std::istreambuf_iterator<char>(l)), {});
       EXPECT_NE(t.find("impact."), std::string::npos) << t;
     }
+  // and for the journal mass (issue 31 item 3): the key, the value and the range named, nothing
+  // written
+  for (const auto &[keys, named] : std::vector<std::pair<std::string, std::string>>{
+         {"impact: {journal_mass: -1}", "impact.journal_mass"},
+         {"sweep: {journal_mass: [0.04, -2]}", "sweep.journal_mass.1"},
+         {"loading: {journal: end_faces}\nsweep: {journal_mass: [1.0]}", "sweep.journal_mass"}})
+    {
+      std::ofstream(scene) << "schema: clearjoint.fe/1\nstudy: impact\n" << keys << "\n";
+      const int st = std::system(cmd.c_str());
+      ASSERT_TRUE(WIFEXITED(st));
+      EXPECT_EQ(WEXITSTATUS(st), 1) << keys;
+      EXPECT_FALSE(std::filesystem::exists(out)) << keys;
+      std::ifstream l(dir / "log.txt");
+      const std::string t((std::istreambuf_iterator<char>(l)), {});
+      EXPECT_NE(t.find(named), std::string::npos) << t;
+    }
 
   // --print-defaults exits 0 and prints the schema line
   const std::string cmd2 = std::string(FE_STAGE_EXE) + " --print-defaults > " +
@@ -359,7 +375,8 @@ TEST(FeScene, YieldStressDefaultsToTheHardeningTablesFirstPoint)
 
 // Study impact (issue 12 item 6, issue 31 items 1 and 6): v ≤ 0, α outside Abaqus's [−1/2, 0], an
 // unknown application, α with quasi_static (backward Euler has no α), a time step or end time
-// ≤ 0 are input errors naming the key and its range; the sweep over velocities is read.
+// ≤ 0 are input errors naming the key and its range; the sweep over velocities and journal
+// masses is read.
 TEST(FeScene, ImpactStudy)
 {
   const std::string head = "schema: clearjoint.fe/1\nstudy: impact\n";
@@ -418,6 +435,37 @@ TEST(FeScene, ImpactStudy)
   EXPECT_EQ(parse(head + "loading: {journal: end_faces}\n").loading.journal,
             JournalLoading::end_faces);  // a deformable journal
   expect_error(head + "sweep: {velocity: [0.1, 0]}\n", {"sweep.velocity"});
+  // issue 31 item 3: the journal mass as a sweep key, alone or with the velocity (every pair);
+  // `own` is the rigid journal's ρ π R_J² L_J
+  const double own = 7800.0 * M_PI * 9.5e-3 * 9.5e-3 * 18e-3;
+  const FeScene ms = parse(head + "sweep: {journal_mass: [own, 1.0, 25]}\n");
+  ASSERT_EQ(ms.sweep_journal_mass.size(), 3u);
+  EXPECT_NEAR(ms.sweep_journal_mass[0], own, 1e-12);
+  EXPECT_DOUBLE_EQ(ms.sweep_journal_mass[2], 25.0);
+  EXPECT_TRUE(ms.sweep_velocity.empty());
+  EXPECT_TRUE(has_sweep(ms));
+  EXPECT_FALSE(has_sweep(d));
+  const FeScene both = parse(head + "sweep: {velocity: [0.1, 0.2], journal_mass: [1.0]}\n");
+  EXPECT_EQ(both.sweep_velocity, (std::vector<double>{0.1, 0.2}));
+  EXPECT_EQ(both.sweep_journal_mass, (std::vector<double>{1.0}));
+  // own follows the material's density
+  EXPECT_NEAR(parse(head + "material: {rho: 3900}\nsweep: {journal_mass: [own]}\n")
+                .sweep_journal_mass[0],
+              0.5 * own, 1e-12);
+  expect_error(head + "sweep: {journal_mass: [1.0, 0]}\n",
+               {"sweep.journal_mass.1", "0", "(0, inf) kg", "own"});
+  expect_error(head + "sweep: {journal_mass: [-1]}\n", {"sweep.journal_mass.0", "-1", "kg"});
+  expect_error(head + "sweep: {journal_mass: [heavy]}\n", {"sweep.journal_mass.0", "heavy"});
+  expect_error(head + "sweep: {journal_mass: []}\n", {"sweep.journal_mass"});
+  expect_error(head + "sweep: {journal_mass: 2.0}\n", {"sweep.journal_mass"});
+  expect_error(head + "loading: {journal: end_faces}\nsweep: {journal_mass: [1.0]}\n",
+               {"sweep.journal_mass", "rigid", "rho"});
+  expect_error(head + "impact: {journal_mass: 2}\nsweep: {journal_mass: [1.0]}\n",
+               {"impact.journal_mass", "sweep.journal_mass"});
+  expect_error("schema: clearjoint.fe/1\nsweep: {journal_mass: [1.0]}\n",
+               {"sweep.journal_mass", "study impact"});
+  expect_error(head + "sweep: {t_B: [0.004], journal_mass: [1.0]}\n",
+               {"sweep.journal_mass", "one swept parameter"});
   expect_error("schema: clearjoint.fe/1\nsweep: {velocity: [0.1]}\n",
                {"sweep.velocity", "study impact"});
 }

@@ -176,6 +176,115 @@ TEST(ImpactCompare, WritesTheComparisonAndRejectsBadInput)
   EXPECT_FALSE(std::filesystem::exists(out2));
 }
 
+namespace
+{
+  /// A stand-in for fe_stage's impact sweep folder: impact_sweep.csv, its manifest listing the
+  /// case folders, and per case its manifest (v, journal mass) and quasi-static curve F = K δ^n.
+  void write_impact_sweep(const std::string &dir, const std::vector<double> &restitution,
+                          const double K, const double n, const double dt_fraction)
+  {
+    const std::vector<std::pair<double, double>> cases = {{0.1, 0.0398}, {0.1, 1.0}};
+    std::filesystem::create_directories(dir);
+    std::string table = "# units: m/s,N,m,s,1,kg,s,s\n"
+                        "v_in_m_per_s,peak_force_N,delta_max_m,contact_duration_s,restitution,"
+                        "journal_mass_kg,time_step_s,contact_period_s\n";
+    std::string outputs;
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      {
+        const auto [v, m] = cases[i];
+        const std::string folder = dir + "/m_" + std::to_string(i) + "kg_v_0.1mps";
+        std::filesystem::create_directories(folder);
+        std::string curve = "# units: m,N\ndelta,force\n0,0\n";
+        for (int k = 1; k <= 10; ++k)
+          {
+            const double d = 2.0e-6 * k * (1.0 + 4.0 * i);
+            curve += std::to_string(d) + "," + std::to_string(K * std::pow(d, n)) + "\n";
+          }
+        test_support::write_text(folder + "/force_penetration.csv", curve + "# status: complete\n");
+        test_support::write_text(folder + "/manifest.json",
+                                 "{\"extra\": {\"n_dofs\": 8600, \"impact\": {\"velocity_in\": "
+                                 "{\"value\": " + std::to_string(v) + "}, \"journal_mass\": "
+                                 "{\"value\": " + std::to_string(m) + "}}}}\n");
+        outputs += std::string(i ? "," : "") + "{\"path\": \"/moved/away/" +
+                   std::filesystem::path(folder).filename().string() + "/manifest.json\"}";
+        const double T = 2.0 * M_PI * std::sqrt(m / K);
+        table += std::to_string(v) + ",100,1e-06,3e-05," + std::to_string(restitution[i]) + "," +
+                 std::to_string(m) + "," + std::to_string(T * dt_fraction) + "," +
+                 std::to_string(T) + "\n";
+      }
+    test_support::write_text(dir + "/impact_sweep.csv", table + "# status: complete\n");
+    test_support::write_text(dir + "/manifest.json", "{\"outputs\": [" + outputs +
+                                                       ", {\"path\": \"" + dir +
+                                                       "/impact_sweep.csv\"}]}\n");
+  }
+}  // namespace
+
+// Like for like (issue 31 item 4): with the sweep's case folders beside it, each case's own
+// quasi-static curve is fitted (a power law here: K and n come back) and its single impacts use
+// it; a given --law is set beside; a second sweep at another dt gives the error bars (the
+// largest difference of the FE restitution and of each fitted c_e to the main sweep's), and a
+// level without one of the cases is an input error.
+TEST(ImpactCompare, FitsEachCasesOwnCurveAndGivesErrorBarsFromTheLevels)
+{
+  test_support::ScratchDir dir("impact_compare_own");
+  const double K = 4.0e8 * std::pow(1e-6, -0.05), n = 1.05;  // ~400 N at 1 µm
+  write_impact_sweep(dir.file("main"), {0.96, 0.99}, K, n, 1.0 / 40);
+  write_impact_sweep(dir.file("fine"), {0.95, 0.985}, K, n, 1.0 / 80);
+  const std::string law = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  const std::string out = dir.file("out");
+  ASSERT_EQ(test_support::run_command(std::string(IMPACT_COMPARE_EXE) + " --law " + law +
+                                        " --fe-sweep " + dir.file("main/impact_sweep.csv") +
+                                        " --fe-sweep-level " + dir.file("fine/impact_sweep.csv") +
+                                        " --no-plots --output " + out,
+                                      dir.file("log.txt")),
+            0)
+    << test_support::read_text(dir.file("log.txt"));
+  const CsvTable t = read_csv(out + "/impact_comparison.csv");
+  ASSERT_EQ(t.rows.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i)
+    {
+      // the exact power law comes back from the fit (to the curve's 6 printed digits)
+      EXPECT_NEAR(t.column("law_K")[i] / K, 1.0, 1e-4);
+      EXPECT_NEAR(t.column("law_n")[i], n, 1e-5);
+      EXPECT_EQ(t.column("law_own")[i], 1.0);
+    }
+  EXPECT_TRUE(t.has_column("given_law_peak_force_error"));  // the paper's law set beside
+  const CsvTable f = read_csv(out + "/restitution_fit.csv");
+  ASSERT_EQ(f.rows.size(), 2u);
+  EXPECT_NEAR(f.column("fe_restitution_error_bar")[0], 0.01, 1e-9);
+  EXPECT_NEAR(f.column("fe_restitution_error_bar")[1], 0.005, 1e-9);
+  // the fitted c_e moves with the restitution it reproduces: a bar of the same order
+  const double bar = f.column("c_e_flores_error_bar")[0];
+  EXPECT_GT(bar, 0.002);
+  EXPECT_LT(bar, 0.05);
+  // and it is the distance to the c_e that the finer level's restitution gives on the same law
+  SingleImpact s{0.0398, 0.1, laws::PowerLaw{K, n}, laws::DampingModel::flores, 1.0};
+  EXPECT_NEAR(bar,
+              std::abs(fit_restitution_coefficient(s, 0.95) - fit_restitution_coefficient(s, 0.96)),
+              1e-4);
+  const std::string manifest = test_support::read_text(out + "/manifest.json");
+  EXPECT_NE(manifest.find("own_quasi_static_curve"), std::string::npos);
+  EXPECT_NE(manifest.find("spread over dt and mesh levels"), std::string::npos);
+
+  // a level that lacks a case (a table alone, on the given law): exit 1, naming the level
+  std::filesystem::remove(dir.file("fine/manifest.json"));
+  test_support::write_text(dir.file("fine/impact_sweep.csv"),
+                           "v_in_m_per_s,peak_force_N,delta_max_m,contact_duration_s,restitution,"
+                           "journal_mass_kg\n0.2,100,1e-06,3e-05,0.95,0.0398\n"
+                           "0.2,100,1e-06,3e-05,0.95,1\n# status: complete\n");
+  EXPECT_EQ(test_support::run_command(std::string(IMPACT_COMPARE_EXE) + " --law " + law +
+                                        " --fe-sweep " + dir.file("main/impact_sweep.csv") +
+                                        " --fe-sweep-level " +
+                                        dir.file("fine/impact_sweep.csv") + " --no-plots --output " +
+                                        dir.file("out2"),
+                                      dir.file("log2.txt")),
+            1);
+  EXPECT_NE(test_support::read_text(dir.file("log2.txt")).find("fine/impact_sweep.csv"),
+            std::string::npos)
+    << test_support::read_text(dir.file("log2.txt"));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out2")));
+}
+
 // An --output that cannot be made (a file in the way) is an input error naming --output, for
 // impact_compare and mbd_stage alike (impact_compare used to end in "unexpected failure", 2).
 TEST(ImpactCompare, AnOutputFolderThatCannotBeMadeIsAnInputError)

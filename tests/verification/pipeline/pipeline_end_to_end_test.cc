@@ -49,18 +49,23 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
   const auto tilted = read_json_file((run / "mbd/tilted_1deg/summary.json").string());
   EXPECT_EQ(tilted["clearance_joints"][0]["normal_model"]["name"], "law_family");
 
-  // The impact study (issue 12): one sweep table with the five velocities, every journal left
-  // the bearing, and the report has its section.
+  // The impact study (issues 12, 31): one sweep table with the nine cases (three velocities
+  // at three journal masses), every journal left the bearing, and the report has its section.
   const CsvTable sweep = read_csv((run / "fe/impact/impact_sweep.csv").string());
   EXPECT_EQ(sweep.status, "complete");
-  ASSERT_EQ(sweep.rows.size(), 5u);
+  ASSERT_EQ(sweep.rows.size(), 9u);
   for (const double s : sweep.column("separated"))
     EXPECT_EQ(s, 1.0);
   for (const double e : sweep.column("restitution"))
     EXPECT_TRUE(e > 0.5 && e < 1.0) << e;
-  // ... compared with the law fitted for t_B = 4 mm: every damping model's c_e found
+  // ... compared with the law of each case's own quasi-static curve (like for like; the law
+  // fitted for t_B = 4 mm set beside): every damping model's c_e found
+  const CsvTable compared = read_csv((run / "impact/compare/impact_comparison.csv").string());
+  for (const double own : compared.column("law_own"))
+    EXPECT_EQ(own, 1.0);
+  EXPECT_TRUE(compared.has_column("given_law_peak_force"));
   const CsvTable fits = read_csv((run / "impact/compare/restitution_fit.csv").string());
-  ASSERT_EQ(fits.rows.size(), 5u);
+  ASSERT_EQ(fits.rows.size(), 9u);
   for (const char *m : {"lankarani_nikravesh", "hunt_crossley", "flores", "gonthier"})
     for (const double c : fits.column(std::string("c_e_") + m))
       EXPECT_TRUE(c > 0.0 && c <= 1.0) << m << " " << c;
