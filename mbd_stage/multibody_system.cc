@@ -203,203 +203,246 @@ namespace clearjoint::mbd
     return velocity_correction_;
   }
 
-  void MultibodySystem::rhs(const double t, const double *y, double *ydot,
-                            SystemEvaluation *eval) const
+  void MultibodySystem::assemble_applied_forces(Workspace &W) const
   {
     const int nb = n_bodies(), nu = n_vel * nb;
-    Workspace &W = *ws_;
-    std::vector<BodyKinematics> &kin = W.kin;
-    unpack_into(y, kin);
-    const KinematicsView k(&kin);
-
-    // Applied forces: gravity, gyroscopic terms, clearance joints.
-    Eigen::VectorXd &Q = W.Q, &m_inv = W.m_inv, &u = W.u;
-    Q.setZero(nu);
-    m_inv.resize(nu);
-    u.resize(nu);
+    W.Q.setZero(nu);
+    W.m_inv.resize(nu);
+    W.u.resize(nu);
     for (int b = 0; b < nb; ++b)
     {
       const BodyProperties &p = bodies_[b];
-      const BodyKinematics &kb = kin[b];
-      Q.segment<3>(n_vel * b) = p.mass * gravity_;
+      const BodyKinematics &kb = W.kin[b];
+      W.Q.segment<3>(n_vel * b) = p.mass * gravity_;
       const Vector3 Jw = p.inertia.cwiseProduct(kb.w_B);
-      Q.segment<3>(n_vel * b + 3) = -kb.w_B.cross(Jw);
-      m_inv.segment<3>(n_vel * b).setConstant(1.0 / p.mass);
-      m_inv.segment<3>(n_vel * b + 3) = p.inertia.cwiseInverse();
-      u.segment<3>(n_vel * b) = kb.v;
-      u.segment<3>(n_vel * b + 3) = kb.w_B;
+      W.Q.segment<3>(n_vel * b + 3) = -kb.w_B.cross(Jw);
+      W.m_inv.segment<3>(n_vel * b).setConstant(1.0 / p.mass);
+      W.m_inv.segment<3>(n_vel * b + 3) = p.inertia.cwiseInverse();
+      W.u.segment<3>(n_vel * b) = kb.v;
+      W.u.segment<3>(n_vel * b + 3) = kb.w_B;
     }
+  }
+
+  void MultibodySystem::add_clearance_joint_forces(const KinematicsView &k, Workspace &W,
+                                                   SystemEvaluation *eval) const
+  {
     if (eval)
       eval->clearance.resize(clearance_.size());
-    std::vector<double> &P_fric = W.P_fric, &P_damp = W.P_damp;  // [W] per clearance joint
-    P_fric.assign(clearance_.size(), 0.0);
-    P_damp.assign(clearance_.size(), 0.0);
+    W.P_fric.assign(clearance_.size(), 0.0);
+    W.P_damp.assign(clearance_.size(), 0.0);
     for (std::size_t c = 0; c < clearance_.size(); ++c)
     {
       ClearanceOutput out;
-      clearance_[c]->apply(k, Q, &out);
+      clearance_[c]->apply(k, W.Q, &out);
       for (const ContactResult &r : out.contacts)
       {
-        P_fric[c] += r.P_friction;
-        P_damp[c] += r.P_damping;
+        W.P_fric[c] += r.P_friction;
+        W.P_damp[c] += r.P_damping;
       }
       if (eval)
         eval->clearance[c] = out;
     }
+  }
 
-    // Constraints.
-    std::vector<ConstraintRow> &rows = W.rows;
-    constraint_rows(k, t, rows);
-    const int nc = static_cast<int>(rows.size());
-    Eigen::VectorXd &u_dot = W.u_dot, &lambda = W.lambda, &phi = W.phi, &phi_dot = W.phi_dot;
-    Eigen::MatrixXd &D = W.D;
-    u_dot = m_inv.cwiseProduct(Q);
-    lambda.setZero(nc);
-    D.resize(nc, nu);
-    phi.resize(nc);
-    phi_dot.resize(nc);
-    if (nc > 0)
+  void MultibodySystem::assemble_constraint_equations(Workspace &W) const
+  {
+    const int nu = n_vel * n_bodies(), nc = static_cast<int>(W.rows.size());
+    W.D.resize(nc, nu);
+    W.phi.resize(nc);
+    W.phi_dot.resize(nc);
+    W.rhs_c.resize(nc);
+    for (int r = 0; r < nc; ++r)
     {
-      Eigen::VectorXd &rhs_c = W.rhs_c;
-      rhs_c.resize(nc);
-      for (int r = 0; r < nc; ++r)
-      {
-        D.row(r) = rows[r].D;
-        phi[r] = rows[r].phi;
-        phi_dot[r] = rows[r].D.dot(u) + rows[r].phi_t;
-        rhs_c[r] = rows[r].gamma - 2.0 * stab_.alpha * phi_dot[r] -
-                   stab_.beta * stab_.beta * phi[r];
-      }
-      W.b.noalias() = rhs_c - D * u_dot;
-      // With redundant constraints the accelerations are solved on the independent rows
-      // (the motion is the same for any consistent λ: Dᵀλ is unique); the others get λ = 0.
-      const bool subset = n_redundant_ > 0;
-      if (subset)
-      {
-        const int ni = static_cast<int>(independent_rows_.size());
-        W.D_sub.resize(ni, nu);
-        W.lambda_sub.resize(ni);
-        for (int i = 0; i < ni; ++i)
-        {
-          W.D_sub.row(i) = D.row(independent_rows_[i]);
-          W.lambda_sub[i] = W.b[independent_rows_[i]];
-        }
-      }
-      const Eigen::MatrixXd &Dk = subset ? W.D_sub : D;
-      W.DM.noalias() = Dk * m_inv.asDiagonal();
-      // S = D M⁻¹ Dᵀ (lower triangle, which is what LLT reads), body block by body block:
-      // a row involves at most two bodies, so most of the dense product is zeros.
-      W.S_full.setZero(nc, nc);
-      for (int b = 0; b < nb; ++b)
-      {
-        const auto &rb = rows_of_body_[b];
-        const Eigen::Matrix<double, 6, 1> mb = m_inv.segment<6>(n_vel * b);
-        for (std::size_t i = 0; i < rb.size(); ++i)
-        {
-          const Eigen::Matrix<double, 1, 6> di = D.row(rb[i]).segment<6>(n_vel * b).cwiseProduct(mb.transpose());
-          for (std::size_t j = 0; j <= i; ++j)
-            W.S_full(rb[i], rb[j]) += di.dot(D.row(rb[j]).segment<6>(n_vel * b));
-        }
-      }
-      if (subset)
-      {
-        const int ni = static_cast<int>(independent_rows_.size());
-        W.S.resize(ni, ni);
-        for (int i = 0; i < ni; ++i)
-          for (int j = 0; j <= i; ++j)
-            W.S(i, j) = W.S_full(independent_rows_[i], independent_rows_[j]);
-        W.llt.compute(W.S);
-      }
-      else
-        W.llt.compute(W.S_full);
-      if (W.llt.info() != Eigen::Success)
-        throw NumericalError("constraint Jacobian lost rank at t = " + format_value(t) +
-                             " s (a singular configuration?)");
-      if (subset)
-      {
-        W.llt.solveInPlace(W.lambda_sub);
-        for (std::size_t i = 0; i < independent_rows_.size(); ++i)
-          lambda[independent_rows_[i]] = W.lambda_sub[static_cast<Eigen::Index>(i)];
-      }
-      else
-        lambda = W.llt.solve(W.b);
-      u_dot.noalias() += W.DM.transpose() * (subset ? W.lambda_sub : lambda);
+      const ConstraintRow &row = W.rows[r];
+      W.D.row(r) = row.D;
+      W.phi[r] = row.phi;
+      W.phi_dot[r] = row.D.dot(W.u) + row.phi_t;
+      W.rhs_c[r] = row.gamma - 2.0 * stab_.alpha * W.phi_dot[r] - stab_.beta * stab_.beta * W.phi[r];
     }
+  }
 
-    // ẏ
+  void MultibodySystem::assemble_schur_complement(const int nc, Workspace &W) const
+  {
+    // S = D M⁻¹ Dᵀ (lower triangle, which is what LLT reads), body block by body block:
+    // a row involves at most two bodies, so most of the dense product is zeros.
+    W.S_full.setZero(nc, nc);
+    for (int b = 0; b < n_bodies(); ++b)
+    {
+      const auto &rb = rows_of_body_[b];
+      const Eigen::Matrix<double, 6, 1> mb = W.m_inv.segment<6>(n_vel * b);
+      for (std::size_t i = 0; i < rb.size(); ++i)
+      {
+        const Eigen::Matrix<double, 1, 6> di = W.D.row(rb[i]).segment<6>(n_vel * b).cwiseProduct(mb.transpose());
+        for (std::size_t j = 0; j <= i; ++j)
+          W.S_full(rb[i], rb[j]) += di.dot(W.D.row(rb[j]).segment<6>(n_vel * b));
+      }
+    }
+    if (n_redundant_ > 0)
+    {
+      const int ni = static_cast<int>(independent_rows_.size());
+      W.S.resize(ni, ni);
+      for (int i = 0; i < ni; ++i)
+        for (int j = 0; j <= i; ++j)
+          W.S(i, j) = W.S_full(independent_rows_[i], independent_rows_[j]);
+    }
+  }
+
+  void MultibodySystem::solve_constraint_forces(const double t, const int nc, Workspace &W) const
+  {
+    const int nu = n_vel * n_bodies();
+    W.b.noalias() = W.rhs_c - W.D * W.u_dot;
+    // With redundant constraints the accelerations are solved on the independent rows
+    // (the motion is the same for any consistent λ: Dᵀλ is unique); the others get λ = 0.
+    const bool subset = n_redundant_ > 0;
+    if (subset)
+    {
+      const int ni = static_cast<int>(independent_rows_.size());
+      W.D_sub.resize(ni, nu);
+      W.lambda_sub.resize(ni);
+      for (int i = 0; i < ni; ++i)
+      {
+        W.D_sub.row(i) = W.D.row(independent_rows_[i]);
+        W.lambda_sub[i] = W.b[independent_rows_[i]];
+      }
+    }
+    const Eigen::MatrixXd &Dk = subset ? W.D_sub : W.D;
+    W.DM.noalias() = Dk * W.m_inv.asDiagonal();
+    assemble_schur_complement(nc, W);
+    W.llt.compute(subset ? W.S : W.S_full);
+    if (W.llt.info() != Eigen::Success)
+      throw NumericalError("constraint Jacobian lost rank at t = " + format_value(t) +
+                           " s (a singular configuration?)");
+    if (subset)
+    {
+      W.llt.solveInPlace(W.lambda_sub);
+      for (std::size_t i = 0; i < independent_rows_.size(); ++i)
+        W.lambda[independent_rows_[i]] = W.lambda_sub[static_cast<Eigen::Index>(i)];
+    }
+    else
+      W.lambda = W.llt.solve(W.b);
+    W.u_dot.noalias() += W.DM.transpose() * (subset ? W.lambda_sub : W.lambda);
+  }
+
+  void MultibodySystem::write_state_derivative(const int nc, const Workspace &W,
+                                               double *ydot) const
+  {
+    const int nb = n_bodies(), nu = n_vel * nb;
     for (int b = 0; b < nb; ++b)
     {
-      const BodyKinematics &kb = kin[b];
+      const BodyKinematics &kb = W.kin[b];
       Eigen::Map<Vector3>(ydot + n_pos * b) = kb.v;
       const double norm2 = kb.e.squaredNorm();
       Eigen::Map<Vector4>(ydot + n_pos * b + 3) =
         euler_parameter_rate(kb.e, kb.w_B) - stab_.euler_gain * (norm2 - 1.0) * kb.e;
     }
     for (int i = 0; i < nu; ++i)
-      ydot[n_pos * nb + i] = u_dot[i];
+      ydot[n_pos * nb + i] = W.u_dot[i];
     int w = (n_pos + n_vel) * nb;
     for (std::size_t c = 0; c < clearance_.size(); ++c)
     {
-      ydot[w++] = P_fric[c];
-      ydot[w++] = P_damp[c];
+      ydot[w++] = W.P_fric[c];
+      ydot[w++] = W.P_damp[c];
     }
     // Driver power: the constraint force Dᵀλ of the driver row times u.
     for (std::size_t d = 0; d < drivers_.size(); ++d)
     {
       const int r = nc - static_cast<int>(drivers_.size()) + static_cast<int>(d);
-      ydot[w++] = lambda[r] * D.row(r).dot(u);
+      ydot[w++] = W.lambda[r] * W.D.row(r).dot(W.u);
     }
+  }
+
+  void MultibodySystem::check_finite(const double t, const double *ydot) const
+  {
     for (int i = 0; i < n_states(); ++i)
       if (!std::isfinite(ydot[i]))
         throw NumericalError("non-finite state derivative (component " + std::to_string(i) +
                              ") at t = " + format_value(t) + " s");
+  }
+
+  void MultibodySystem::record_energies_and_work(const double *y, const Workspace &W,
+                                                 SystemEvaluation &eval) const
+  {
+    const int nb = n_bodies();
+    eval.E_kin = eval.E_pot = eval.E_el = 0.0;
+    eval.euler_norm_error = 0.0;
+    for (int b = 0; b < nb; ++b)
+    {
+      const BodyProperties &p = bodies_[b];
+      const BodyKinematics &kb = W.kin[b];
+      eval.E_kin += 0.5 * p.mass * kb.v.squaredNorm() + 0.5 * kb.w_B.dot(p.inertia.cwiseProduct(kb.w_B));
+      eval.E_pot += -p.mass * gravity_.dot(kb.r);
+      eval.euler_norm_error = std::max(eval.euler_norm_error, std::abs(kb.e.norm() - 1.0));
+    }
+    for (const auto &c : eval.clearance)
+      for (const ContactResult &r : c.contacts)
+        eval.E_el += r.E_el;
+    int s = (n_pos + n_vel) * nb;
+    eval.W_friction = eval.W_damping = eval.W_drivers = 0.0;
+    for (std::size_t c = 0; c < clearance_.size(); ++c)
+    {
+      eval.W_friction += y[s++];
+      eval.W_damping += y[s++];
+    }
+    for (std::size_t d = 0; d < drivers_.size(); ++d)
+      eval.W_drivers += y[s++];
+  }
+
+  void MultibodySystem::record_joint_reactions(const Workspace &W, SystemEvaluation &eval) const
+  {
+    // Force on body_j from each joint's rows, f = D_vᵀ·λ.
+    eval.joint_force_on_j.assign(joints_.size(), Vector3::Zero());
+    int r0 = 0;
+    for (std::size_t j = 0; j < joints_.size(); ++j)
+    {
+      const Joint &J = joints_[j];
+      const int ne = J.n_equations();
+      if (J.body_j() != ground_index)
+        eval.joint_force_on_j[j] =
+          W.D.block(r0, n_vel * J.body_j(), ne, 3).transpose() * W.lambda.segment(r0, ne);
+      else if (J.body_i() != ground_index)
+        eval.joint_force_on_j[j] =
+          -(W.D.block(r0, n_vel * J.body_i(), ne, 3).transpose() * W.lambda.segment(r0, ne));
+      r0 += ne;
+    }
+  }
+
+  void MultibodySystem::rhs(const double t, const double *y, double *ydot,
+                            SystemEvaluation *eval) const
+  {
+    Workspace &W = *ws_;
+    unpack_into(y, W.kin);
+    const KinematicsView k(&W.kin);
+
+    // Applied forces: gravity, gyroscopic terms, then the clearance joints' contact, damping
+    // and friction forces.
+    assemble_applied_forces(W);
+    add_clearance_joint_forces(k, W, eval);
+
+    // Accelerations without constraints, then the constraint forces Dᵀλ added to them.
+    // (The order of the first allocations of W is that of the code before rhs() was split:
+    // it decides where the constraint rows' own buffers land in the heap, which cost ~1 % of
+    // the run's instructions in malloc when it changed.)
+    constraint_rows(k, t, W.rows);
+    const int nc = static_cast<int>(W.rows.size());
+    W.u_dot = W.m_inv.cwiseProduct(W.Q);
+    W.lambda.setZero(nc);
+    assemble_constraint_equations(W);
+    if (nc > 0)
+      solve_constraint_forces(t, nc, W);
+
+    write_state_derivative(nc, W, ydot);
+    check_finite(t, ydot);
 
     if (eval)
     {
       eval->t = t;
-      eval->u_dot = u_dot;
-      eval->lambda = lambda;
-      eval->phi_norm = nc > 0 ? phi.cwiseAbs().maxCoeff() : 0.0;
-      eval->phi_dot_norm = nc > 0 ? phi_dot.cwiseAbs().maxCoeff() : 0.0;
-      eval->E_kin = eval->E_pot = eval->E_el = 0.0;
-      eval->euler_norm_error = 0.0;
-      for (int b = 0; b < nb; ++b)
-      {
-        const BodyProperties &p = bodies_[b];
-        const BodyKinematics &kb = kin[b];
-        eval->E_kin += 0.5 * p.mass * kb.v.squaredNorm() +
-                       0.5 * kb.w_B.dot(p.inertia.cwiseProduct(kb.w_B));
-        eval->E_pot += -p.mass * gravity_.dot(kb.r);
-        eval->euler_norm_error = std::max(eval->euler_norm_error, std::abs(kb.e.norm() - 1.0));
-      }
-      for (const auto &c : eval->clearance)
-        for (const ContactResult &r : c.contacts)
-          eval->E_el += r.E_el;
-      int s = (n_pos + n_vel) * nb;
-      eval->W_friction = eval->W_damping = eval->W_drivers = 0.0;
-      for (std::size_t c = 0; c < clearance_.size(); ++c)
-      {
-        eval->W_friction += y[s++];
-        eval->W_damping += y[s++];
-      }
-      for (std::size_t d = 0; d < drivers_.size(); ++d)
-        eval->W_drivers += y[s++];
-      // Joint reactions: force on body_j from each joint's rows, f = D_vᵀ·λ.
-      eval->joint_force_on_j.assign(joints_.size(), Vector3::Zero());
-      int r0 = 0;
-      for (std::size_t j = 0; j < joints_.size(); ++j)
-      {
-        const Joint &J = joints_[j];
-        const int ne = J.n_equations();
-        if (J.body_j() != ground_index)
-          eval->joint_force_on_j[j] =
-            D.block(r0, n_vel * J.body_j(), ne, 3).transpose() * lambda.segment(r0, ne);
-        else if (J.body_i() != ground_index)
-          eval->joint_force_on_j[j] =
-            -(D.block(r0, n_vel * J.body_i(), ne, 3).transpose() * lambda.segment(r0, ne));
-        r0 += ne;
-      }
-      eval->bodies = kin;
+      eval->u_dot = W.u_dot;
+      eval->lambda = W.lambda;
+      eval->phi_norm = nc > 0 ? W.phi.cwiseAbs().maxCoeff() : 0.0;
+      eval->phi_dot_norm = nc > 0 ? W.phi_dot.cwiseAbs().maxCoeff() : 0.0;
+      record_energies_and_work(y, W, *eval);
+      record_joint_reactions(W, *eval);
+      eval->bodies = W.kin;
     }
   }
 

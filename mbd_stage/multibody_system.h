@@ -131,6 +131,34 @@ namespace clearjoint::mbd
       Eigen::LLT<Eigen::MatrixXd> llt;
     };
     mutable std::shared_ptr<Workspace> ws_ = std::make_shared<Workspace>();
+
+    // The steps of rhs(), in order; each reads and writes the workspace W (no allocation once
+    // its buffers have their sizes).
+    /// Q = gravity and gyroscopic terms −ω'×J'ω' per body; M⁻¹ and u = [v, ω'] from W.kin.
+    void assemble_applied_forces(Workspace &W) const;
+    /// Adds each clearance joint's contact, damping and friction forces to Q; their powers
+    /// into P_fric, P_damp [W]; its contacts into eval->clearance when eval is given.
+    void add_clearance_joint_forces(const KinematicsView &k, Workspace &W,
+                                    SystemEvaluation *eval) const;
+    /// From the constraint rows W.rows: D, Φ, Φ̇ and the stabilised right side
+    /// γ − 2αΦ̇ − β²Φ of each.
+    void assemble_constraint_equations(Workspace &W) const;
+    /// S = D M⁻¹ Dᵀ (lower triangle) in S_full, and on the independent rows in S when
+    /// constraints are redundant.
+    void assemble_schur_complement(int nc, Workspace &W) const;
+    /// λ from S·λ = γ' − D·M⁻¹Q (Cholesky, on the independent rows when redundant), and
+    /// u̇ += M⁻¹Dᵀλ. Throws NumericalError when S is not positive definite.
+    void solve_constraint_forces(double t, int nc, Workspace &W) const;
+    /// ẏ: ṙ = v, ė (with the pull of ‖e‖ to 1), u̇, the friction and damping powers of each
+    /// clearance joint and each driver's power.
+    void write_state_derivative(int nc, const Workspace &W, double *ydot) const;
+    /// Throws NumericalError naming the first non-finite component of ẏ.
+    void check_finite(double t, const double *ydot) const;
+    /// Energies (kinetic, potential, elastic), ‖e‖ error and the integrated work in y.
+    void record_energies_and_work(const double *y, const Workspace &W,
+                                  SystemEvaluation &eval) const;
+    /// The force on body_j of every joint, from its rows of D and λ.
+    void record_joint_reactions(const Workspace &W, SystemEvaluation &eval) const;
     /// Rows of D kept when constraints are redundant (chosen at finalize by a pivoted QR of
     /// Dᵀ): the accelerations are solved on this independent subset (Cholesky), as Adams
     /// does after removing redundant constraints.

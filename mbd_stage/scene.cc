@@ -199,31 +199,27 @@ namespace clearjoint::mbd
                  "move journal.center towards bearing.center, or align journal.axis with "
                  "bearing.axis");
     }
-  } // namespace
 
-  Scene read_scene(const std::string &path)
-  {
-    const nlohmann::json doc = read_structured_file(path);
-    return scene_from_json(doc, path, std::filesystem::path(path).parent_path().string());
-  }
+    /// Names of joints, drivers and clearance joints: one namespace, each name used once.
+    class ElementNames
+    {
+    public:
+      /// o's `name`, which no element read before may have.
+      std::string read_unique(StrictObject &o)
+      {
+        const std::string name = o.string("name");
+        if (!names_.insert(name).second)
+          o.fail("name", name, "a name not used by another joint, driver or clearance joint");
+        return name;
+      }
 
-  Scene scene_from_json(const nlohmann::json &doc, const std::string &file,
-                        const std::string &base_dir)
-  {
-    Scene scene;
-    scene.file = file;
-    scene.raw = doc;
-    StrictObject top(doc, file);
-    top.expect_schema(scene_schema);
-    scene.name = top.string("name");
-    scene.description = top.string_or("description", "");
-    scene.duration = top.number("duration", Range::positive("s"));
-    auto sys = std::make_shared<MultibodySystem>();
-    sys->set_gravity(vec3(top, "gravity", gravity_range));
+    private:
+      std::set<std::string> names_;
+    };
 
-    // Bodies
-    std::set<std::string> names{"ground"};
-    for (StrictObject b : top.object_array("bodies"))
+    /// One entry of `bodies`: its properties and its initial kinematics (unit-norm e, ω' in
+    /// the body frame).
+    void read_body(StrictObject &b, std::set<std::string> &names, MultibodySystem &sys)
     {
       BodyProperties p;
       p.name = b.string("name");
@@ -250,40 +246,54 @@ namespace clearjoint::mbd
       k.v = vec3(b, "velocity", speed_range);
       k.w_B = k.A.transpose() * vec3(b, "angular_velocity", spin_range);
       b.finish();
-      sys->add_body(p, k);
+      sys.add_body(p, k);
     }
-    if (sys->n_bodies() == 0)
-      top.fail("bodies", "[]", "at least one body");
 
-    // Joints
-    std::vector<std::string> joint_names;
-    std::set<std::string> element_names;  // joints, drivers and clearance joints: unique
-    const auto unique_name = [&](StrictObject &o) {
-      const std::string name = o.string("name");
-      if (!element_names.insert(name).second)
-        o.fail("name", name, "a name not used by another joint, driver or clearance joint");
-      return name;
-    };
-    for (StrictObject j : top.object_array("joints"))
+    void read_bodies(StrictObject &top, MultibodySystem &sys)
     {
-      const std::string name = unique_name(j);
-      const JointType type = parse_joint_type(
-        j.string("type", {"revolute", "translational", "spherical", "fixed"}));
-      const int bi = body_ref(j, "body_i", *sys), bj = body_ref(j, "body_j", *sys);
-      if (bi == bj)
-        j.fail("body_j", j.raw("body_j").dump(), "a body other than body_i");
-      const Vector3 point = vec3(j, "point", position_range);
-      const Vector3 axis = type == JointType::spherical && !j.has("axis")
-                             ? Vector3::UnitX()
-                             : unit_vec3(j, "axis");
-      j.finish();
-      sys->add_joint(name, type, bi, bj, point, axis);
-      joint_names.push_back(name);
+      std::set<std::string> names{"ground"};
+      for (StrictObject b : top.object_array("bodies"))
+        read_body(b, names, sys);
+      if (sys.n_bodies() == 0)
+        top.fail("bodies", "[]", "at least one body");
     }
-    if (top.has("drivers"))
+
+    /// `joints`; returns their names in order (drivers name their joint).
+    std::vector<std::string> read_joints(StrictObject &top, MultibodySystem &sys,
+                                         ElementNames &element_names)
+    {
+      std::vector<std::string> joint_names;
+      for (StrictObject j : top.object_array("joints"))
+      {
+        const std::string name = element_names.read_unique(j);
+        const JointType type = parse_joint_type(
+          j.string("type", {"revolute", "translational", "spherical", "fixed"}));
+        const int bi = body_ref(j, "body_i", sys), bj = body_ref(j, "body_j", sys);
+        if (bi == bj)
+          j.fail("body_j", j.raw("body_j").dump(), "a body other than body_i");
+        const Vector3 point = vec3(j, "point", position_range);
+        const Vector3 axis = type == JointType::spherical && !j.has("axis")
+                               ? Vector3::UnitX()
+                               : unit_vec3(j, "axis");
+        j.finish();
+        sys.add_joint(name, type, bi, bj, point, axis);
+        joint_names.push_back(name);
+      }
+      return joint_names;
+    }
+
+    /// `drivers` (optional): each drives one revolute joint at a constant speed.
+    void read_drivers(StrictObject &top, MultibodySystem &sys, ElementNames &element_names,
+                      const std::vector<std::string> &joint_names)
+    {
+      if (!top.has("drivers"))
+      {
+        top.number_or("drivers", 0.0, Range::any());  // mark as known
+        return;
+      }
       for (StrictObject d : top.object_array("drivers"))
       {
-        const std::string name = unique_name(d);
+        const std::string name = element_names.read_unique(d);
         const std::string jn = d.string("joint");
         int idx = -1;
         for (std::size_t i = 0; i < joint_names.size(); ++i)
@@ -291,76 +301,120 @@ namespace clearjoint::mbd
             idx = static_cast<int>(i);
         if (idx < 0)
           d.fail("joint", jn, "the name of a revolute joint of this scene");
-        if (sys->joints()[idx].type() != JointType::revolute)
+        if (sys.joints()[idx].type() != JointType::revolute)
           d.fail("joint", jn, "a revolute joint");
         const double speed = d.number("speed", spin_range);
         d.finish();
-        sys->add_driver(name, idx, speed);
-      }
-    else
-      top.number_or("drivers", 0.0, Range::any());
-
-    // Clearance joints
-    if (top.has("clearance_joints"))
-    {
-      for (StrictObject c : top.object_array("clearance_joints"))
-      {
-        const std::string name = unique_name(c);
-        StrictObject bo = c.object("bearing"), jo = c.object("journal");
-        const int bb = body_ref(bo, "body", *sys), jb = body_ref(jo, "body", *sys);
-        if (bb == jb)
-          jo.fail("body", jo.raw("body").dump(), "a body other than the bearing's");
-        const Vector3 cb = vec3(bo, "center", position_range), ab = unit_vec3(bo, "axis");
-        const Vector3 cj = vec3(jo, "center", position_range), aj = unit_vec3(jo, "axis");
-        bo.finish();
-        jo.finish();
-        StrictObject go = c.object("geometry");
-        ClearanceGeometry G;
-        // 10 m: a bearing larger than that is not a journal bearing this model describes.
-        const Range size_range{.lo = 0.0, .hi = 10.0, .lo_open = true, .unit = "m"};
-        G.R_B = go.number("R_B", size_range);
-        G.R_J = go.number("R_J", size_range);
-        G.L_B = go.number("L_B", size_range);
-        G.L_J = go.number("L_J", size_range);
-        if (!(G.R_J < G.R_B))
-          go.fail("R_J", format_value(G.R_J), "(0, R_B = " + format_value(G.R_B) + ") m",
-                  "the radial clearance c_r = R_B − R_J must be > 0");
-        if (!(G.L_J < G.L_B))
-          go.fail("L_J", format_value(G.L_J), "(0, L_B = " + format_value(G.L_B) + ") m",
-                  "the axial clearance c_a = (L_B − L_J)/2 must be > 0");
-        go.finish();
-        StrictObject mo = c.object("material");
-        // 1e13 Pa: ten times diamond's Young's modulus.
-        const Range modulus_range{.lo = 0.0, .hi = 1e13, .lo_open = true, .unit = "Pa"};
-        const double Eb = mo.number("E_bearing", modulus_range);
-        const double nb = mo.number("nu_bearing", Range::open(-1.0, 0.5, "1"));
-        const double Ej = mo.number("E_journal", modulus_range);
-        const double nj = mo.number("nu_journal", Range::open(-1.0, 0.5, "1"));
-        mo.finish();
-        const double E_star = effective_modulus(Eb, nb, Ej, nj);
-        ContactForceModel normal =
-          read_normal_model(c.object("normal"), G, E_star, base_dir, scene.input_files);
-        ContactForceModel axial = read_axial_model(c.object("axial"));
-        StrictObject fo = c.object("friction");
-        CoulombFriction fr;
-        fr.mu = fo.number("mu", Range::closed(0.0, 2.0, "1"));
-        fr.v0 = fo.number("v0", Range::positive("m/s"));
-        fr.v1 = fo.number("v1", Range::positive("m/s"));
-        if (!(fr.v1 > fr.v0))
-          fo.fail("v1", format_value(fr.v1), "> v0 = " + format_value(fr.v0) + " m/s");
-        fo.finish();
-        c.finish();
-        auto joint = std::make_unique<ClearanceJoint>(name, bb, jb, cb, ab, cj, aj, G,
-                                                      std::move(normal), std::move(axial), fr,
-                                                      sys->initial_view());
-        check_starting_gaps(c, *joint, sys->initial_view());
-        sys->add_clearance_joint(std::move(joint));
+        sys.add_driver(name, idx, speed);
       }
     }
-    else
-      top.number_or("clearance_joints", 0.0, Range::any());
 
-    // Integrator
+    /// A clearance joint's `bearing` and `journal`: body, centre and axis of each, in ground.
+    struct BearingAndJournal
+    {
+      int bearing_body, journal_body;
+      Vector3 bearing_center, bearing_axis, journal_center, journal_axis;
+    };
+
+    BearingAndJournal read_bearing_and_journal(StrictObject &c, const MultibodySystem &sys)
+    {
+      BearingAndJournal e;
+      StrictObject bo = c.object("bearing"), jo = c.object("journal");
+      e.bearing_body = body_ref(bo, "body", sys);
+      e.journal_body = body_ref(jo, "body", sys);
+      if (e.bearing_body == e.journal_body)
+        jo.fail("body", jo.raw("body").dump(), "a body other than the bearing's");
+      e.bearing_center = vec3(bo, "center", position_range);
+      e.bearing_axis = unit_vec3(bo, "axis");
+      e.journal_center = vec3(jo, "center", position_range);
+      e.journal_axis = unit_vec3(jo, "axis");
+      bo.finish();
+      jo.finish();
+      return e;
+    }
+
+    /// `geometry`: R_B, R_J, L_B, L_J [m], with room between journal and bearing both ways.
+    ClearanceGeometry read_clearance_geometry(StrictObject go)
+    {
+      ClearanceGeometry G;
+      // 10 m: a bearing larger than that is not a journal bearing this model describes.
+      const Range size_range{.lo = 0.0, .hi = 10.0, .lo_open = true, .unit = "m"};
+      G.R_B = go.number("R_B", size_range);
+      G.R_J = go.number("R_J", size_range);
+      G.L_B = go.number("L_B", size_range);
+      G.L_J = go.number("L_J", size_range);
+      if (!(G.R_J < G.R_B))
+        go.fail("R_J", format_value(G.R_J), "(0, R_B = " + format_value(G.R_B) + ") m",
+                "the radial clearance c_r = R_B − R_J must be > 0");
+      if (!(G.L_J < G.L_B))
+        go.fail("L_J", format_value(G.L_J), "(0, L_B = " + format_value(G.L_B) + ") m",
+                "the axial clearance c_a = (L_B − L_J)/2 must be > 0");
+      go.finish();
+      return G;
+    }
+
+    /// `material`: both bodies' E [Pa] and ν → the effective modulus E* [Pa].
+    double read_effective_modulus(StrictObject mo)
+    {
+      // 1e13 Pa: ten times diamond's Young's modulus.
+      const Range modulus_range{.lo = 0.0, .hi = 1e13, .lo_open = true, .unit = "Pa"};
+      const double Eb = mo.number("E_bearing", modulus_range);
+      const double nb = mo.number("nu_bearing", Range::open(-1.0, 0.5, "1"));
+      const double Ej = mo.number("E_journal", modulus_range);
+      const double nj = mo.number("nu_journal", Range::open(-1.0, 0.5, "1"));
+      mo.finish();
+      return effective_modulus(Eb, nb, Ej, nj);
+    }
+
+    /// `friction`: μ and the velocities v0 < v1 [m/s] of the Coulomb ramp.
+    CoulombFriction read_friction(StrictObject fo)
+    {
+      CoulombFriction fr;
+      fr.mu = fo.number("mu", Range::closed(0.0, 2.0, "1"));
+      fr.v0 = fo.number("v0", Range::positive("m/s"));
+      fr.v1 = fo.number("v1", Range::positive("m/s"));
+      if (!(fr.v1 > fr.v0))
+        fo.fail("v1", format_value(fr.v1), "> v0 = " + format_value(fr.v0) + " m/s");
+      fo.finish();
+      return fr;
+    }
+
+    /// One entry of `clearance_joints`, added to sys once its journal is found inside its
+    /// bearing; the law files it reads join `inputs`.
+    void read_clearance_joint(StrictObject &c, MultibodySystem &sys, ElementNames &element_names,
+                              const std::string &base_dir, std::vector<std::string> &inputs)
+    {
+      const std::string name = element_names.read_unique(c);
+      const BearingAndJournal e = read_bearing_and_journal(c, sys);
+      const ClearanceGeometry G = read_clearance_geometry(c.object("geometry"));
+      const double E_star = read_effective_modulus(c.object("material"));
+      ContactForceModel normal = read_normal_model(c.object("normal"), G, E_star, base_dir, inputs);
+      ContactForceModel axial = read_axial_model(c.object("axial"));
+      const CoulombFriction fr = read_friction(c.object("friction"));
+      c.finish();
+      auto joint = std::make_unique<ClearanceJoint>(
+        name, e.bearing_body, e.journal_body, e.bearing_center, e.bearing_axis, e.journal_center,
+        e.journal_axis, G, std::move(normal), std::move(axial), fr, sys.initial_view());
+      check_starting_gaps(c, *joint, sys.initial_view());
+      sys.add_clearance_joint(std::move(joint));
+    }
+
+    /// `clearance_joints` (optional).
+    void read_clearance_joints(StrictObject &top, MultibodySystem &sys,
+                               ElementNames &element_names, const std::string &base_dir,
+                               std::vector<std::string> &inputs)
+    {
+      if (!top.has("clearance_joints"))
+      {
+        top.number_or("clearance_joints", 0.0, Range::any());  // mark as known
+        return;
+      }
+      for (StrictObject c : top.object_array("clearance_joints"))
+        read_clearance_joint(c, sys, element_names, base_dir, inputs);
+    }
+
+    /// `integrator`: the settings and the output interval (at most the duration).
+    void read_integrator(StrictObject &top, Scene &scene)
     {
       StrictObject io = top.object("integrator");
       IntegratorSettings &s = scene.integrator;
@@ -377,21 +431,32 @@ namespace clearjoint::mbd
         top.fail("integrator.output_interval", format_value(scene.output_interval),
                  "(0, duration] s");
     }
-    Stabilization stab{.alpha = 50.0, .beta = 50.0, .euler_gain = 50.0};
-    if (top.has("stabilization"))
+
+    /// `stabilization` (optional; default 50/s for α, β and the Euler-parameter gain).
+    Stabilization read_stabilization(StrictObject &top)
     {
+      Stabilization stab{.alpha = 50.0, .beta = 50.0, .euler_gain = 50.0};
+      if (!top.has("stabilization"))
+      {
+        top.number_or("stabilization", 0.0, Range::any());  // mark as known
+        return stab;
+      }
       StrictObject so = top.object("stabilization");
       stab.alpha = so.number("alpha", Range::non_negative("1/s"));
       stab.beta = so.number("beta", Range::non_negative("1/s"));
       stab.euler_gain = so.number_or("euler_gain", stab.beta, Range::non_negative("1/s"));
       so.finish();
+      return stab;
     }
-    else
-      top.number_or("stabilization", 0.0, Range::any());
-    sys->set_stabilization(stab);
 
-    if (top.has("outputs"))
+    /// `outputs` (optional): the slider's and the crank's monitored axes.
+    void read_outputs(StrictObject &top, const MultibodySystem &sys, Scene &scene)
     {
+      if (!top.has("outputs"))
+      {
+        top.number_or("outputs", 0.0, Range::any());  // mark as known
+        return;
+      }
       StrictObject oo = top.object("outputs");
       for (const char *key : {"slider", "crank"})
         if (oo.has(key))
@@ -399,7 +464,7 @@ namespace clearjoint::mbd
           StrictObject ax = oo.object(key);
           MonitoredAxis m;
           m.body = ax.string("body");
-          if (sys->body_index(m.body) < 0)
+          if (sys.body_index(m.body) < 0)
             ax.fail("body", m.body, "the name of a moving body");
           m.axis = unit_vec3(ax, "axis");
           ax.finish();
@@ -409,10 +474,15 @@ namespace clearjoint::mbd
           oo.number_or(key, 0.0, Range::any());
       oo.finish();
     }
-    else
-      top.number_or("outputs", 0.0, Range::any());
-    if (top.has("budget"))
+
+    /// `budget` (optional): wall time, steps and output rows a run may take.
+    void read_budget(StrictObject &top, Scene &scene)
     {
+      if (!top.has("budget"))
+      {
+        top.number_or("budget", 0.0, Range::any());  // mark as known
+        return;
+      }
       StrictObject bo = top.object("budget");
       scene.max_wall_time = bo.number_or("wall_time", scene.max_wall_time, Range::positive("s"));
       scene.max_steps = bo.integer_or("steps", scene.max_steps, 1, 1'000'000'000'000L);
@@ -420,18 +490,52 @@ namespace clearjoint::mbd
         bo.integer_or("output_rows", scene.max_output_rows, 1, 1'000'000'000'000L);
       bo.finish();
     }
-    else
-      top.number_or("budget", 0.0, Range::any());
-    // The time series has one row per output_interval (~0.5 kB each): a duration of 1e300 s,
-    // or an interval of 1e-12 s, would fill the disk long before any budget stops the run.
-    if (const double rows = std::floor(scene.duration / scene.output_interval) + 1.0;
-        !(rows <= static_cast<double>(scene.max_output_rows)))
-      top.fail("integrator.output_interval", format_value(scene.output_interval),
-               "at least duration / budget.output_rows = " +
-                 format_value(scene.duration / static_cast<double>(scene.max_output_rows)) +
-                 " s (duration " + format_value(scene.duration) + " s would give " +
-                 format_value(rows) + " rows of timeseries.csv, ~0.5 kB each; raise "
-                 "output_interval, shorten duration or raise budget.output_rows)");
+
+    /// The time series has one row per output_interval (~0.5 kB each): a duration of 1e300 s,
+    /// or an interval of 1e-12 s, would fill the disk long before any budget stops the run.
+    void check_output_rows(StrictObject &top, const Scene &scene)
+    {
+      if (const double rows = std::floor(scene.duration / scene.output_interval) + 1.0;
+          !(rows <= static_cast<double>(scene.max_output_rows)))
+        top.fail("integrator.output_interval", format_value(scene.output_interval),
+                 "at least duration / budget.output_rows = " +
+                   format_value(scene.duration / static_cast<double>(scene.max_output_rows)) +
+                   " s (duration " + format_value(scene.duration) + " s would give " +
+                   format_value(rows) + " rows of timeseries.csv, ~0.5 kB each; raise "
+                   "output_interval, shorten duration or raise budget.output_rows)");
+    }
+  } // namespace
+
+  Scene read_scene(const std::string &path)
+  {
+    const nlohmann::json doc = read_structured_file(path);
+    return scene_from_json(doc, path, std::filesystem::path(path).parent_path().string());
+  }
+
+  Scene scene_from_json(const nlohmann::json &doc, const std::string &file,
+                        const std::string &base_dir)
+  {
+    Scene scene;
+    scene.file = file;
+    scene.raw = doc;
+    StrictObject top(doc, file);
+    top.expect_schema(scene_schema);
+    scene.name = top.string("name");
+    scene.description = top.string_or("description", "");
+    scene.duration = top.number("duration", Range::positive("s"));
+    auto sys = std::make_shared<MultibodySystem>();
+    sys->set_gravity(vec3(top, "gravity", gravity_range));
+
+    read_bodies(top, *sys);
+    ElementNames element_names;
+    const std::vector<std::string> joint_names = read_joints(top, *sys, element_names);
+    read_drivers(top, *sys, element_names, joint_names);
+    read_clearance_joints(top, *sys, element_names, base_dir, scene.input_files);
+    read_integrator(top, scene);
+    sys->set_stabilization(read_stabilization(top));
+    read_outputs(top, *sys, scene);
+    read_budget(top, scene);
+    check_output_rows(top, scene);
     top.finish();
 
     sys->finalize(0.0);

@@ -313,66 +313,77 @@ namespace clearjoint::pipeline
       l.finish();
       return choice;
     }
-  } // namespace
 
-  PipelineConfig read_pipeline_config(const std::string &path)
-  {
-    const auto j = read_yaml_file(path);
-    StrictObject top(j, path);
-    top.expect_schema("clearjoint.pipeline/1");
-    PipelineConfig c;
-    c.source = path;
-    c.run = top.string("run");
-    if (c.run.empty() || c.run.find('/') != std::string::npos || c.run[0] == '.')
-      top.fail("run", c.run, "a folder name without '/' that does not start with '.'");
-    c.output_root = top.string_or("output_root", "out");
-    c.preset = top.string("preset", preset_names());
-    c.mpi_ranks = static_cast<int>(top.integer_or("mpi_ranks", 1, 1, 64));
-    c.report = top.boolean_or("report", true);
-    if (top.has("jobs"))
-      c.jobs = static_cast<int>(top.integer("jobs", 1, max_jobs));
-    else
-      top.allow("jobs");
-    if (top.has("executor"))
-      c.executor = read_executor_config(top.object("executor"));
-    else
-      top.allow("executor");
-
-    auto presets = top.object("presets");
-    for (const std::string &p : preset_names())
+    /// The run's own keys: run (a folder name), output_root, preset, mpi_ranks, report, jobs,
+    /// executor.
+    void read_run_settings(StrictObject &top, PipelineConfig &c)
     {
-      auto stages = presets.object(p);
-      for (const std::string s : {"fe", "mbd"})
-      {
-        const auto &overrides = stages.raw(s);
-        if (!overrides.is_null() && !overrides.is_object())
-          stages.fail(s, overrides.dump(), "a mapping of scene key paths to values");
-        if (overrides.is_object())
-          for (auto it = overrides.begin(); it != overrides.end(); ++it)
-            c.presets[p][s + ":" + it.key()] = it.value();
-      }
-      if (stages.has("measured"))
-        c.preset_measured[p] = read_measured(stages.object("measured"));
+      c.run = top.string("run");
+      if (c.run.empty() || c.run.find('/') != std::string::npos || c.run[0] == '.')
+        top.fail("run", c.run, "a folder name without '/' that does not start with '.'");
+      c.output_root = top.string_or("output_root", "out");
+      c.preset = top.string("preset", preset_names());
+      c.mpi_ranks = static_cast<int>(top.integer_or("mpi_ranks", 1, 1, 64));
+      c.report = top.boolean_or("report", true);
+      if (top.has("jobs"))
+        c.jobs = static_cast<int>(top.integer("jobs", 1, max_jobs));
       else
-        stages.allow("measured");
-      stages.finish();
+        top.allow("jobs");
+      if (top.has("executor"))
+        c.executor = read_executor_config(top.object("executor"));
+      else
+        top.allow("executor");
     }
-    presets.finish();
 
-    std::vector<std::string> old_sweeps_key, old_law_key;  // deprecated keys, where given
-    c.fe_sweeps_key = renamed_key(top, "fe_sweeps", "fe_studies", old_sweeps_key);
-    if (c.fe_sweeps_key.empty())
-      c.fe_sweeps_key = "fe_sweeps";  // absent: object_array reports the missing key
-    for (auto &s : top.object_array(c.fe_sweeps_key))
-      c.fe_sweeps.push_back(read_sweep(s, c.fe_sweeps));
+    /// `presets`: per preset, the fe and mbd scene overrides and what was measured.
+    void read_presets(StrictObject &top, PipelineConfig &c)
+    {
+      auto presets = top.object("presets");
+      for (const std::string &p : preset_names())
+      {
+        auto stages = presets.object(p);
+        for (const std::string s : {"fe", "mbd"})
+        {
+          const auto &overrides = stages.raw(s);
+          if (!overrides.is_null() && !overrides.is_object())
+            stages.fail(s, overrides.dump(), "a mapping of scene key paths to values");
+          if (overrides.is_object())
+            for (auto it = overrides.begin(); it != overrides.end(); ++it)
+              c.presets[p][s + ":" + it.key()] = it.value();
+        }
+        if (stages.has("measured"))
+          c.preset_measured[p] = read_measured(stages.object("measured"));
+        else
+          stages.allow("measured");
+        stages.finish();
+      }
+      presets.finish();
+    }
 
-    auto fit = top.object("fit");
-    c.fit_weighting = fit.string_or("weighting", "absolute", {"absolute", "relative"});
-    c.family_out_of_range =
-      fit.string_or("family_out_of_range", "error", {"error", "clamp", "extend"});
-    fit.finish();
+    /// `fe_sweeps` (or the deprecated `fe_studies`, whose places join old_sweeps_key).
+    void read_fe_sweeps(StrictObject &top, PipelineConfig &c,
+                        std::vector<std::string> &old_sweeps_key)
+    {
+      c.fe_sweeps_key = renamed_key(top, "fe_sweeps", "fe_studies", old_sweeps_key);
+      if (c.fe_sweeps_key.empty())
+        c.fe_sweeps_key = "fe_sweeps";  // absent: object_array reports the missing key
+      for (auto &s : top.object_array(c.fe_sweeps_key))
+        c.fe_sweeps.push_back(read_sweep(s, c.fe_sweeps));
+    }
 
-    for (auto &m : top.object_array("mbd_runs"))
+    /// `fit`: the weighting and what a law family does outside its values.
+    void read_fit_settings(StrictObject &top, PipelineConfig &c)
+    {
+      auto fit = top.object("fit");
+      c.fit_weighting = fit.string_or("weighting", "absolute", {"absolute", "relative"});
+      c.family_out_of_range =
+        fit.string_or("family_out_of_range", "error", {"error", "clamp", "extend"});
+      fit.finish();
+    }
+
+    /// One entry of `mbd_runs`; its laws name sweeps already read into c.
+    MbdRun read_mbd_run(StrictObject &m, const PipelineConfig &c,
+                        std::vector<std::string> &old_law_key)
     {
       MbdRun r;
       r.name = m.string("name");
@@ -391,11 +402,13 @@ namespace clearjoint::pipeline
         m.fail("band", "true", "false, or exactly one law given by 'sweep' and 'value'",
                "a confidence band varies one fitted law");
       m.finish();
-      c.mbd_runs.push_back(r);
+      return r;
     }
-    if (top.has("impact"))
+
+    /// `impact`: the FE impact study's scene and the one law it is compared with.
+    ImpactStudy read_impact(StrictObject m, const PipelineConfig &c,
+                            std::vector<std::string> &old_law_key)
     {
-      auto m = top.object("impact");
       ImpactStudy impact;
       impact.scene = m.string("scene");
       auto law = m.object("law");
@@ -405,23 +418,27 @@ namespace clearjoint::pipeline
                  "one law: give 'value' too",
                  "the impact comparison uses the law of one geometry");
       m.finish();
-      c.impact = impact;
+      return impact;
     }
-    if (top.has("rolling"))
+
+    /// `rolling`: the FE rolling study's scene and its overrides.
+    RollingStudy read_rolling(StrictObject m)
     {
-      auto m = top.object("rolling");
       RollingStudy rolling;
       rolling.scene = m.string("scene");
       if (rolling.scene.empty())
         m.fail("scene", "", "an FE scene file (clearjoint.fe/1) with study: rolling");
       rolling.overrides = read_overrides(m, "overrides");
       m.finish();
-      c.rolling = rolling;
+      return rolling;
     }
-    // A preset's errors are per FE sweep: each name must be one of them (or `impact`, the
-    // impact study's peak force, when there is one; or `rolling`, when there is one).
-    auto check_measured_name = [&](const std::string &key, const std::string &name,
-                                   const bool fe_only) {
+
+    /// The names a preset's measurements are given for: "a|b|…" of the FE sweeps (and impact,
+    /// rolling when present and not fe_only), and whether `name` is one of them.
+    std::pair<bool, std::string> measured_name_choice(const PipelineConfig &c,
+                                                      const std::string &name,
+                                                      const bool fe_only)
+    {
       std::string names;
       bool found = !fe_only && ((name == "impact" && c.impact.has_value()) ||
                                 (name == "rolling" && c.rolling.has_value()));
@@ -434,39 +451,56 @@ namespace clearjoint::pipeline
         names += "|impact";
       if (c.rolling && !fe_only)
         names += "|rolling";
-      if (!found)
-        throw InputError(path, key, name,
-                         (fe_only ? "one of the quasi-static " + c.fe_sweeps_key + ": "
-                                  : "one of the " + c.fe_sweeps_key + ", impact or rolling: ") +
-                           names);
-    };
-    for (const auto &[preset, measured] : c.preset_measured)
-    {
-      for (const auto &[name, seconds] : measured.case_times)
-        check_measured_name("presets." + preset + ".measured.case_times." + name, name, true);
-      for (const auto &[name, n] : measured.dofs)
-        check_measured_name("presets." + preset + ".measured.dofs." + name, name, false);
+      return {found, names};
     }
-    for (const auto &[preset, measured] : c.preset_measured)
-      for (const auto &[name, error] : measured.error_F_max)
-      {
-        std::string names;
-        bool found = (name == "impact" && c.impact.has_value()) ||
-                     (name == "rolling" && c.rolling.has_value());
-        for (const auto &f : c.fe_sweeps)
-        {
-          names += (names.empty() ? "" : "|") + f.name;
-          found = found || f.name == name;
-        }
-        if (c.impact)
-          names += "|impact";
-        if (c.rolling)
-          names += "|rolling";
-        if (!found)
-          throw InputError(path, "presets." + preset + ".measured.error_F_max." + name, name,
-                           "one of the " + c.fe_sweeps_key + ": " + names);
-      }
 
+    /// A preset's case times, DoFs and errors are per FE sweep: each name must be one of them
+    /// (or `impact`, the impact study's peak force, when there is one; or `rolling`, when
+    /// there is one; case times: FE sweeps only).
+    void check_measured_names(const std::string &path, const PipelineConfig &c)
+    {
+      const auto check = [&](const std::string &key, const std::string &name, const bool fe_only) {
+        const auto [found, names] = measured_name_choice(c, name, fe_only);
+        if (!found)
+          throw InputError(path, key, name,
+                           (fe_only ? "one of the quasi-static " + c.fe_sweeps_key + ": "
+                                    : "one of the " + c.fe_sweeps_key + ", impact or rolling: ") +
+                             names);
+      };
+      for (const auto &[preset, measured] : c.preset_measured)
+      {
+        for (const auto &[name, seconds] : measured.case_times)
+          check("presets." + preset + ".measured.case_times." + name, name, true);
+        for (const auto &[name, n] : measured.dofs)
+          check("presets." + preset + ".measured.dofs." + name, name, false);
+      }
+      for (const auto &[preset, measured] : c.preset_measured)
+        for (const auto &[name, error] : measured.error_F_max)
+          if (const auto [found, names] = measured_name_choice(c, name, false); !found)
+            throw InputError(path, "presets." + preset + ".measured.error_F_max." + name, name,
+                             "one of the " + c.fe_sweeps_key + ": " + names);
+    }
+  } // namespace
+
+  PipelineConfig read_pipeline_config(const std::string &path)
+  {
+    const auto j = read_yaml_file(path);
+    StrictObject top(j, path);
+    top.expect_schema("clearjoint.pipeline/1");
+    PipelineConfig c;
+    c.source = path;
+    read_run_settings(top, c);
+    read_presets(top, c);
+    std::vector<std::string> old_sweeps_key, old_law_key;  // deprecated keys, where given
+    read_fe_sweeps(top, c, old_sweeps_key);
+    read_fit_settings(top, c);
+    for (auto &m : top.object_array("mbd_runs"))
+      c.mbd_runs.push_back(read_mbd_run(m, c, old_law_key));
+    if (top.has("impact"))
+      c.impact = read_impact(top.object("impact"), c, old_law_key);
+    if (top.has("rolling"))
+      c.rolling = read_rolling(top.object("rolling"));
+    check_measured_names(path, c);
     top.finish();
     // Only once the file is read: a file with an error says that, not what to rename.
     warn_deprecated(path, "fe_studies", "fe_sweeps", old_sweeps_key);

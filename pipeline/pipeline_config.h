@@ -102,7 +102,7 @@ namespace clearjoint::pipeline
     std::string note;                        ///< where the numbers come from
     std::optional<double> fe_dofs;           ///< [1] DoFs of the reference FE case
     std::optional<double> fe_case_time;      ///< [s] one reference FE curve
-    std::optional<double> impact_time;       ///< [s] the FE impact sweep (its one task)
+    std::optional<double> impact_time;       ///< [s] the FE impact study (its one task)
     std::optional<double> rolling_time;      ///< [s] the FE rolling study (its one task)
     std::optional<double> pipeline_time;     ///< [s] the whole default pipeline
     std::map<std::string, PresetError> error_F_max;  ///< sweep name, impact, rolling → error

@@ -243,9 +243,9 @@ namespace clearjoint::pipeline
     return fe;
   }
 
-  /// The FE impact sweep (one fe_stage run: the scene's sweep.velocity), and, where the MBD
+  /// The FE impact study (one fe_stage run over the scene's sweep.velocity), and, where the MBD
   /// half is built, its comparison with the law of the same geometry (impact_compare).
-  void PipelineRunner::run_impact(const std::map<std::string, std::map<std::string, Done>> &laws)
+  void PipelineRunner::run_impact(const LawsBySweep &laws)
   {
     const ImpactStudy &impact = *config_.impact;
     const std::string run = run_dir();
@@ -369,10 +369,8 @@ namespace clearjoint::pipeline
     return std::make_unique<LocalExecutor>(jobs);
   }
 
-  nlohmann::json PipelineRunner::run()
+  void PipelineRunner::start_summary()
   {
-    const auto started = std::chrono::steady_clock::now();
-    const std::string run = run_dir();
     summary_ = {{"schema", "clearjoint.pipeline_summary/1"},
                 {"run", config_.run},
                 {"preset", config_.preset},
@@ -381,161 +379,171 @@ namespace clearjoint::pipeline
                 {"tasks", nlohmann::json::array()},
                 {"sweeps", nlohmann::json::array()},
                 {"mbd_runs", nlohmann::json::array()}};
+  }
 
-    // Every FE case's scene is composed and checked before any task runs, so a bad scene key
-    // (a missing mesh, no gmsh for a .geo, a bad geometry) stops the run before any work.
+  void PipelineRunner::check_fe_case_scenes()
+  {
     for (const auto &sweep : config_.fe_sweeps)
       for (const double value : sweep.values)
       {
         std::vector<int> unused;
         fe_case_scene(sweep, value, true, unused);
       }
-    fs::create_directories(run);
-    eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
-                                    preset_time("pipeline_time"), preset_time("impact_time"),
-                                    preset_time("rolling_time"));
+  }
 
-    std::map<std::string, std::map<std::string, Done>> laws;  // sweep → value label → law
-    std::map<std::string, Done> families;
-
-    for (const auto &sweep : config_.fe_sweeps)
+  void PipelineRunner::add_fe_sweep(const FeSweep &sweep, FittedLaws &fitted)
+  {
+    log::info("FE sweep '" + sweep.name + "': " + sweep.parameter + " over " +
+              std::to_string(sweep.values.size()) + " values");
+    // The family stores its parameter in SI (fit_stage --family; mbd_stage evaluates a
+    // family at the tilt in rad): a sweep in deg gets a family in rad.
+    const std::string family_unit = to_si(1.0, sweep.unit).unit;
+    nlohmann::json s = {{"name", sweep.name},
+                        {"parameter", sweep.parameter},
+                        {"unit", sweep.unit},
+                        {"key", sweep.key},
+                        {"scene", fs::absolute(sweep.scene).string()},
+                        {"family_unit", family_unit},
+                        {"cases", nlohmann::json::array()}};
+    std::vector<std::string> family_args = {"--family", sweep.parameter};
+    // The preset's measured error of F for this sweep goes into every law fitted here, so
+    // the MBD band and the report can set it beside the regression interval.
+    const std::vector<std::string> mesh_error_args = discretisation_error_args(sweep.name);
+    std::vector<std::string> family_inputs;
+    std::vector<int> family_deps;
+    for (std::size_t i = 0; i < sweep.values.size(); ++i)
     {
-      log::info("FE sweep '" + sweep.name + "': " + sweep.parameter + " over " +
-                std::to_string(sweep.values.size()) + " values");
-      // The family stores its parameter in SI (fit_stage --family; mbd_stage evaluates a
-      // family at the tilt in rad): a sweep in deg gets a family in rad.
-      const std::string family_unit = to_si(1.0, sweep.unit).unit;
-      nlohmann::json s = {{"name", sweep.name},
-                          {"parameter", sweep.parameter},
-                          {"unit", sweep.unit},
-                          {"key", sweep.key},
-                          {"scene", fs::absolute(sweep.scene).string()},
-                          {"family_unit", family_unit},
-                          {"cases", nlohmann::json::array()}};
-      std::vector<std::string> family_args = {"--family", sweep.parameter};
-      // The preset's measured error of F for this sweep goes into every law fitted here, so
-      // the MBD band and the report can set it beside the regression interval.
-      const std::vector<std::string> mesh_error_args = discretisation_error_args(sweep.name);
-      std::vector<std::string> family_inputs;
-      std::vector<int> family_deps;
-      for (std::size_t i = 0; i < sweep.values.size(); ++i)
-      {
-        const double value = sweep.values[i];
-        const std::string label = sweep.parameter + "=" + value_label(value);
-        std::vector<int> mesh_tasks;  // a .geo's mesh task, if any
-        const nlohmann::json scene_json = fe_case_scene(sweep, value, false, mesh_tasks);
-        const std::string scene =
-          write_scene(scene_json, sweep.scene, "fe_" + sweep.name + "_" + label);
-        Task fe = fe_stage_task(scene, "fe/" + sweep.name + "/" + label, "fe_stage");
-        const int fe_node = add(fe, "fe", mesh_tasks, config_.mpi_ranks, scene_json);
-        attach_figure(fe_node, sweep.name);
-        const std::string csv = fe.output_dir + "/force_penetration.csv";
-
-        Task fit;
-        fit.name = "fit/" + sweep.name + "/" + label;
-        fit.stage = "fit_stage";
-        fit.executable = stage_executable("fit_stage");
-        fit.args = {csv, "--output", "{out}/law.json", "--weighting", config_.fit_weighting};
-        fit.args.insert(fit.args.end(), mesh_error_args.begin(), mesh_error_args.end());
-        if (!options_.plots)
-          fit.args.push_back("--no-plots");
-        fit.input_files = {csv};
-        fit.output_dir = run + "/fit/" + sweep.name + "/" + label;
-        laws[sweep.name][value_label(value)] = {fit.output_dir + "/law.json",
-                                                add(fit, "fit", {fe_node})};
-        const nlohmann::json *mesh = find_key_path(scene_json, "geometry.mesh");
-        s["cases"].push_back({{"value", value},
-                              {"keyword", sweep.keywords[i].empty() ? nlohmann::json()
-                                                                    : nlohmann::json(sweep.keywords[i])},
-                              {"family_value", to_si(value, sweep.unit).value},
-                              {"scene", scene},
-                              {"mesh", mesh ? *mesh : nlohmann::json()},
-                              {"fe_dir", fe.output_dir},
-                              {"law", fit.output_dir + "/law.json"}});
-        family_args.push_back(csv + "=" + value_label(to_si(value, sweep.unit).value));
-        family_inputs.push_back(csv);
-        family_deps.push_back(fe_node);
-      }
-      if (sweep.values.size() >= 2)
-      {
-        Task fam;
-        fam.name = "fit/" + sweep.name + "/family";
-        fam.stage = "fit_stage";
-        fam.executable = stage_executable("fit_stage");
-        fam.args = family_args;
-        for (const auto &a : std::vector<std::string>{
-               "--parameter-unit", family_unit, "--family-out-of-range",
-               config_.family_out_of_range, "--output", "{out}/family.json", "--weighting",
-               config_.fit_weighting})
-          fam.args.push_back(a);
-        fam.args.insert(fam.args.end(), mesh_error_args.begin(), mesh_error_args.end());
-        if (!options_.plots)
-          fam.args.push_back("--no-plots");
-        fam.input_files = family_inputs;
-        fam.output_dir = run + "/fit/" + sweep.name + "/family";
-        families[sweep.name] = {fam.output_dir + "/family.json", add(fam, "fit", family_deps)};
-        s["family"] = fam.output_dir + "/family.json";
-      }
-      summary_["sweeps"].push_back(s);
+      const FeCase c = add_fe_case(sweep, i, mesh_error_args, fitted);
+      s["cases"].push_back(c.summary);
+      family_args.push_back(c.csv + "=" + value_label(to_si(sweep.values[i], sweep.unit).value));
+      family_inputs.push_back(c.csv);
+      family_deps.push_back(c.fe_node);
     }
-
-    if (config_.impact)
-      run_impact(laws);
-
-    for (const auto &m : config_.mbd_runs)
+    if (sweep.values.size() >= 2)
     {
-      Overrides overrides = m.overrides;
-      Task mbd;
-      std::vector<int> after;
-      for (const auto &choice : m.laws)
-      {
-        std::string law;
-        if (choice.file)
-        {
-          law = fs::absolute(*choice.file).string();
-          mbd.input_files.push_back(law);
-        }
-        else
-        {
-          const Done &f = choice.value ? laws.at(*choice.sweep).at(value_label(*choice.value))
-                                       : families.at(*choice.sweep);
-          law = f.path;
-          after.push_back(f.node);
-        }
-        overrides.emplace_back(choice.key, law);
-      }
-      const nlohmann::json scene_json = compose_scene(config_, m.scene, "mbd", overrides);
-      const std::string scene = write_scene(scene_json, m.scene, "mbd_" + m.name);
-      mbd.name = "mbd/" + m.name;
-      mbd.stage = "mbd_stage";
-      mbd.executable = stage_executable("mbd_stage");
-      mbd.args = {scene, "--output", "{out}"};
-      if (!options_.plots)
-        mbd.args.push_back("--no-plots");
-      mbd.input_files.push_back(scene);
-      mbd.output_dir = run + "/mbd/" + m.name;
-      add(mbd, "mbd", after, 1, scene_json);
-      nlohmann::json entry = {{"name", m.name}, {"dir", mbd.output_dir}};
-      if (m.band)
-      {
-        // The same scene with the law's confidence-band variants: one MBD task each, added
-        // once the fitted law exists (their number depends on what the law holds).
-        const LawChoice &choice = m.laws.front();
-        const Done &fit = laws.at(*choice.sweep).at(value_label(*choice.value));
-        entry["band"] = nlohmann::json::array();
-        graph_.node(fit.node).on_done.push_back(
-          [this, m, index = summary_["mbd_runs"].size(), mbd, law = fit.path,
-           node = fit.node](TaskGraph &, const TaskResult &) {
-            add_band_tasks(m, index, mbd, law, node);
-          });
-      }
-      summary_["mbd_runs"].push_back(entry);
+      const Done family =
+        add_family_fit(sweep, family_unit, family_args, mesh_error_args, family_inputs,
+                       family_deps);
+      fitted.families[sweep.name] = family;
+      s["family"] = family.path;
     }
+    summary_["sweeps"].push_back(s);
+  }
 
-    // Last: nothing depends on it, and its failure does not stop the rest (run_rolling).
-    if (config_.rolling)
-      run_rolling();
+  PipelineRunner::FeCase PipelineRunner::add_fe_case(const FeSweep &sweep, const std::size_t i,
+                                                     const std::vector<std::string> &mesh_error_args,
+                                                     FittedLaws &fitted)
+  {
+    const std::string run = run_dir();
+    const double value = sweep.values[i];
+    const std::string label = sweep.parameter + "=" + value_label(value);
+    std::vector<int> mesh_tasks;  // a .geo's mesh task, if any
+    const nlohmann::json scene_json = fe_case_scene(sweep, value, false, mesh_tasks);
+    const std::string scene = write_scene(scene_json, sweep.scene, "fe_" + sweep.name + "_" + label);
+    Task fe = fe_stage_task(scene, "fe/" + sweep.name + "/" + label, "fe_stage");
+    FeCase c;
+    c.fe_node = add(fe, "fe", mesh_tasks, config_.mpi_ranks, scene_json);
+    attach_figure(c.fe_node, sweep.name);
+    c.csv = fe.output_dir + "/force_penetration.csv";
 
+    Task fit;
+    fit.name = "fit/" + sweep.name + "/" + label;
+    fit.stage = "fit_stage";
+    fit.executable = stage_executable("fit_stage");
+    fit.args = {c.csv, "--output", "{out}/law.json", "--weighting", config_.fit_weighting};
+    fit.args.insert(fit.args.end(), mesh_error_args.begin(), mesh_error_args.end());
+    if (!options_.plots)
+      fit.args.push_back("--no-plots");
+    fit.input_files = {c.csv};
+    fit.output_dir = run + "/fit/" + sweep.name + "/" + label;
+    fitted.laws[sweep.name][value_label(value)] = {fit.output_dir + "/law.json",
+                                                   add(fit, "fit", {c.fe_node})};
+    const nlohmann::json *mesh = find_key_path(scene_json, "geometry.mesh");
+    c.summary = {{"value", value},
+                 {"keyword", sweep.keywords[i].empty() ? nlohmann::json()
+                                                       : nlohmann::json(sweep.keywords[i])},
+                 {"family_value", to_si(value, sweep.unit).value},
+                 {"scene", scene},
+                 {"mesh", mesh ? *mesh : nlohmann::json()},
+                 {"fe_dir", fe.output_dir},
+                 {"law", fit.output_dir + "/law.json"}};
+    return c;
+  }
+
+  PipelineRunner::Done PipelineRunner::add_family_fit(
+    const FeSweep &sweep, const std::string &family_unit,
+    const std::vector<std::string> &family_args, const std::vector<std::string> &mesh_error_args,
+    const std::vector<std::string> &family_inputs, const std::vector<int> &family_deps)
+  {
+    Task fam;
+    fam.name = "fit/" + sweep.name + "/family";
+    fam.stage = "fit_stage";
+    fam.executable = stage_executable("fit_stage");
+    fam.args = family_args;
+    for (const auto &a : std::vector<std::string>{
+           "--parameter-unit", family_unit, "--family-out-of-range", config_.family_out_of_range,
+           "--output", "{out}/family.json", "--weighting", config_.fit_weighting})
+      fam.args.push_back(a);
+    fam.args.insert(fam.args.end(), mesh_error_args.begin(), mesh_error_args.end());
+    if (!options_.plots)
+      fam.args.push_back("--no-plots");
+    fam.input_files = family_inputs;
+    fam.output_dir = run_dir() + "/fit/" + sweep.name + "/family";
+    return {fam.output_dir + "/family.json", add(fam, "fit", family_deps)};
+  }
+
+  void PipelineRunner::add_mbd_run(const MbdRun &m, const FittedLaws &fitted)
+  {
+    Overrides overrides = m.overrides;
+    Task mbd;
+    std::vector<int> after;
+    for (const auto &choice : m.laws)
+    {
+      std::string law;
+      if (choice.file)
+      {
+        law = fs::absolute(*choice.file).string();
+        mbd.input_files.push_back(law);
+      }
+      else
+      {
+        const Done &f = choice.value ? fitted.laws.at(*choice.sweep).at(value_label(*choice.value))
+                                     : fitted.families.at(*choice.sweep);
+        law = f.path;
+        after.push_back(f.node);
+      }
+      overrides.emplace_back(choice.key, law);
+    }
+    const nlohmann::json scene_json = compose_scene(config_, m.scene, "mbd", overrides);
+    const std::string scene = write_scene(scene_json, m.scene, "mbd_" + m.name);
+    mbd.name = "mbd/" + m.name;
+    mbd.stage = "mbd_stage";
+    mbd.executable = stage_executable("mbd_stage");
+    mbd.args = {scene, "--output", "{out}"};
+    if (!options_.plots)
+      mbd.args.push_back("--no-plots");
+    mbd.input_files.push_back(scene);
+    mbd.output_dir = run_dir() + "/mbd/" + m.name;
+    add(mbd, "mbd", after, 1, scene_json);
+    nlohmann::json entry = {{"name", m.name}, {"dir", mbd.output_dir}};
+    if (m.band)
+    {
+      // The same scene with the law's confidence-band variants: one MBD task each, added
+      // once the fitted law exists (their number depends on what the law holds).
+      const LawChoice &choice = m.laws.front();
+      const Done &fit = fitted.laws.at(*choice.sweep).at(value_label(*choice.value));
+      entry["band"] = nlohmann::json::array();
+      graph_.node(fit.node).on_done.push_back(
+        [this, m, index = summary_["mbd_runs"].size(), mbd, law = fit.path,
+         node = fit.node](TaskGraph &, const TaskResult &) {
+          add_band_tasks(m, index, mbd, law, node);
+        });
+    }
+    summary_["mbd_runs"].push_back(entry);
+  }
+
+  void PipelineRunner::execute_tasks()
+  {
     const std::unique_ptr<Executor> executor = make_executor();
     eta_->set_concurrency(executor->capacity(),
                           {{"fe_stage", executor->slots_for(config_.mpi_ranks)},
@@ -550,6 +558,33 @@ namespace clearjoint::pipeline
                         });
     scheduler.run();
     record_tasks(scheduler);
+  }
+
+  nlohmann::json PipelineRunner::run()
+  {
+    const auto started = std::chrono::steady_clock::now();
+    const std::string run = run_dir();
+    start_summary();
+    // Every FE case's scene is composed and checked before any task runs, so a bad scene key
+    // (a missing mesh, no gmsh for a .geo, a bad geometry) stops the run before any work.
+    check_fe_case_scenes();
+    fs::create_directories(run);
+    eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
+                                    preset_time("pipeline_time"), preset_time("impact_time"),
+                                    preset_time("rolling_time"));
+
+    FittedLaws fitted;
+    for (const auto &sweep : config_.fe_sweeps)
+      add_fe_sweep(sweep, fitted);
+    if (config_.impact)
+      run_impact(fitted.laws);
+    for (const auto &m : config_.mbd_runs)
+      add_mbd_run(m, fitted);
+    // Last: nothing depends on it, and its failure does not stop the rest (run_rolling).
+    if (config_.rolling)
+      run_rolling();
+
+    execute_tasks();
     // the run's tasks and their setup (not the report, which follows): beside pipeline_time
     summary_["wall_time"] = {
       {"value", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},

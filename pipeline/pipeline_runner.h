@@ -48,6 +48,42 @@ namespace clearjoint::pipeline
       std::string path;  ///< the result file
       int node;          ///< the task behind it (graph_)
     };
+    /// Sweep name → value label → fitted law; sweep name → law family.
+    using LawsBySweep = std::map<std::string, std::map<std::string, Done>>;
+    struct FittedLaws
+    {
+      LawsBySweep laws;
+      std::map<std::string, Done> families;
+    };
+    /// One FE case as the sweep's family and summary need it.
+    struct FeCase
+    {
+      int fe_node;           ///< its fe_stage task
+      std::string csv;       ///< the force–penetration curve it writes
+      nlohmann::json summary;  ///< its entry in the summary's sweep
+    };
+
+    // The steps of run(), in order.
+    /// The summary's header: run, preset, presets, pipeline file, empty lists.
+    void start_summary();
+    /// Composes (dry run) every FE case's scene, so a bad one stops the run before any work.
+    void check_fe_case_scenes();
+    /// One FE sweep: a case and its fit per value, and a law family over >= 2 values.
+    void add_fe_sweep(const FeSweep &sweep, FittedLaws &fitted);
+    /// Value `i` of the sweep: its scene, fe_stage task and the fit of its curve.
+    FeCase add_fe_case(const FeSweep &sweep, std::size_t i,
+                       const std::vector<std::string> &mesh_error_args, FittedLaws &fitted);
+    /// fit_stage --family over the sweep's curves; returns the family file and its task.
+    Done add_family_fit(const FeSweep &sweep, const std::string &family_unit,
+                        const std::vector<std::string> &family_args,
+                        const std::vector<std::string> &mesh_error_args,
+                        const std::vector<std::string> &family_inputs,
+                        const std::vector<int> &family_deps);
+    /// One MBD run: its scene with the chosen laws, its task, and its band tasks once the
+    /// fitted law exists (m.band).
+    void add_mbd_run(const MbdRun &m, const FittedLaws &fitted);
+    /// Runs the graph on the executor asked for, then records the tasks in the summary.
+    void execute_tasks();
 
     /// The scene of one FE case (base + preset + sweep overrides + the swept value), with a
     /// .geo in geometry.mesh replaced by the mesh its task writes (dry_run: checked only).
@@ -57,8 +93,8 @@ namespace clearjoint::pipeline
     /// the scene names join its inputs when it starts (add).
     Task fe_stage_task(const std::string &scene, const std::string &name,
                        const std::string &stage) const;
-    /// The FE impact sweep and its comparison with the MBD law (config_.impact).
-    void run_impact(const std::map<std::string, std::map<std::string, Done>> &laws);
+    /// The FE impact study and its comparison with the MBD law (config_.impact).
+    void run_impact(const LawsBySweep &laws);
     /// The FE rolling study (config_.rolling): one fe_stage task, fe/rolling. It is a first
     /// step (docs/fe.md): a failure of it is recorded in the summary (status, message, where
     /// its partial output is) and the run goes on; run_pipeline then exits 2 after the report.

@@ -29,7 +29,7 @@ namespace clearjoint::pipeline
   public:
     /// planned: number of tasks per stage ("fe_stage", "fit_stage", "mbd_stage", "mesh").
     /// fe_case_time, pipeline_time: the preset's measured times [s], when measured.
-    /// impact_time: the FE impact sweep's measured time [s] (stage "fe_impact"), if measured;
+    /// impact_time: the FE impact study's measured time [s] (stage "fe_impact"), if measured;
     /// rolling_time: the FE rolling study's [s] (stage "fe_rolling"), if measured.
     RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
            std::optional<double> pipeline_time, std::optional<double> impact_time = std::nullopt,

@@ -33,7 +33,7 @@ def main(argv):
     ax.plot([x * 1e3 for x in xs], [K * x ** n for x in xs], "-",
             label=f"fit F = {K_mm:.6g}·δ^{n:.4f}  (δ in mm, F in N)")
     ax.set_ylabel("contact force F [N]")
-    # run_pipeline's law sits in fit/<study>/<p>=<v>(.partial)/law.json: name the case
+    # run_pipeline's law sits in fit/<sweep>/<p>=<v>(.partial)/law.json: name the case
     from plotting.fe import folder_label
     name = folder_label(os.path.dirname(os.path.abspath(a.law)))
     # fit_stage plots its law before putting it in place: LAW.tmp.<pid>.json is LAW.json
