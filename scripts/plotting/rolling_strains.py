@@ -222,6 +222,9 @@ def read_strain_map(fe_dir):
                         "extra.scene.geometry R_B and c_r"}
     R_B, c_r, t_B = geo
     grid = fields.read_grid(path)
+    if grid is None or grid.GetNumberOfPoints() == 0:
+        return {"note": f"{os.path.basename(path)} could not be read (no points; VTK's message "
+                        "is on stderr)"}
     a = fields._arrays(grid)
     if _principal(a) is None:
         return {"note": f"{os.path.basename(path)} has no principal_strain_1/2/3 (nor a strain "
