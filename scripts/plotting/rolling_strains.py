@@ -393,11 +393,13 @@ def draw(m, out_png, title=""):
     for name, colour in (("bearing", "0.8"), ("journal", "0.9")):
         c = cuts.get(name)
         if c is not None:
+            # edges in the face colour: no seams between the triangles
             ax.add_collection(PolyCollection(c["xy"][c["tri"]] * mm, facecolors=colour,
-                                             edgecolors="none"))
+                                             edgecolors=colour, linewidths=0.3))
             if c.get("plastic") is not None and np.any(c["plastic"]):
                 ax.add_collection(PolyCollection(c["xy"][c["tri"][c["plastic"]]] * mm,
-                                                 facecolors="#f5b971", edgecolors="none"))
+                                                 facecolors="#f5b971", edgecolors="#f5b971",
+                                                 linewidths=0.3))
     outlines(ax)
     contact(ax)
     sp = m["start_points"]
