@@ -331,7 +331,6 @@ def _strain_map(run, base, warnings):
         return (f"<p class='warn'>No principal-strain map: the fields could not be drawn "
                 f"({esc(type(e).__name__)}: {esc(str(e))}).</p>")
     ang = m["angles"]
-    rows = rolling_strains.summary_rows(m)
     when = (f"at t = {ang['time']:.4g} s (δ = {ang['delta'] * 1e3:.4g} mm), the bearing turned by "
             f"φ = {math.degrees(ang['phi']):.1f}° and the journal by γ = "
             f"{math.degrees(ang['gamma']):.1f}° since the start" if ang else

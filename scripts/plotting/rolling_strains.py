@@ -156,10 +156,9 @@ def _cell_bodies(grid, R_B):
     """Per cell: 0 bearing, 1 journal (material id when written, else the centre's radius)."""
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
-    for data in (grid.GetCellData(),):
-        arr = data.GetArray("material_id")
-        if arr is not None:
-            return np.rint(vtk_to_numpy(arr)).astype(int).clip(0, 1), "material_id"
+    arr = grid.GetCellData().GetArray("material_id")
+    if arr is not None:
+        return np.rint(vtk_to_numpy(arr)).astype(int).clip(0, 1), "material_id"
     centres = vtk.vtkCellCenters()
     centres.SetInputData(grid)
     centres.Update()
@@ -287,7 +286,7 @@ def read_strain_map(fe_dir):
             if ep is not None:
                 plastic = np.min(ep[bt], axis=1) > 0.0
                 info["cut"]["plastic_outline"] = _move_segments(
-                    boundary_edges(bp[:, :2], bt[plastic], tol), bp, X, xy, tol)
+                    boundary_edges(bp[:, :2], bt[plastic], tol), bp, xy, tol)
                 info["cut"]["plastic"] = plastic
                 info["mid_plane_plastic_cells"] = int(np.sum(plastic))
             active = bca.get("contact_active")
@@ -329,7 +328,7 @@ def _where(p, body, c_r):
     return [math.hypot(p[0], p[1] + (c_r if body == 1 else 0.0)), float(p[2])]
 
 
-def _move_segments(segments, ref_pts, X, xy, tol):
+def _move_segments(segments, ref_pts, xy, tol):
     """Segments found on reference points moved as the points: each end's fixed-frame position
     is that of the cut point with the same rounded reference coordinates."""
     key = {tuple(k): i for i, k in enumerate(np.round(ref_pts[:, :2] / tol).astype(np.int64))}
