@@ -289,6 +289,88 @@ def _profile_figure(run):
                             "on the journal's surface — the counterpart of the paper's Fig. 12")
 
 
+# What the paper's Fig. 11 shows (§3.4), for the caption of ours.
+PAPER_FIG_11 = ("The paper's Fig. 11a shows the principal strains after 0.250 s, at the full push "
+                "of 1 mm with the bearing half a turn on, in the bearing and the journal (the "
+                "journal's body hidden behind its contact surface), with a strain field in the "
+                "bearing made asymmetric by the tangential strains of rolling; Fig. 11b labels "
+                "the interface elements with their principal strains. Its text gives no values.")
+
+
+def _strain_cell(value, where=None, sign=True):
+    if value is None:
+        return "—"
+    text = f"{value:+.3g}" if sign else f"{value:.3g}"
+    if where:
+        text += f" <small>(r = {where[0] * 1e3:.2f} mm from its axis, z = {where[1] * 1e3:.2f} mm)</small>"
+    return text
+
+
+def _strain_map(run, base, warnings):
+    """The principal-strain map of the bore and the journal at the end (Fig. 11) from the run's
+    last fields (scripts/plotting/rolling_strains.py), with the extremes per body; a note when
+    the run wrote no fields or they cannot be drawn."""
+    try:
+        import vtk  # noqa: F401
+        from plotting import rolling_strains
+    except ImportError:
+        warnings.add("FE rolling study", "no principal-strain map (Fig. 11): VTK's Python "
+                     "bindings are missing (Debian package python3-vtk9)", "rolling")
+        return ("<p>No principal-strain map: VTK's Python bindings are missing "
+                "(python3-vtk9).</p>")
+    try:
+        m = rolling_strains.read_strain_map(run.folder)
+        if "note" in m:
+            return f"<p>No principal-strain map: {esc(m['note'])}.</p>"
+        png = os.path.join(base, "pictures", "rolling_strains.png")
+        os.makedirs(os.path.dirname(png), exist_ok=True)
+        rolling_strains.draw(m, png)
+    except Exception as e:  # a damaged VTU must not stop the report
+        warnings.add("FE rolling study", "the principal-strain map (Fig. 11) could not be drawn: " +
+                     esc(f"{type(e).__name__}: {e}"), "rolling")
+        return (f"<p class='warn'>No principal-strain map: the fields could not be drawn "
+                f"({esc(type(e).__name__)}: {esc(str(e))}).</p>")
+    ang = m["angles"]
+    when = (f"at t = {ang['time']:.4g} s (δ = {ang['delta'] * 1e3:.4g} mm), the bearing turned by "
+            f"φ = {math.degrees(ang['phi']):.1f}° and the journal by γ = "
+            f"{math.degrees(ang['gamma']):.1f}° since the start" if ang else
+            f"at the last field output (t = {m['field_time']:.4g} s); {esc(m['angles_note'])}")
+    numbers = "; ".join(
+        f"{name}: largest principal strain {_strain_cell(b.get('near_contact_max_tension'))}, "
+        f"smallest {_strain_cell(b.get('near_contact_max_compression'))} near the contact"
+        for name, b in m["bodies"].items())
+    caption = (f"Rolling: the principal strains at the end — {PAPER_FIG_11} Ours: {when}, cut at "
+               f"the axial mid-plane z = {m['mid_plane_z'] * 1e3:g} mm (the model's symmetry "
+               "plane), each body placed where it is in the fixed frame (fe_stage computes each "
+               "in its own turning frame). (a) The section: the plastic zone (cells where a point "
+               "has yielded, ε_p > 0) filled and outlined, the bore points in contact, and the "
+               "two material points that touched at t = 0, turned on with their bodies; (b) the "
+               "largest and (c) the smallest principal strain in the window around the contact "
+               f"(red tension, blue compression). {numbers}." +
+               (f" This run pushes {ang['delta'] * 1e3:.3g} mm, not the paper's 1 mm: the "
+                "pattern compares, the size of the strains does not." if ang and ang["delta"] < 0.9e-3
+                else ""))
+    table = ["<table><tr><th>body</th><th>largest principal strain (tension), whole body [1]</th>"
+             "<th>smallest principal strain (compression), whole body [1]</th>"
+             "<th>near the contact, mid-plane: largest / smallest [1]</th>"
+             "<th>largest equivalent plastic strain [1]</th></tr>"]
+    for name, b in m["bodies"].items():
+        table.append(f"<tr><td>{esc(name)}</td>"
+                     f"<td>{_strain_cell(b['max_tension'], b['max_tension_at'])}</td>"
+                     f"<td>{_strain_cell(b['max_compression'], b['max_compression_at'])}</td>"
+                     f"<td>{_strain_cell(b.get('near_contact_max_tension'))} / "
+                     f"{_strain_cell(b.get('near_contact_max_compression'))}</td>"
+                     f"<td>{_strain_cell(b.get('max_plastic_strain'), sign=False)}</td></tr>")
+    table.append("</table>")
+    rigid = "" if "journal" in m["bodies"] else (
+        "<p>The journal is rigid in this run: it has no strain; its outline is drawn.</p>")
+    return (image_file_html(png, caption) + "".join(table) + rigid +
+            "<p>The whole-body values are those of the output points (each Q2 cell written as "
+            "2×2×2 sub-cells, the strain at their corners); where they lie far from the contact "
+            "(the columns give each point's distance from its body's axis), they are not the "
+            "contact's. From " + rel_link(m["file"], base) + ".</p>")
+
+
 def _final_table(run):
     h, s = run.history, run.summary
     rate = value_of(get(s, "rolling_rate"))
@@ -487,6 +569,8 @@ def rolling_section(rolling, base, warnings):
             parts.append(f"<p>Largest equivalent plastic strain on the profile: {max(pe):.4g} [1].</p>")
     else:
         parts.append("<p>No strain profile (rolling_strain_profile.csv missing or empty).</p>")
+    parts.append("<h3>Principal strains in the bore and the journal at the end (Fig. 11)</h3>")
+    parts.append(_strain_map(run, base, warnings))
     parts.append(_slip_stages(run))
     files = [f for f in ("rolling_history.csv", "rolling_strain_profile.csv", "manifest.json")
              if os.path.exists(os.path.join(run.folder, f))]

@@ -8,6 +8,10 @@
         forces; the energy balance (drive and push work against stored elastic energy,
         plastic and friction dissipation, the journal's kinetic energy); and the radial and
         tangential strain profiles across the contact zone at the end (Fig. 12).
+
+The principal strains in the bore and the journal at the end (Fig. 11) come from the case's VTU
+fields: scripts/plot.py rolling_strains CASE_DIR --output OUT.png (plotting/rolling_strains.py);
+the report draws it in its rolling section.
 """
 import json
 import os

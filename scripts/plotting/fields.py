@@ -25,8 +25,10 @@ import xml.etree.ElementTree as ET
 DEFAULT_YIELD_STRESS = 168.2e6  # [Pa]
 
 
-def last_field_file(fe_dir):
-    """The .pvtu/.vtu of the last increment named in fields/solution.pvd, or None."""
+def last_field_entry(fe_dir):
+    """(timestep, path) of the last increment named in fields/solution.pvd, or None when there
+    is no .pvd or its last file is missing. The timestep is what fe_stage wrote: the push δ [m]
+    in the quasi-static studies, the time t [s] in the rolling and impact studies."""
     pvd = os.path.join(fe_dir, "fields", "solution.pvd")
     if not os.path.exists(pvd):
         return None
@@ -39,7 +41,13 @@ def last_field_file(fe_dir):
     if best is None:
         return None
     path = best[1] if os.path.isabs(best[1]) else os.path.join(os.path.dirname(pvd), best[1])
-    return path if os.path.exists(path) else None
+    return (best[0], path) if os.path.exists(path) else None
+
+
+def last_field_file(fe_dir):
+    """The .pvtu/.vtu of the last increment named in fields/solution.pvd, or None."""
+    entry = last_field_entry(fe_dir)
+    return entry[1] if entry else None
 
 
 def read_grid(path):

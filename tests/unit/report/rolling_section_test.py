@@ -18,6 +18,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "scripts"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import matplotlib  # noqa: E402
 matplotlib.use("Agg")
@@ -25,6 +26,7 @@ matplotlib.use("Agg")
 from plotting import report  # noqa: E402
 from plotting._report_common import Warnings  # noqa: E402
 from plotting._report_rolling import rolling_headline, rolling_section  # noqa: E402
+import rolling_fields_vtu  # noqa: E402
 
 # fe_stage/rolling_output.cc, rolling_history_table()
 COLUMNS = [
@@ -156,6 +158,8 @@ def main():
                      "rolling_history.csv", "rolling_strain_profile.csv"):
             expect(part in html, f"clean run: the section shows {part!r}")
         expect("work_drive_torque" not in html, "no work_drive_torque row when the column is absent")
+        expect("Fig. 11)</h3>" in html and "No principal-strain map: the run wrote no fields" in html,
+               "no fields: the Fig. 11 part is a note")
         expect(not w.items, f"a clean run has no warnings: {warning_texts(w)}")
         head = rolling_headline({"fe_dir": clean, "status": "complete"})
         for part in ("href='#rolling'", "12346 N", "13.1 rad/s", "99.1 % of rolling without slip",
@@ -241,6 +245,43 @@ def main():
         expect("on the journal's surface" in html, "the profile's caption names the journal's surface")
         html, w = section({"fe_dir": clean, "status": "complete"}, d)
         expect("the rigid journal" in html, "the rigid journal is named")
+
+        # Fields at the end (tiny, tests/unit/report/rolling_fields_vtu.py): the principal-strain
+        # map (Fig. 11) is drawn, with each body's extremes and the paper's figure beside it.
+        with_fields = write_run(os.path.join(d, "fields", "fe", "rolling"), journal="core")
+        rolling_fields_vtu.write_fields(with_fields, 0.25)
+        man_path = os.path.join(with_fields, "manifest.json")
+        man = json.load(open(man_path))
+        man["extra"]["scene"]["geometry"] = {"R_B": rolling_fields_vtu.R_B, "c_r": rolling_fields_vtu.C_R,
+                                             "t_B": rolling_fields_vtu.T_B}
+        json.dump(man, open(man_path, "w"))
+        base = os.path.join(d, "fields")
+        html, w = section({"fe_dir": with_fields, "status": "complete"}, base)
+        expect(html.count("<img") == 4, f"four figures with fields (Fig. 10, energy, Fig. 12, Fig. 11): "
+                                        f"{html.count('<img')}")
+        fig11 = html[html.find("Fig. 11)</h3>"):html.find("<h3>Slip stages")]
+        for part in ("The paper&#x27;s Fig. 11a shows the principal strains after 0.250 s",
+                     "φ = 179.9°",                      # 12.56 rad/s × 0.25 s
+                     "mid-plane z = 0 mm",
+                     "bearing: largest principal strain +0.001, smallest -0.002 near the contact",
+                     "journal: largest principal strain +0.003, smallest -0.004 near the contact",
+                     "<td>bearing</td><td>+0.001 <small>(r = 10.00 mm from its axis",
+                     "<td>journal</td><td>+0.003",
+                     "not the paper&#x27;s 1 mm",       # this run pushes 0.05 mm
+                     "solution_0001.vtu"):
+            expect(part in fig11, f"fields: the Fig. 11 part shows {part!r}")
+        expect(os.path.exists(os.path.join(base, "pictures", "rolling_strains.png")),
+               "the picture is written beside the report")
+        expect(not w.items, f"fields: no warnings: {warning_texts(w)}")
+        # ... fields that cannot be read: a note, not a crash
+        with open(os.path.join(with_fields, "fields", "solution_0001.vtu"), "w") as f:
+            f.write("not a VTU file")
+        import vtk
+        vtk.vtkObject.GlobalWarningDisplayOff()  # the reader's error, expected here
+        html, w = section({"fe_dir": with_fields, "status": "complete"}, base)
+        vtk.vtkObject.GlobalWarningDisplayOn()
+        expect("No principal-strain map: solution_0001.vtu could not be read" in html and
+               html.count("<img") == 3, "unreadable fields: a note instead of the picture")
 
         # The whole report with a rolling study and nothing else.
         summary = {"schema": "clearjoint.pipeline_summary/1", "run": "r", "preset": "fast",
