@@ -233,6 +233,83 @@ namespace clearjoint::fe::detail
       }
     };
 
+    /// The paper's Eqs. 4–8 on N_B at X0 = (0, −R_B, 0) and N_J, the journal point under it at
+    /// t = 0, from their displacements (the bore's in its frame, the journal's in its own; 0:
+    /// rigid): the chord angles, unwrapped past half a turn by continuity with the last step
+    /// (the sense of the turn from the point's start and end radii about its own centre), and
+    /// the rates φ/t, γ/t.
+    void set_paper_angles(RollingStepRecord &rec, const Geometry &G, const rolling::Motion &motion,
+                          const Vec3 &u_tracked, const Vec3 &u_journal,
+                          const RollingStepRecord *previous)
+    {
+      const Vec3 X0{0.0, -G.R_B, 0.0};
+      const Vec3 xB = rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0}, rec.phi);
+      rec.phi_paper = rolling::unwrap_paper_angle(
+        rolling::paper_angle({xB[0] - X0[0], xB[1] - X0[1], 0.0}, G.R_B),
+        X0[0] * xB[1] - X0[1] * xB[0] >= 0.0, previous ? previous->phi_paper : 0.0);
+      const Vec3 c0 = motion.centre_fixed(0.0), c1 = motion.centre_fixed(rec.time);
+      const Vec3 pJ = rolling::rotate_z({u_journal[0], -G.R_J() + u_journal[1], 0.0}, rec.gamma);
+      rec.gamma_paper =
+        rolling::unwrap_paper_angle(rolling::paper_angle({c1[0] + pJ[0] - c0[0],
+                                                          c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0},
+                                                         G.R_J()),
+                                    G.R_J() * pJ[0] >= 0.0,  // (0, −R_J) × pJ
+                                    previous ? previous->gamma_paper : 0.0);
+      rec.phi_rate_paper = rec.phi_paper / rec.time;
+      rec.gamma_rate_paper = rec.gamma_paper / rec.time;
+    }
+
+    /// The step as an increment of the force–penetration record (force_penetration.csv).
+    IncrementRecord increment_of(const RollingStepRecord &rec, IncrementRecord inc)
+    {
+      inc.delta = rec.delta;
+      inc.force = inc.force_support = inc.force_load = rec.force_normal;
+      inc.n_active = rec.n_active;
+      inc.n_slip = rec.n_slip;
+      inc.contact_iterations = rec.contact_iterations;
+      inc.linear_iterations = rec.linear_iterations;
+      inc.wall_time = rec.wall_time;
+      return inc;
+    }
+
+    /// The run's first line: its size and the scene's motion.
+    void log_rolling_start(const FeScene &scene, const RunResult &result,
+                           const ContactProblem &contact, const double t_end, const double inertia)
+    {
+      const auto &R = scene.rolling;
+      log::info("fe_stage: rolling study, " + std::to_string(result.n_dofs) + " DoFs, " +
+                std::to_string(result.n_cells) + " cells, " +
+                std::to_string(std::count_if(contact.nodes().begin(), contact.nodes().end(),
+                                             [](const auto &c) { return c.candidate; })) +
+                " contact candidate nodes (rank 0); omega_B " + format_value(R.omega_B) +
+                " rad/s, delta_max " + format_value(scene.loading.delta_max) + " m at " +
+                format_value(R.ramp_time) + " s, " + std::to_string(R.n_steps) + " steps to " +
+                format_value(t_end) + " s, journal spin inertia " + format_value(inertia) +
+                " kg m^2, mu " + format_value(scene.contact.mu) + ", setup " +
+                log::format_duration(result.setup_time));
+    }
+
+    /// How the steps were solved: by the coupled iteration or the root finder, and the
+    /// deformable journal's searches.
+    void log_solver_summary(const FeScene &scene, const RunResult &result,
+                            const SpinStepper &stepper, const bool deformable_journal,
+                            const unsigned int n_sliding_rebuilds)
+    {
+      if (scene.rolling.spin_solver == Rolling::SpinSolver::coupled)
+        log::info(
+          "fe_stage: the journal's spin: " +
+          std::to_string(std::count_if(result.rolling_steps.begin(), result.rolling_steps.end(),
+                                       [](const auto &r) { return r.spin_coupled; })) +
+          " of " + std::to_string(result.rolling_steps.size()) +
+          " steps by the coupled iteration, " + std::to_string(stepper.n_coupled_fallbacks()) +
+          " attempts by the root finder after it failed");
+      if (deformable_journal)
+        log::info("fe_stage: the deformable journal's coupling: " +
+                  std::to_string(stepper.n_searches()) + " mortar searches, " +
+                  std::to_string(n_sliding_rebuilds) + " of them with a new sparsity pattern, " +
+                  log::format_duration(stepper.search_time()) + " in all");
+    }
+
     /// The progress line of a converged step, with the time left [s] at this step's pace.
     void log_step(const RollingStepRecord &rec, const double seconds_left)
     {
@@ -299,16 +376,7 @@ namespace clearjoint::fe::detail
     S.rolling_rate = motion.rolling_rate(t_end);
     S.time_step = dt_nominal;
     if (rank_ == 0)
-      log::info("fe_stage: rolling study, " + std::to_string(result.n_dofs) + " DoFs, " +
-                std::to_string(result.n_cells) + " cells, " +
-                std::to_string(std::count_if(contact_.nodes().begin(), contact_.nodes().end(),
-                                             [](const auto &c) { return c.candidate; })) +
-                " contact candidate nodes (rank 0); omega_B " + format_value(R.omega_B) +
-                " rad/s, delta_max " + format_value(L.delta_max) + " m at " +
-                format_value(R.ramp_time) + " s, " + std::to_string(R.n_steps) + " steps to " +
-                format_value(t_end) + " s, journal spin inertia " + format_value(inertia) +
-                " kg m^2, mu " + format_value(scene_.contact.mu) + ", setup " +
-                log::format_duration(result.setup_time));
+      log_rolling_start(scene_, result, contact_, t_end, inertia);
 
     start_from_rest();
     const PaperNodes paper =
@@ -392,41 +460,15 @@ namespace clearjoint::fe::detail
         rec.linear_iterations = solved.linear_iterations;
         rec.spin_coupled = solved.coupled;
         rec.cuts = solved.cuts;
-        // paper Eqs. 4–8: N_B at X0 = (0, −R_B, 0), N_J the journal point under it at t = 0
-        const Vec3 X0{0.0, -G.R_B, 0.0};
-        const Vec3 xB =
-          rolling::rotate_z({X0[0] + u_tracked[0], X0[1] + u_tracked[1], 0.0}, rec.phi);
-        // (unwrapped past half a turn by continuity with the last step, with the sense of the
-        // turn from the point's start and end radii about its own centre)
-        const auto *previous =
-          result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back();
-        rec.phi_paper = rolling::unwrap_paper_angle(
-          rolling::paper_angle({xB[0] - X0[0], xB[1] - X0[1], 0.0}, G.R_B),
-          X0[0] * xB[1] - X0[1] * xB[0] >= 0.0, previous ? previous->phi_paper : 0.0);
-        const Vec3 c0 = motion.centre_fixed(0.0), c1 = motion.centre_fixed(t1);
-        const Vec3 pJ = rolling::rotate_z({u_journal[0], -G.R_J() + u_journal[1], 0.0}, rec.gamma);
-        rec.gamma_paper =
-          rolling::unwrap_paper_angle(rolling::paper_angle({c1[0] + pJ[0] - c0[0],
-                                                            c1[1] + pJ[1] - (c0[1] - G.R_J()), 0.0},
-                                                           G.R_J()),
-                                      G.R_J() * pJ[0] >= 0.0,  // (0, −R_J) × pJ
-                                      previous ? previous->gamma_paper : 0.0);
-        rec.phi_rate_paper = rec.phi_paper / t1;
-        rec.gamma_rate_paper = rec.gamma_paper / t1;
+        set_paper_angles(rec, G, motion, u_tracked, u_journal,
+                         result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
         rec.wall_time = elapsed();
         stepper.accept(solved);
         times.push_back(t1);
         slips.push_back(rec.slip_speed);
         result.rolling_steps.push_back(rec);
 
-        IncrementRecord inc = rs.record;
-        inc.delta = rec.delta;
-        inc.force = inc.force_support = inc.force_load = rec.force_normal;
-        inc.n_active = rec.n_active;
-        inc.n_slip = rec.n_slip;
-        inc.contact_iterations = rec.contact_iterations;
-        inc.linear_iterations = rec.linear_iterations;
-        inc.wall_time = rec.wall_time;
+        const IncrementRecord inc = increment_of(rec, rs.record);
         result.increments.push_back(inc);
         if (rank_ == 0)
           log_step(rec, (elapsed() - wall_steps_start) / t1 * (t_end - t1));
@@ -449,20 +491,9 @@ namespace clearjoint::fe::detail
         result.strain_profile.push_back(p);
     summarise(S, times, slips, result.rolling_steps);
     result.sliding_rebuilds = n_sliding_rebuilds_;
-    if (R.spin_solver == Rolling::SpinSolver::coupled && rank_ == 0)
-      log::info("fe_stage: the journal's spin: " +
-                std::to_string(std::count_if(result.rolling_steps.begin(),
-                                             result.rolling_steps.end(),
-                                             [](const auto &r) { return r.spin_coupled; })) +
-                " of " + std::to_string(result.rolling_steps.size()) +
-                " steps by the coupled iteration, " +
-                std::to_string(stepper.n_coupled_fallbacks()) +
-                " attempts by the root finder after it failed");
-    if (rolling_deformable_journal() && rank_ == 0)
-      log::info("fe_stage: the deformable journal's coupling: " +
-                std::to_string(stepper.n_searches()) + " mortar searches, " +
-                std::to_string(n_sliding_rebuilds_) + " of them with a new sparsity pattern, " +
-                log::format_duration(stepper.search_time()) + " in all");
+    if (rank_ == 0)
+      log_solver_summary(scene_, result, stepper, rolling_deformable_journal(),
+                         n_sliding_rebuilds_);
     result.field_files = field_files_;
     result.complete = result.message.empty();
     result.wall_time = elapsed();

@@ -2,6 +2,7 @@
 
 #include "fe_stage/solve/root_finder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -24,163 +25,180 @@ namespace clearjoint::fe::detail
   bool SpinStepper::solve(Step &step, std::string &message)
   {
     step = Step{};
-    double &dt = step.dt;
-    ContactModel::RollingSolve &rs = step.state;
-    double &rate_new = step.rate;
-    unsigned int &spin_evaluations = step.spin_evaluations;
-    dt = control_.begin_step(t_end_ - t_);
-    rate_new = gamma_rate_;
+    step.dt = control_.begin_step(t_end_ - t_);
+    step.rate = gamma_rate_;
     saved_ = m_.save_state();
     bool predict_in_time = true;
     for (;;)
       {
-        const double t1 = t_ + dt;
-        m_.frame_.phi = motion_.phi(t1);
-        m_.frame_.centre_previous = motion_.centre_frame(t_);
-        m_.frame_.centre = motion_.centre_frame(t1);
-        const double delta1 = motion_.delta(t1);
-        const double dphi = motion_.phi(t1) - motion_.phi(t_);
-        // the scale of the balance: from the last step's force and torque once there is
-        // one (so that it is known before the first evaluation), else from the first
-        // evaluation's
-        double torque_scale =
-          last_force_ > 0.0 ?
-            std::max({m_.scene_.contact.mu * last_force_ * m_.scene_.geometry.R_J(),
-                      std::abs(last_torque_), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30}) :
-            0.0;
+        Attempt attempt = begin_attempt(step.dt);
         bool predicted_in_time = false;
-        unsigned int n_evaluated = 0;
-        double rate_last = 0.0, rate_before = 0.0;
-        TrilinosWrappers::MPI::Vector u_last(m_.dofs_.owned(), m_.comm_),
-          u_before(m_.dofs_.owned(), m_.comm_);
         try
           {
             // rolling.spin_solver coupled, once the last step gave the balance's slope (it
             // is negative once known): one iteration for γ̇ and the state. Failed from the
             // state predicted in time: the attempt is tried again from the last state (as
-            // the root finder's); failed from there: the root finder below, from the same
-            // start at the same Δt
+            // the root finder's); failed from there: the root finder, from the same start
+            // at the same Δt
             if (m_.scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
-                torque_rate_slope_ < 0.0 && torque_scale > 0.0)
+                torque_rate_slope_ < 0.0 && attempt.torque_scale > 0.0)
               {
                 if (have_previous_ && predict_in_time)
                   {
                     predicted_in_time = true;
-                    m_.state_.u_owned() = saved_.u;
-                    m_.state_.u_owned().sadd(1.0 + dt / dt_previous_, -dt / dt_previous_,
-                                             u_previous_step_);
-                    m_.state_.publish();
+                    start_predicted_in_time(step.dt);
                   }
-                if (solve_coupled({dt, delta1, dphi, torque_scale}, step))
+                if (solve_coupled(attempt, step))
                   break;
                 if (predicted_in_time)
                   throw StepFailure{"the coupled iteration failed"};
                 m_.restore_state(saved_);
                 ++n_coupled_fallbacks_;
               }
-            // g(γ̇) / scale, the scale μ F R_J (+ the inertia_ term): the balance holds
-            // to 1e-6 of the largest friction torque
-            auto g = [&](const double rate) {
-              m_.frame_.delta_psi = rate * dt - dphi;
-              // Where the material Newton iteration starts (only the start: the same
-              // converged state, fewer iterations):
-              // - the attempt's first evaluation: the state extrapolated linearly in time
-              //   from the last two converged steps (the reduced pipeline scene: 12.3 →
-              //   11.4 s at 16 steps, 20.3 → 17.2 s at 32). A patch that moves far in a
-              //   step is extrapolated badly (the 8-step scene's hold steps failed from
-              //   it), so an attempt that fails from the prediction is tried again at the
-              //   same Δt from the last state before the step is cut;
-              // - later ones: the state predicted linearly in γ̇ from the attempt's last
-              //   two evaluations, within two of their spacings (the state moves nearly
-              //   linearly with the spin near the root: 14.2 → 12.3 s and 24.2 → 20.3 s)
-              // start = last + w (last − before), as the quasi-static push's predictor
-              const auto start_from = [&](const TrilinosWrappers::MPI::Vector &last,
-                                          const TrilinosWrappers::MPI::Vector &before,
-                                          const double w) {
-                m_.state_.u_owned() = last;
-                m_.state_.u_owned().sadd(1.0 + w, -w, before);
-                m_.state_.publish();
-              };
-              if (n_evaluated == 0 && have_previous_ && predict_in_time)
-                {
-                  predicted_in_time = true;
-                  start_from(saved_.u, u_previous_step_, dt / dt_previous_);
-                }
-              if (n_evaluated >= 2 && rate != rate_last && rate_last != rate_before &&
-                  std::abs(rate - rate_last) <= 2.0 * std::abs(rate_last - rate_before))
-                start_from(u_last, u_before, (rate - rate_last) / (rate_last - rate_before));
-              // The deformable journal turns over the bore: the bore nodes' partners are
-              // found again for this pose, between the bore (X + u) and the journal placed
-              // at c + Q(ψ)(X − a + u), both at the start state; the slip counts from the
-              // step's start with them (follow_sliding, which rebuilds the sparsity pattern
-              // when they do not fit it). Couplings kept from the step's start would be
-              // off by R_J Δψ²/2 in the gap: 19 µm for a 3.6° step, more than the push.
-              if (m_.rolling_deformable_journal())
-                {
-                  ScopedTimer timer(search_time_);
-                  m_.follow_sliding(saved_.u);
-                  ++n_searches_;
-                }
-              if (log::level() <= log::Level::debug && m_.rank_ == 0)
-                log::debug(" torque evaluation at the journal's spin " + format_value(rate) +
-                           " rad/s (t " + format_value(t1) + " s, dt " + format_value(dt) + " s)");
-              rs = m_.solve_rolling_state(delta1);
-              step.newton_iterations += rs.newton_iterations;
-              step.contact_iterations += rs.contact_iterations;
-              step.linear_iterations += rs.linear_iterations;
-              u_before.swap(u_last);
-              u_last = m_.state_.u_owned();
-              rate_before = rate_last;
-              rate_last = rate;
-              ++n_evaluated;
-              const double inertial = inertia_ * (rate - gamma_rate_) / dt;
-              if (torque_scale == 0.0)
-                torque_scale = std::max(
-                  {m_.scene_.contact.mu * std::abs(rs.record.force) * m_.scene_.geometry.R_J(),
-                   std::abs(rs.torque_journal), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
-              return (inertial - rs.torque_journal) / torque_scale;
-            };
-            // the bracket: spinning up, between the last rate and the rolling rate;
-            // rolling already (within 5 % of it), a narrow one at the last rate — the root
-            // moves little from step to step and the torque is steep there (stick), so
-            // the wide bracket cost 2–3 more evaluations a step, each a material Newton
-            // solve (the bracket widens itself if the root lies outside). Rolling already
-            // and the torque's slope dM/dγ̇ known from the last step: the second point is
-            // the Newton step with that slope instead, near the root as the slope changes
-            // little from step to step (the reduced pipeline scene: 81 → 76 evaluations
-            // at 16 steps, 142 → 136 at 32, docs/benchmarks.md)
-            const double a = gamma_rate_;
-            const double roll = motion_.rolling_rate(t1);
-            const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
-            const double slope_guess =
-              torque_scale > 0.0 ? (inertia_ / dt - torque_rate_slope_) / torque_scale : 0.0;
-            const IncreasingRoot balance{g, 1e-6, 1e-10 * roll,
-                                         m_.scene_.rolling.max_spin_iterations,
-                                         "the journal's torque balance"};
-            const auto root =
-              rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess) ?
-                solve_increasing_from(balance, a, slope_guess) :
-                solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
-            spin_evaluations = root.evaluations;
-            if (!root.converged)
-              throw StepFailure{root.message};
-            rate_new = root.x;  // the last evaluation: the model's state is this one
-            // dM/dγ̇ [N m s] from g's slope: g = (I (γ̇ − γ̇_n)/Δt − M)/scale
-            if (root.evaluations >= 2 && root.slope > 0.0)
-              torque_rate_slope_ = inertia_ / dt - root.slope * torque_scale;
-            last_force_ = std::abs(rs.record.force);
-            last_torque_ = rs.torque_journal;
+            solve_nested(attempt, step, predict_in_time, predicted_in_time);
             break;
           }
         catch (const StepFailure &f)
           {
             m_.restore_state(saved_);
-            if (!retry(f, predicted_in_time, predict_in_time, dt, message))
+            if (!retry(f, predicted_in_time, predict_in_time, step.dt, message))
               return false;
           }
       }
     step.cuts = control_.cuts();
     return true;
+  }
+
+  /// The frame and the journal's centre moved to t + Δt; what the attempt solves for.
+  SpinStepper::Attempt SpinStepper::begin_attempt(const double dt)
+  {
+    const double t1 = t_ + dt;
+    m_.frame_.phi = motion_.phi(t1);
+    m_.frame_.centre_previous = motion_.centre_frame(t_);
+    m_.frame_.centre = motion_.centre_frame(t1);
+    Attempt a;
+    a.dt = dt;
+    a.delta = motion_.delta(t1);
+    a.dphi = motion_.phi(t1) - motion_.phi(t_);
+    // the scale of the balance: from the last step's force and torque once there is one
+    // (so that it is known before the first evaluation), else from the first evaluation's
+    // (solve_nested)
+    a.torque_scale =
+      last_force_ > 0.0 ?
+        std::max({m_.scene_.contact.mu * last_force_ * m_.scene_.geometry.R_J(),
+                  std::abs(last_torque_), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30}) :
+        0.0;
+    return a;
+  }
+
+  /// The state extrapolated linearly in time from the last two converged steps.
+  void SpinStepper::start_predicted_in_time(const double dt)
+  {
+    const double w = dt / dt_previous_;
+    m_.state_.u_owned() = saved_.u;
+    m_.state_.u_owned().sadd(1.0 + w, -w, u_previous_step_);
+    m_.state_.publish();
+  }
+
+  /// rolling.spin_solver nested (and the coupled iteration's fallback): the root of the torque
+  /// balance over γ̇, each evaluation a converged state of the bodies. Throws StepFailure.
+  void SpinStepper::solve_nested(Attempt &attempt, Step &step, const bool predict_in_time,
+                                 bool &predicted_in_time)
+  {
+    const double dt = attempt.dt, t1 = t_ + dt;
+    double &torque_scale = attempt.torque_scale;
+    ContactModel::RollingSolve &rs = step.state;
+    unsigned int n_evaluated = 0;
+    double rate_last = 0.0, rate_before = 0.0;
+    TrilinosWrappers::MPI::Vector u_last(m_.dofs_.owned(), m_.comm_),
+      u_before(m_.dofs_.owned(), m_.comm_);
+    // g(γ̇) / scale, the scale μ F R_J (+ the inertia_ term): the balance holds to 1e-6 of
+    // the largest friction torque
+    auto g = [&](const double rate) {
+      m_.frame_.delta_psi = rate * dt - attempt.dphi;
+      // Where the material Newton iteration starts (only the start: the same converged
+      // state, fewer iterations):
+      // - the attempt's first evaluation: the state extrapolated linearly in time from the
+      //   last two converged steps (the reduced pipeline scene: 12.3 → 11.4 s at 16 steps,
+      //   20.3 → 17.2 s at 32). A patch that moves far in a step is extrapolated badly (the
+      //   8-step scene's hold steps failed from it), so an attempt that fails from the
+      //   prediction is tried again at the same Δt from the last state before the step is
+      //   cut;
+      // - later ones: the state predicted linearly in γ̇ from the attempt's last two
+      //   evaluations, within two of their spacings (the state moves nearly linearly with
+      //   the spin near the root: 14.2 → 12.3 s and 24.2 → 20.3 s)
+      if (n_evaluated == 0 && have_previous_ && predict_in_time)
+        {
+          predicted_in_time = true;
+          start_predicted_in_time(dt);
+        }
+      if (n_evaluated >= 2 && rate != rate_last && rate_last != rate_before &&
+          std::abs(rate - rate_last) <= 2.0 * std::abs(rate_last - rate_before))
+        {
+          // start = last + w (last − before), as the quasi-static push's predictor
+          const double w = (rate - rate_last) / (rate_last - rate_before);
+          m_.state_.u_owned() = u_last;
+          m_.state_.u_owned().sadd(1.0 + w, -w, u_before);
+          m_.state_.publish();
+        }
+      // The deformable journal turns over the bore: the bore nodes' partners are found
+      // again for this pose, between the bore (X + u) and the journal placed at
+      // c + Q(ψ)(X − a + u), both at the start state; the slip counts from the step's start
+      // with them (follow_sliding, which rebuilds the sparsity pattern when they do not fit
+      // it). Couplings kept from the step's start would be off by R_J Δψ²/2 in the gap:
+      // 19 µm for a 3.6° step, more than the push.
+      if (m_.rolling_deformable_journal())
+        {
+          ScopedTimer timer(search_time_);
+          m_.follow_sliding(saved_.u);
+          ++n_searches_;
+        }
+      if (log::level() <= log::Level::debug && m_.rank_ == 0)
+        log::debug(" torque evaluation at the journal's spin " + format_value(rate) + " rad/s (t " +
+                   format_value(t1) + " s, dt " + format_value(dt) + " s)");
+      rs = m_.solve_rolling_state(attempt.delta);
+      step.newton_iterations += rs.newton_iterations;
+      step.contact_iterations += rs.contact_iterations;
+      step.linear_iterations += rs.linear_iterations;
+      u_before.swap(u_last);
+      u_last = m_.state_.u_owned();
+      rate_before = rate_last;
+      rate_last = rate;
+      ++n_evaluated;
+      const double inertial = inertia_ * (rate - gamma_rate_) / dt;
+      if (torque_scale == 0.0)
+        torque_scale =
+          std::max({m_.scene_.contact.mu * std::abs(rs.record.force) * m_.scene_.geometry.R_J(),
+                    std::abs(rs.torque_journal), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
+      return (inertial - rs.torque_journal) / torque_scale;
+    };
+    // the bracket: spinning up, between the last rate and the rolling rate; rolling already
+    // (within 5 % of it), a narrow one at the last rate — the root moves little from step to
+    // step and the torque is steep there (stick), so the wide bracket cost 2–3 more
+    // evaluations a step, each a material Newton solve (the bracket widens itself if the
+    // root lies outside). Rolling already and the torque's slope dM/dγ̇ known from the last
+    // step: the second point is the Newton step with that slope instead, near the root as
+    // the slope changes little from step to step (the reduced pipeline scene: 81 → 76
+    // evaluations at 16 steps, 142 → 136 at 32, docs/benchmarks.md)
+    const double a = gamma_rate_;
+    const double roll = motion_.rolling_rate(t1);
+    const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
+    const double slope_guess =
+      torque_scale > 0.0 ? (inertia_ / dt - torque_rate_slope_) / torque_scale : 0.0;
+    const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, m_.scene_.rolling.max_spin_iterations,
+                                 "the journal's torque balance"};
+    const auto root = rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess) ?
+                        solve_increasing_from(balance, a, slope_guess) :
+                        solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
+    step.spin_evaluations = root.evaluations;
+    if (!root.converged)
+      throw StepFailure{root.message};
+    step.rate = root.x;  // the last evaluation: the model's state is this one
+    // dM/dγ̇ [N m s] from g's slope: g = (I (γ̇ − γ̇_n)/Δt − M)/scale
+    if (root.evaluations >= 2 && root.slope > 0.0)
+      torque_rate_slope_ = inertia_ / dt - root.slope * torque_scale;
+    last_force_ = std::abs(rs.record.force);
+    last_torque_ = rs.torque_journal;
   }
 
   /// The coupled iteration (rolling.spin_solver coupled) from the model's current state: each
@@ -191,9 +209,11 @@ namespace clearjoint::fe::detail
   /// converged states, which is what a Newton step on γ̇ needs once the bodies follow it —
   /// replaced by the secant over the last two iterates when that lies within a factor of 5 of
   /// it (the slope changes with the stick/slip pattern; a secant further off is taken for the
-  /// bodies' own convergence, not the balance's). Converged when the same iterate meets the
+  /// bodies' own convergence, not the balance's), or whatever it is once the bodies have
+  /// settled (the correction within 100 tolerances: g's change is then the balance's own — a
+  /// step without contact, where M = 0 and the slope is I/Δt alone). Converged when the same iterate meets the
   /// material Newton tolerance (ContactModel::material_tolerance) and the root finder's (|g|
-  /// ≤ 1e-6, or a γ̇ step below 1e-10 of the rolling rate). False when it diverges (the
+  /// ≤ 1e-6, or a γ̇ step by the iterates' secant below 1e-10 of the rolling rate). False when it diverges (the
   /// correction grew three times running), a solve fails, or it runs out of
   /// rolling.max_newton_iterations; the caller restores the state.
   bool SpinStepper::solve_coupled(const Attempt &a, Step &step)
@@ -203,11 +223,12 @@ namespace clearjoint::fe::detail
     const unsigned int max_it = m_.scene_.rolling.max_newton_iterations;
     const double slope_last = (inertia_ / a.dt - torque_rate_slope_) / a.torque_scale;  // [s/rad]
     double slope = slope_last;
-    // γ̇ extrapolated linearly in time from the last two steps, as the state is (not from the
-    // first step's: it spins the journal up from rest, and twice its jump overshoots)
-    double rate = n_accepted_ >= 2 ? gamma_rate_ + (gamma_rate_ - gamma_rate_previous_) *
-                                                     a.dt / dt_previous_ :
-                                     gamma_rate_;
+    // γ̇ starts at the last step's, as the root finder's bracket does: where the balance is
+    // flat in γ̇ (no contact: M = 0, g = I (γ̇ − γ̇_n)/(Δt scale)) its tolerance on g would
+    // accept a guess off by 1e-6 scale Δt/I — 3e-3 rad/s for the 1.8e-6 kg m² journal under
+    // 381 N — where this start is the exact root. (Extrapolated in time instead, the reduced
+    // scenes' spin-up steps overshot the root twofold and hold steps kept a spin off by 5e-4.)
+    double rate = gamma_rate_;
     double rate_before = 0.0, g_before = 0.0, last_correction = 0.0;
     std::vector<double> balances;  // |g| of each iteration, for the stall test
     double rate_searched = std::numeric_limits<double>::quiet_NaN();
@@ -236,16 +257,24 @@ namespace clearjoint::fe::detail
             if (k > 0 && rate != rate_before)
               {
                 const double secant = (g - g_before) / (rate - rate_before);
-                if (secant > 0.2 * slope_last && secant < 5.0 * slope_last)
+                if (secant > 0.0 && ((secant > 0.2 * slope_last && secant < 5.0 * slope_last) ||
+                                     it.correction <= 100.0 * tolerance))
                   slope = secant, secant_taken = true;
               }
-            const double rate_step = std::abs(g) <= 1e-6 ? 0.0 : -g / slope;
+            // (at most half the rolling rate a step: a secant over nearly equal balances —
+            // slip under a small force — can send γ̇ to thousands of rad/s)
+            const double rate_step =
+              std::abs(g) <= 1e-6 ? 0.0 : std::clamp(-g / slope, -0.5 * roll, 0.5 * roll);
+            // the balance holds, or γ̇ is within 1e-10 of the rolling rate of its root by the
+            // iterates' own slope (the root finder's two tolerances; a step by the last step's
+            // slope says nothing about the distance to the root)
             if (log::level() <= log::Level::debug && m_.rank_ == 0)
               log::debug("  coupled iteration " + std::to_string(k + 1) + ": spin " +
                          format_value(rate) + " rad/s, balance " + format_value(g) +
                          ", correction " + format_value(it.correction) + " m, " +
                          std::to_string(it.n_plastic_points) + " quadrature points yielding");
-            if (it.correction <= tolerance && std::abs(rate_step) <= 1e-10 * roll)
+            if (it.correction <= tolerance &&
+                (rate_step == 0.0 || (secant_taken && std::abs(rate_step) <= 1e-10 * roll)))
               {
                 step.rate = rate;
                 step.spin_evaluations = k + 1;
@@ -334,9 +363,7 @@ namespace clearjoint::fe::detail
   void SpinStepper::accept(const Step &step)
   {
     gamma_ += step.rate * step.dt;
-    gamma_rate_previous_ = gamma_rate_;
     gamma_rate_ = step.rate;
-    ++n_accepted_;
     t_ += step.dt;
     u_previous_step_ = saved_.u;
     dt_previous_ = step.dt;

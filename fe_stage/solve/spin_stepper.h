@@ -62,12 +62,15 @@ namespace clearjoint::fe::detail
 
   private:
     /// What an attempt at Δt solves for: the push δ at its end [m], the bearing's turn over
-    /// it [rad], the torque balance's scale [N m].
+    /// it [rad], the torque balance's scale [N m] (0: not known before the first evaluation).
     struct Attempt
     {
       double dt = 0.0, delta = 0.0, dphi = 0.0, torque_scale = 0.0;
     };
+    Attempt begin_attempt(double dt);
+    void start_predicted_in_time(double dt);
     bool solve_coupled(const Attempt &a, Step &step);
+    void solve_nested(Attempt &attempt, Step &step, bool predict_in_time, bool &predicted_in_time);
     bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
                std::string &message);
 
@@ -81,9 +84,8 @@ namespace clearjoint::fe::detail
     double last_force_ = 0.0, last_torque_ = 0.0, torque_rate_slope_ = 0.0;
     // the state before the last converged step, for the predictor in time
     TrilinosWrappers::MPI::Vector u_previous_step_;
-    double dt_previous_ = 0.0, gamma_rate_previous_ = 0.0;
+    double dt_previous_ = 0.0;
     bool have_previous_ = false;
-    unsigned int n_accepted_ = 0;  // steps accepted so far
     ContactModel::Snapshot saved_;  // the converged state the step in progress starts from
     double search_time_ = 0.0;      // [s] the deformable journal's searches and rebuilds
     unsigned int n_searches_ = 0;

@@ -93,7 +93,10 @@ TEST(FeRolling, AStepWithTheJournalBetweenTwoBoreNodesHasNoForceAndKeepsTheSpin)
           ++without;
           EXPECT_EQ(st.force_normal, 0.0) << "t " << st.time;
           EXPECT_EQ(st.torque_journal, 0.0) << "t " << st.time;
-          EXPECT_EQ(st.gamma_rate, previous_rate) << "t " << st.time;  // I Δγ̇/Δt = 0 exactly
+          // I Δγ̇/Δt = 0: exactly with the root finder (its bracket starts at γ̇_n), to
+          // round-off with the coupled iteration (a Newton step on γ̇ lands on it)
+          EXPECT_NEAR(st.gamma_rate, previous_rate, 1e-12 * std::abs(previous_rate) + 1e-300)
+            << "t " << st.time;
         }
       else
         {

@@ -56,19 +56,33 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
   ASSERT_EQ(sweep.rows.size(), 9u);
   for (const double s : sweep.column("separated"))
     EXPECT_EQ(s, 1.0);
+  // The 25 kg journal meets the ring quasi-statically, so its restitution tends to 1 from
+  // below, and the fast preset's Δt = T_c/40 resolves it only to ~1.3e-3: its cases gave
+  // 1.00034, 1.00126 and 0.99969, against 0.99991, 0.99996 and 0.99858 at T_c/80
+  // (docs/benchmarks.md, issue 31). Above 1 + 5e-3 the time step would be creating energy.
   for (const double e : sweep.column("restitution"))
-    EXPECT_TRUE(e > 0.5 && e < 1.0) << e;
+    EXPECT_TRUE(e > 0.5 && e < 1.0 + 5e-3) << e;
   // ... compared with the law of each case's own quasi-static curve (like for like; the law
-  // fitted for t_B = 4 mm set beside): every damping model's c_e found
+  // fitted for t_B = 4 mm set beside): every damping model's c_e
   const CsvTable compared = read_csv((run / "impact/compare/impact_comparison.csv").string());
   for (const double own : compared.column("law_own"))
     EXPECT_EQ(own, 1.0);
   EXPECT_TRUE(compared.has_column("given_law_peak_force"));
   const CsvTable fits = read_csv((run / "impact/compare/restitution_fit.csv").string());
   ASSERT_EQ(fits.rows.size(), 9u);
+  // (no damping model returns more energy than it got: where the FE restitution is ≥ 1, c_e is
+  // −1, "unreachable")
   for (const char *m : {"lankarani_nikravesh", "hunt_crossley", "flores", "gonthier"})
-    for (const double c : fits.column(std::string("c_e_") + m))
-      EXPECT_TRUE(c > 0.0 && c <= 1.0) << m << " " << c;
+    {
+      const std::vector<double> c_e = fits.column(std::string("c_e_") + m),
+                                e = fits.column("fe_restitution");
+      ASSERT_EQ(c_e.size(), e.size());
+      for (std::size_t i = 0; i < c_e.size(); ++i)
+        if (e[i] < 1.0)
+          EXPECT_TRUE(c_e[i] > 0.0 && c_e[i] <= 1.0) << m << " " << c_e[i];
+        else
+          EXPECT_EQ(c_e[i], -1.0) << m << " at e = " << e[i];
+    }
 
   // The rolling study (issue 13 item 5, the reduced scene with the fast preset's 8 steps): it
   // completes, the friction spins the journal up to near the rolling rate (13.2 rad/s at
