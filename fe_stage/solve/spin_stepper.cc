@@ -210,12 +210,13 @@ namespace clearjoint::fe::detail
   /// replaced by the secant over the last two iterates when that lies within a factor of 5 of
   /// it (the slope changes with the stick/slip pattern; a secant further off is taken for the
   /// bodies' own convergence, not the balance's), or whatever it is once the bodies have
-  /// settled (the correction within 100 tolerances: g's change is then the balance's own — a
-  /// step without contact, where M = 0 and the slope is I/Δt alone). Converged when the same iterate meets the
-  /// material Newton tolerance (ContactModel::material_tolerance) and the root finder's (|g|
-  /// ≤ 1e-6, or a γ̇ step by the iterates' secant below 1e-10 of the rolling rate). False when it diverges (the
-  /// correction grew three times running), a solve fails, or it runs out of
-  /// rolling.max_newton_iterations; the caller restores the state.
+  /// settled (the correction within 100 tolerances: g's change is then the balance's own, as
+  /// in a step without contact, where M = 0 and the slope is I/Δt alone). Converged when one
+  /// iterate meets the material Newton tolerance (ContactModel::material_tolerance) and the
+  /// root finder's (|g| ≤ 1e-6, or a γ̇ step by the iterates' secant below 1e-10 of the
+  /// rolling rate). False when it diverges (the correction grew three times running), stalls,
+  /// a solve fails, or it runs out of rolling.max_newton_iterations; the caller restores the
+  /// state.
   bool SpinStepper::solve_coupled(const Attempt &a, Step &step)
   {
     const double tolerance = m_.material_tolerance();
@@ -265,14 +266,14 @@ namespace clearjoint::fe::detail
             // slip under a small force — can send γ̇ to thousands of rad/s)
             const double rate_step =
               std::abs(g) <= 1e-6 ? 0.0 : std::clamp(-g / slope, -0.5 * roll, 0.5 * roll);
-            // the balance holds, or γ̇ is within 1e-10 of the rolling rate of its root by the
-            // iterates' own slope (the root finder's two tolerances; a step by the last step's
-            // slope says nothing about the distance to the root)
             if (log::level() <= log::Level::debug && m_.rank_ == 0)
               log::debug("  coupled iteration " + std::to_string(k + 1) + ": spin " +
                          format_value(rate) + " rad/s, balance " + format_value(g) +
                          ", correction " + format_value(it.correction) + " m, " +
                          std::to_string(it.n_plastic_points) + " quadrature points yielding");
+            // the bodies converged, and the balance holds or γ̇ is within 1e-10 of the rolling
+            // rate of its root by the iterates' own slope (the root finder's two tolerances; a
+            // step by the last step's slope says nothing about the distance to the root)
             if (it.correction <= tolerance &&
                 (rate_step == 0.0 || (secant_taken && std::abs(rate_step) <= 1e-10 * roll)))
               {
@@ -299,8 +300,8 @@ namespace clearjoint::fe::detail
                 return false;
               }
             // stalled: the balance did not halve over the last four iterations (a slope far
-            // from the balance's, as when the journal spins up from rest: the reduced pipeline
-            // scene's step 2 crept 25 iterations at g ≈ 3.25); the root finder brackets instead
+            // from the balance's: a first version's spin-up step crept 25 iterations at g ≈
+            // 3.25); the root finder brackets instead
             balances.push_back(std::abs(g));
             if (balances.size() > 4 && std::abs(g) > 1e-6 &&
                 std::abs(g) > 0.5 * balances[balances.size() - 5])
