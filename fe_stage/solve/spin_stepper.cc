@@ -83,12 +83,18 @@ namespace clearjoint::fe::detail
     // the scale of the balance: from the last step's force and torque once there is one
     // (so that it is known before the first evaluation), else from the first evaluation's
     // (solve_nested)
-    a.torque_scale =
-      last_force_ > 0.0 ?
-        std::max({m_.scene_.contact.mu * last_force_ * m_.scene_.geometry.R_J(),
-                  std::abs(last_torque_), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30}) :
-        0.0;
+    a.torque_scale = last_force_ > 0.0 ? torque_scale(last_force_, last_torque_, t1, dt) : 0.0;
     return a;
+  }
+
+  /// [N m] the torque balance's scale at a contact force [N] and journal torque [N m]: the
+  /// largest friction torque μ F R_J, the torque, or the inertial torque of spinning up to the
+  /// rolling rate within Δt.
+  double SpinStepper::torque_scale(const double force, const double torque, const double t1,
+                                   const double dt) const
+  {
+    return std::max({m_.scene_.contact.mu * force * m_.scene_.geometry.R_J(), std::abs(torque),
+                     inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
   }
 
   /// The state extrapolated linearly in time from the last two converged steps.
@@ -167,9 +173,7 @@ namespace clearjoint::fe::detail
       ++n_evaluated;
       const double inertial = inertia_ * (rate - gamma_rate_) / dt;
       if (torque_scale == 0.0)
-        torque_scale =
-          std::max({m_.scene_.contact.mu * std::abs(rs.record.force) * m_.scene_.geometry.R_J(),
-                    std::abs(rs.torque_journal), inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
+        torque_scale = this->torque_scale(std::abs(rs.record.force), rs.torque_journal, t1, dt);
       return (inertial - rs.torque_journal) / torque_scale;
     };
     // the bracket: spinning up, between the last rate and the rolling rate; rolling already

@@ -68,6 +68,7 @@ namespace clearjoint::fe::detail
       double dt = 0.0, delta = 0.0, dphi = 0.0, torque_scale = 0.0;
     };
     Attempt begin_attempt(double dt);
+    double torque_scale(double force, double torque, double t1, double dt) const;
     void start_predicted_in_time(double dt);
     bool solve_coupled(const Attempt &a, Step &step);
     void solve_nested(Attempt &attempt, Step &step, bool predict_in_time, bool &predicted_in_time);
