@@ -168,6 +168,7 @@ namespace clearjoint::fe
     // what the step cost, over its attempts (a failed one included as far as it got):
     unsigned int spin_iterations = 0;    // torque-balance evaluations (coupled: iterations)
     unsigned int newton_iterations = 0;  // material Newton iterations
+    unsigned int line_search_steps = 0;  // their line searches' rejected trial points
     unsigned int contact_iterations = 0, linear_iterations = 0;  // active-set, linear solver
     unsigned int cuts = 0;                                       // halvings of Δt
     bool spin_coupled = false;  // the coupled iteration solved it (else the root finder)

@@ -280,6 +280,7 @@ namespace clearjoint::fe
       S.direct_below_dofs = uint_or(o, "direct_below_dofs", S.direct_below_dofs, 0, 100000000);
       S.max_newton_iterations =
         uint_or(o, "max_newton_iterations", S.max_newton_iterations, 1, 1000);
+      S.line_search = o.boolean_or("line_search", S.line_search);
       o.finish();
     }
 
@@ -1107,7 +1108,9 @@ namespace clearjoint::fe
         << "  direct_below_dofs: " << d.solver.direct_below_dofs
         << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n"
         << "  max_newton_iterations: " << d.solver.max_newton_iterations
-        << "  # [1, 1000] material Newton iterations per increment (elastoplastic)\n";
+        << "  # [1, 1000] material Newton iterations per increment (elastoplastic)\n"
+        << "  line_search: " << (d.solver.line_search ? "true" : "false")
+        << "  # shorten a material Newton step that overshoots the energy's minimum along it\n";
     }
 
     /// verification:
@@ -1304,7 +1307,8 @@ namespace clearjoint::fe
                    {"tolerance", s.solver.tolerance},
                    {"max_linear_iterations", s.solver.max_linear_iterations},
                    {"direct_below_dofs", s.solver.direct_below_dofs},
-                   {"max_newton_iterations", s.solver.max_newton_iterations}};
+                   {"max_newton_iterations", s.solver.max_newton_iterations},
+                   {"line_search", s.solver.line_search}};
     j["verification"] = {{"sphere_radius", s.verification.sphere_radius},
                          {"block_width", s.verification.block_width},
                          {"block_height", s.verification.block_height},

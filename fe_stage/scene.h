@@ -207,6 +207,10 @@ namespace clearjoint::fe
     /// Material Newton iterations per increment at most (an elastoplastic quasi-static study;
     /// the rolling study has rolling.max_newton_iterations per evaluation of its torque).
     unsigned int max_newton_iterations = 25;
+    /// The material Newton iteration (elastoplastic: the rolling study, the plastic patch
+    /// test) shortens a step that overshoots the minimum of the bodies' energy along it
+    /// (Crisfield's line search; solve/material_newton.cc). false: full Newton steps.
+    bool line_search = true;
   };
 
   /// Verification block (study hertz / patch): a block [0,W]×[−H,0]×[0,W] (quarter model).

@@ -202,17 +202,38 @@ namespace clearjoint::fe::detail
     {
       IncrementRecord record;  // of the last contact solve
       unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
+      unsigned int line_search_steps = 0;
     };
     MaterialSolve solve_material_state(double delta, unsigned int max_it);
     /// One material Newton iteration from the current u: the tangent, its load and the
-    /// active-set contact solve at the push δ; how far u moved [m]. Throws StepFailure.
+    /// active-set contact solve at the push δ; how far u moved [m]. `line_search` (an
+    /// iteration after a step's first, whose start already meets the step's prescribed
+    /// motion): the step is shortened where it overshoots the energy's minimum along it
+    /// (search_line). Throws StepFailure.
     struct MaterialIteration
     {
       IncrementRecord record;
-      double correction = 0.0;  // [m] max-norm of the change of u
+      double correction = 0.0;  // [m] max-norm of the Newton step (its full length)
       unsigned int n_plastic_points = 0;
+      double step_length = 1.0;             // [1] the fraction of the Newton step taken
+      unsigned int line_search_steps = 0;   // trial points rejected
     };
-    MaterialIteration material_iteration(double delta);
+    MaterialIteration material_iteration(double delta, bool line_search = false);
+    /// [N] the out-of-balance force r = K u − b at the current u with the tangent and load
+    /// assembled there, the hanging DoFs' shares on their masters, zero on the constrained
+    /// DoFs (supports, symmetry, push) and on the contact nodes' and their partners' (their
+    /// balance holds the contact forces, which only a contact solve gives). Collective.
+    TrilinosWrappers::MPI::Vector interior_forces() const;
+    /// The line search along the Newton step `step` from `u_start`, g0 = step · r(u_start) < 0
+    /// (solve/material_newton.cc); leaves u at the point it accepts.
+    void search_line(MaterialIteration &it, double g0, const TrilinosWrappers::MPI::Vector &u_start,
+                     const TrilinosWrappers::MPI::Vector &step);
+    /// The line search leaves the tangent assembled at the point it accepts: the next
+    /// iteration starts from it instead of assembling again, if u is still that point and
+    /// neither the history nor the matrices changed since (commit, make_matrices clear it).
+    bool tangent_current_ = false;
+    TrilinosWrappers::MPI::Vector u_at_tangent_;
+    unsigned int n_plastic_at_tangent_ = 0;
     /// [m] Material Newton has converged when the correction is below 1e-7 of the push
     /// (δ_max = 1 mm: 0.1 nm), far below the discretisation error; quadratic convergence
     /// reaches it in a few iterations once the plastic zone and the active set have settled.
@@ -225,6 +246,7 @@ namespace clearjoint::fe::detail
     {
       double torque_journal = 0.0;  // [N m] full body, on the journal about +z
       unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
+      unsigned int line_search_steps = 0;
       IncrementRecord record;
     };
     RollingSolve solve_rolling_state(double delta);

@@ -19,6 +19,7 @@ namespace clearjoint::fe::detail
   /// energies from the committed states.
   ContactModel::PlasticEnergies ContactModel::commit_plasticity()
   {
+    tangent_current_ = false;  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
     const unsigned int n_q = quadrature.size();
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,

@@ -34,6 +34,7 @@ namespace clearjoint::fe
             {"slipping_contact_points", "1", [](const R &r) { return double(r.n_slip); }},
             {"spin_iterations", "1", [](const R &r) { return double(r.spin_iterations); }},
             {"newton_iterations", "1", [](const R &r) { return double(r.newton_iterations); }},
+            {"line_search_steps", "1", [](const R &r) { return double(r.line_search_steps); }},
             {"contact_iterations", "1", [](const R &r) { return double(r.contact_iterations); }},
             {"linear_iterations", "1", [](const R &r) { return double(r.linear_iterations); }},
             {"cuts", "1", [](const R &r) { return double(r.cuts); }},

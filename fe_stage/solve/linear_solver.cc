@@ -6,7 +6,9 @@
 #include "fe_stage/core/step_failure.h"
 
 #include "common/error.h"
+#include "common/log.h"
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -105,17 +107,7 @@ namespace clearjoint::fe::detail
       throw StepFailure{"non-finite right-hand side"};
     if (direct_)
       {
-        SolverControl control(1, 0);
-        TrilinosWrappers::SolverDirect::AdditionalData ad(false, "Amesos_Klu");
-        TrilinosWrappers::SolverDirect direct(control, ad);
-        try
-          {
-            direct.solve(A, x, b);
-          }
-        catch (const std::exception &e)
-          {
-            throw StepFailure{std::string("direct solver (Amesos KLU) failed: ") + e.what()};
-          }
+        solve_direct(A, x, b);
         return 1;
       }
     if (b_norm == 0.0)
@@ -146,9 +138,22 @@ namespace clearjoint::fe::detail
                 amg_.reset();  // the reused preconditioner may be stale: rebuild once
                 continue;
               }
-            throw StepFailure{std::string(nonsymmetric ? "GMRES" : "CG") + " did not converge in " +
-                              std::to_string(e.last_step) + " iterations (residual " +
-                              format_value(e.last_residual) + ")"};
+            const std::string failure = std::string(nonsymmetric ? "GMRES" : "CG") +
+                                        " did not converge in " + std::to_string(e.last_step) +
+                                        " iterations (residual " + format_value(e.last_residual) +
+                                        ")";
+            // A system the AMG cannot precondition (the rolling study's elastoplastic
+            // tangent with friction rows at large plastic strain, measured at 7 k DoFs) is
+            // still a small one for KLU: solved exactly instead of cutting the step.
+            if (A.m() > direct_fallback_below_)
+              throw StepFailure{failure};
+            if (n_direct_fallbacks_++ == 0 &&
+                Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
+              log::warning("fe_stage: " + failure +
+                           ": solved by the direct solver (Amesos KLU) "
+                           "instead, here and wherever the iterative solver fails again");
+            solve_direct(A, x, b);
+            return e.last_step;  // (the Krylov iterations spent)
           }
         const unsigned int its = control.last_step();
         // the AMG's effectiveness is judged on the solves to the scene's tolerance only (a
@@ -163,5 +168,22 @@ namespace clearjoint::fe::detail
         return its;
       }
     throw StepFailure{"linear solver failed"};
+  }
+
+  void SystemSolver::solve_direct(const TrilinosWrappers::SparseMatrix &A,
+                                  TrilinosWrappers::MPI::Vector &x,
+                                  const TrilinosWrappers::MPI::Vector &b)
+  {
+    SolverControl control(1, 0);
+    TrilinosWrappers::SolverDirect::AdditionalData ad(false, "Amesos_Klu");
+    TrilinosWrappers::SolverDirect direct(control, ad);
+    try
+      {
+        direct.solve(A, x, b);
+      }
+    catch (const std::exception &e)
+      {
+        throw StepFailure{std::string("direct solver (Amesos KLU) failed: ") + e.what()};
+      }
   }
 }  // namespace clearjoint::fe::detail

@@ -3,7 +3,8 @@
 // rigid-body modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
 // (invalidate()), again when a solve fails with the reused one, and when a solve to the full
 // tolerance takes more than twice the first one's iterations (+10) — reuse only while it stays
-// effective.
+// effective. A Krylov solve that fails even with a fresh AMG is solved by KLU where the system
+// is small enough.
 #pragma once
 
 #include "fe_stage/core/dim.h"
@@ -45,8 +46,13 @@ namespace clearjoint::fe::detail
 
     /// [s] spent building the AMG so far.
     double amg_setup_time() const { return t_amg_; }
+    /// Krylov solves that failed after the AMG was rebuilt and were solved by KLU instead.
+    unsigned int n_direct_fallbacks() const { return n_direct_fallbacks_; }
 
   private:
+    /// KLU (Amesos): x = A⁻¹ b. Throws StepFailure.
+    void solve_direct(const TrilinosWrappers::SparseMatrix &A, TrilinosWrappers::MPI::Vector &x,
+                      const TrilinosWrappers::MPI::Vector &b);
     void build_amg(const TrilinosWrappers::SparseMatrix &A, const DoFHandler<dim> &dofs,
                    const Mapping<dim> &mapping);
 
@@ -57,5 +63,10 @@ namespace clearjoint::fe::detail
     std::unique_ptr<Epetra_MultiVector> null_space_;  // the AMG reads it: kept alive with it
     unsigned int amg_reference_iterations_ = 0;
     double t_amg_ = 0.0;
+    unsigned int n_direct_fallbacks_ = 0;
+    /// A failed Krylov solve of a system up to this size is solved by KLU instead (its fill
+    /// stays in the hundreds of MB for FE_Q(2)^3 meshes of this size); larger ones fail the
+    /// step, which is then cut.
+    static constexpr types::global_dof_index direct_fallback_below_ = 60000;
   };
 }  // namespace clearjoint::fe::detail

@@ -4,6 +4,7 @@
 // the correction is negligible; and the commit of a converged state's history.
 #include "fe_stage/core/contact_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace clearjoint::fe::detail
@@ -21,17 +22,115 @@ namespace clearjoint::fe::detail
     return n_plastic_points;
   }
 
-  ContactModel::MaterialIteration ContactModel::material_iteration(const double delta)
+  ContactModel::MaterialIteration ContactModel::material_iteration(const double delta,
+                                                                   const bool line_search)
   {
     MaterialIteration it;
-    it.n_plastic_points = assemble_plastic();
-    TrilinosWrappers::MPI::Vector before = state_.u_owned();
+    if (tangent_current_ && [&] {
+          TrilinosWrappers::MPI::Vector moved = state_.u_owned();
+          moved -= u_at_tangent_;
+          return moved.linfty_norm() == 0.0;
+        }())
+      {
+        set_contact_load_offsets();  // (the contact nodes may have been paired again)
+        it.n_plastic_points = n_plastic_at_tangent_;
+      }
+    else
+      it.n_plastic_points = assemble_plastic();
+    tangent_current_ = false;
+    TrilinosWrappers::MPI::Vector r_start;
+    if (line_search)
+      r_start = interior_forces();
+    const TrilinosWrappers::MPI::Vector u_start = state_.u_owned();
     it.record = solve_increment(delta);
-    before -= state_.u_owned();
-    it.correction = before.linfty_norm();
+    TrilinosWrappers::MPI::Vector step = state_.u_owned();
+    step -= u_start;
+    it.correction = step.linfty_norm();
     if (!std::isfinite(it.correction))
       throw StepFailure{"non-finite displacement in the material Newton iteration"};
+    if (line_search && it.correction > material_tolerance())
+      {
+        // g(0) < 0 for a Newton step (d·r = −d·K_t d); not a descent direction (a contact
+        // solve that moved the active set): the full step, as without a search
+        const double g0 = r_start * step;
+        if (g0 < 0.0)
+          search_line(it, g0, u_start, step);
+      }
     return it;
+  }
+
+  /// The line search (Crisfield's, on the energy along the step; Abaqus/Standard's is of this
+  /// kind): the elastoplastic bodies' incremental potential Π (J2 with associated flow has
+  /// one) along u + s d has the slope g(s) = d · r(u + s d), r the interior out-of-balance
+  /// force. The full step is taken when it brings |g| below ½|g(0)| or still descends; else s
+  /// is found by regula falsi on g over the bracket, at most four more evaluations, s ≥ 0.05.
+  /// Why: where points switch between plastic and elastic (a plastic tangent ~1/740 of the
+  /// elastic one with the SPEC hardening) the full step overshoots; on the paper's 1 mm case
+  /// the corrections then grew ×2 an iteration and the step was cut (docs/fe.md). Each
+  /// evaluation assembles the tangent at u + s d: the accepted one's is the next iteration's.
+  void ContactModel::search_line(MaterialIteration &it, const double g0,
+                                 const TrilinosWrappers::MPI::Vector &u_start,
+                                 const TrilinosWrappers::MPI::Vector &step)
+  {
+    constexpr unsigned int max_reductions = 4;
+    constexpr double accept = 0.5, s_min = 0.05;
+    // the bracket [s_lo, s_hi] of g's root (g(s_lo) < 0 < g(s_hi)): the first rejection is
+    // the full step's, where g > 0
+    double s_lo = 0.0, g_lo = g0, s_hi = 1.0, g_hi = 0.0;
+    double s = 1.0;
+    for (unsigned int reductions = 0;; ++reductions)
+      {
+        const unsigned int n_plastic = assemble_plastic();
+        const double g = interior_forces() * step;
+        if (log::level() <= log::Level::debug && rank_ == 0)
+          log::debug("  line search: step length " + format_value(s) + ", slope " +
+                     format_value(g) + " J (at 0: " + format_value(g0) + " J)");
+        if (std::abs(g) <= accept * std::abs(g0) || (s == 1.0 && g < 0.0) ||
+            reductions == max_reductions || s == s_min)
+          {
+            tangent_current_ = true;
+            u_at_tangent_ = state_.u_owned();
+            n_plastic_at_tangent_ = n_plastic;
+            it.n_plastic_points = n_plastic;
+            it.step_length = s;
+            return;
+          }
+        ++it.line_search_steps;
+        if (g < 0.0)
+          s_lo = s, g_lo = g;
+        else
+          s_hi = s, g_hi = g;
+        // the root of g's secant over the bracket, kept inside its middle 80 %
+        const double width = s_hi - s_lo;
+        const double root = s_lo - g_lo * (s_hi - s_lo) / (g_hi - g_lo);
+        s = std::max(std::clamp(root, s_lo + 0.1 * width, s_lo + 0.9 * width), s_min);
+        state_.u_owned() = u_start;
+        state_.u_owned().add(s, step);
+        state_.publish();
+      }
+  }
+
+  TrilinosWrappers::MPI::Vector ContactModel::interior_forces() const
+  {
+    TrilinosWrappers::MPI::Vector r(dofs_.owned(), comm_);
+    system_.operator_matrix().vmult(r, state_.u_owned());
+    r -= system_.load();
+    dofs_.condense_hanging(r);
+    for (const auto &line : dofs_.fixed().get_lines())
+      if (dofs_.owned().is_element(line.index))
+        r[line.index] = 0.0;
+    for (const auto &cn : contact_.nodes())
+      {
+        for (const auto d : cn.dofs)
+          if (dofs_.owned().is_element(d))
+            r[d] = 0.0;
+        for (const auto &p : cn.partners)
+          for (const auto d : p.dofs)
+            if (dofs_.owned().is_element(d))
+              r[d] = 0.0;
+      }
+    r.compress(VectorOperation::insert);
+    return r;
   }
 
   ContactModel::MaterialSolve ContactModel::solve_material_state(const double delta,
@@ -43,8 +142,9 @@ namespace clearjoint::fe::detail
     unsigned int growths = 0;
     for (unsigned int k = 0;; ++k)
       {
-        const MaterialIteration it = material_iteration(delta);
+        const MaterialIteration it = material_iteration(delta, k > 0 && scene_.solver.line_search);
         ms.record = it.record;
+        ms.line_search_steps += it.line_search_steps;
         ms.contact_iterations += it.record.contact_iterations;
         ms.linear_iterations += it.record.linear_iterations;
         ms.newton_iterations = k + 1;
@@ -76,6 +176,7 @@ namespace clearjoint::fe::detail
   /// displacement: evaluate every point there again, then make it the point's history.
   void ContactModel::commit_material()
   {
+    tangent_current_ = false;  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
     const unsigned int n_q = quadrature.size();
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);

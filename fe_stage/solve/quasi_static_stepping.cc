@@ -99,6 +99,7 @@ namespace clearjoint::fe::detail
 
   void ContactModel::restore_state(const Snapshot &s)
   {
+    tangent_current_ = false;
     state_.u_owned() = s.u;
     state_.publish();
     contact_.nodes() = s.nodes;

@@ -19,6 +19,7 @@ namespace clearjoint::fe::detail
     const MaterialSolve m = solve_material_state(delta, scene_.rolling.max_newton_iterations);
     rs.record = m.record;
     rs.newton_iterations = m.newton_iterations;
+    rs.line_search_steps = m.line_search_steps;
     rs.contact_iterations = m.contact_iterations;
     rs.linear_iterations = m.linear_iterations;
     rs.torque_journal = journal_torque();
@@ -456,6 +457,7 @@ namespace clearjoint::fe::detail
         rec.n_slip = Utilities::MPI::sum(cs.n_slip, comm_);
         rec.spin_iterations = solved.spin_evaluations;
         rec.newton_iterations = solved.newton_iterations;
+        rec.line_search_steps = solved.line_search_steps;
         rec.contact_iterations = solved.contact_iterations;
         rec.linear_iterations = solved.linear_iterations;
         rec.spin_coupled = solved.coupled;

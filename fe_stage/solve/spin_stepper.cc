@@ -164,6 +164,7 @@ namespace clearjoint::fe::detail
                    format_value(t1) + " s, dt " + format_value(dt) + " s)");
       rs = m_.solve_rolling_state(attempt.delta);
       step.newton_iterations += rs.newton_iterations;
+      step.line_search_steps += rs.line_search_steps;
       step.contact_iterations += rs.contact_iterations;
       step.linear_iterations += rs.linear_iterations;
       u_before.swap(u_last);
@@ -253,8 +254,10 @@ namespace clearjoint::fe::detail
                 ++n_searches_;
                 rate_searched = rate;
               }
-            const ContactModel::MaterialIteration it = m_.material_iteration(a.delta);
+            const ContactModel::MaterialIteration it =
+              m_.material_iteration(a.delta, k > 0 && m_.scene_.solver.line_search);
             ++step.newton_iterations;
+            step.line_search_steps += it.line_search_steps;
             step.contact_iterations += it.record.contact_iterations;
             step.linear_iterations += it.record.linear_iterations;
             const double torque = m_.journal_torque();

@@ -38,6 +38,7 @@ namespace clearjoint::fe::detail
       /// what the step cost, failed attempts included: material Newton iterations, active-set
       /// contact iterations, linear solver iterations
       unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
+      unsigned int line_search_steps = 0;  // trial points the material line search rejected
       bool coupled = false;  // the coupled iteration converged it (else the root finder)
     };
 

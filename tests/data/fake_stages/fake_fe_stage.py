@@ -178,7 +178,7 @@ ROLLING_COLUMNS = [
     ("kinetic_energy", "J"), ("energy_balance_error", "J"), ("work_frame", "J"),
     ("frame_balance_error", "J"), ("max_plastic_strain", "1"), ("max_strain", "1"),
     ("plastic_volume", "m^3"), ("active_contact_points", "1"), ("slipping_contact_points", "1"),
-    ("spin_iterations", "1"), ("newton_iterations", "1"), ("contact_iterations", "1"),
+    ("spin_iterations", "1"), ("newton_iterations", "1"), ("line_search_steps", "1"), ("contact_iterations", "1"),
     ("linear_iterations", "1"), ("cuts", "1"), ("spin_coupled", "1"), ("phi_paper", "rad"), ("gamma_paper", "rad"),
     ("phi_rate_paper", "rad/s"), ("gamma_rate_paper", "rad/s"), ("wall_time", "s")]
 PROFILE_COLUMNS = [("angle", "rad"), ("arc", "m"), ("strain_radial", "1"),
@@ -219,7 +219,7 @@ def write_rolling(out, scene, g):
                "kinetic_energy": kinetic, "energy_balance_error": 0.0, "work_frame": w_push,
                "frame_balance_error": 0.0, "max_plastic_strain": eps_p,
                "max_strain": 2 * eps_p, "plastic_volume": 1e-9 * k, "active_contact_points": 6,
-               "slipping_contact_points": 2, "spin_iterations": 3, "newton_iterations": 4,
+               "slipping_contact_points": 2, "spin_iterations": 3, "newton_iterations": 4, "line_search_steps": 1,
                "contact_iterations": 5, "linear_iterations": 50, "cuts": 0, "spin_coupled": 1,
                "phi_paper": 0.98 * omega_B * t, "gamma_paper": 0.97 * spin * t,
                "phi_rate_paper": 0.98 * omega_B, "gamma_rate_paper": 0.97 * spin,

@@ -583,3 +583,12 @@ TEST(FeScene, RollingSpinSolverIsCoupledOrNested)
   expect_error(rolling + "rolling: {spin_solver: bordered}\n",
                {"rolling.spin_solver", "coupled", "nested"});
 }
+
+TEST(FeScene, SolverLineSearchIsOnByDefaultAndABoolean)
+{
+  const std::string rolling = "schema: clearjoint.fe/1\nstudy: rolling\n";
+  EXPECT_TRUE(parse(rolling).solver.line_search);
+  EXPECT_FALSE(parse(rolling + "solver: {line_search: false}\n").solver.line_search);
+  EXPECT_TRUE(parse(rolling + "solver: {line_search: true}\n").solver.line_search);
+  expect_error(rolling + "solver: {line_search: sometimes}\n", {"solver.line_search"});
+}

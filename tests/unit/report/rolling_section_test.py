@@ -37,7 +37,7 @@ COLUMNS = [
     ("kinetic_energy", "J"), ("energy_balance_error", "J"), ("work_frame", "J"),
     ("frame_balance_error", "J"), ("max_plastic_strain", "1"), ("max_strain", "1"),
     ("plastic_volume", "m^3"), ("active_contact_points", "1"), ("slipping_contact_points", "1"),
-    ("spin_iterations", "1"), ("newton_iterations", "1"), ("contact_iterations", "1"),
+    ("spin_iterations", "1"), ("newton_iterations", "1"), ("line_search_steps", "1"), ("contact_iterations", "1"),
     ("linear_iterations", "1"), ("cuts", "1"), ("spin_coupled", "1"), ("phi_paper", "rad"), ("gamma_paper", "rad"),
     ("phi_rate_paper", "rad/s"), ("gamma_rate_paper", "rad/s"), ("wall_time", "s")]
 PROFILE = [("angle", "rad"), ("arc", "m"), ("strain_radial", "1"), ("strain_tangential", "1"),
@@ -57,7 +57,7 @@ def step(k, n=4, error=0.05, strain=0.02, force=12345.6):
             "energy_balance_error": error * f, "work_frame": 2.05 * f,
             "frame_balance_error": 0.05 * f, "max_plastic_strain": 0.0123 * f,
             "max_strain": strain * f, "plastic_volume": 1e-9 * f, "active_contact_points": 6,
-            "slipping_contact_points": 2, "spin_iterations": 3, "newton_iterations": 4,
+            "slipping_contact_points": 2, "spin_iterations": 3, "newton_iterations": 4, "line_search_steps": 1,
             "contact_iterations": 5, "linear_iterations": 40, "cuts": 1, "spin_coupled": 1, "phi_paper": 3.0 * f,
             "gamma_paper": 3.1 * f, "phi_rate_paper": 12.3, "gamma_rate_paper": 12.9 * f,
             "wall_time": 1.5 * k, "work_drive_torque": 2.4 * f}

@@ -478,6 +478,27 @@ TEST(FeRadial, ActiveSetConstantDoesNotChangeTheForce)
     EXPECT_LT(inc.max_penetration, 1e-9 * s10.loading.delta_max);  // exact non-penetration
 }
 
+// A Krylov solve that fails even with a fresh AMG (here forced: one iteration allowed) is solved
+// by KLU instead of failing the increment: the run completes with the direct solver's result.
+TEST(FeRadial, AFailedKrylovSolveIsSolvedByTheDirectSolver)
+{
+  FeScene direct = scene(coarse_radial);
+  direct.solver.linear = LinearSolver::direct;
+  FeScene starved = scene(coarse_radial);
+  starved.solver.linear = LinearSolver::cg_amg;
+  starved.solver.max_linear_iterations = 1;
+  const RunResult a = run(direct), b = run(starved);
+  ASSERT_TRUE(a.complete) << a.message;
+  ASSERT_TRUE(b.complete) << b.message;
+  ASSERT_EQ(a.increments.size(), b.increments.size());
+  for (std::size_t i = 0; i < a.increments.size(); ++i)
+    {
+      // 1e-9: two exact factorisations of the same systems (round-off only)
+      EXPECT_NEAR(b.increments[i].force / a.increments[i].force, 1.0, 1e-9);
+      EXPECT_EQ(b.increments[i].n_active, a.increments[i].n_active);
+    }
+}
+
 // Equilibrium: the contact force equals the support reaction; the force grows with δ; the full
 // model gives the quarter model's force (the quarter's symmetry factor 4 is right).
 TEST(FeRadial, EquilibriumMonotonicityAndQuarterEqualsFull)
