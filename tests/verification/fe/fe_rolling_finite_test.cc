@@ -15,21 +15,11 @@ using namespace clearjoint::fe::test;
 
 namespace
 {
-  std::string reduced_rolling_8(const std::string &journal)
-  {
-    return "study: rolling\n"
-           "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
-           "loading: {delta_max: 1.0e-5, journal: " +
-           journal +
-           "}\n"
-           "rolling: {n_steps: 8, ramp_time: 0.02, end_time: 0.04}\n";
-  }
-
   void expect_kinematics_agree(const std::string &journal)
   {
-    const FeScene small_scene = scene(reduced_rolling_8(journal));
+    const FeScene small_scene = scene(reduced_rolling(8, journal));
     const FeScene finite_scene =
-      scene(reduced_rolling_8(journal) + "material: {kinematics: finite}\n");
+      scene(reduced_rolling(8, journal) + "material: {kinematics: finite}\n");
     ASSERT_EQ(finite_scene.material.kinematics, Material::Kinematics::finite);
     const RunResult small = run(small_scene);
     ASSERT_TRUE(small.complete) << small.message;

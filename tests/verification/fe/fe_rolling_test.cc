@@ -20,19 +20,6 @@ namespace
            "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
            "material: {hardening: [[0, 1.0e12], [1, 1.0e12]]}\n" + extra;
   }
-
-  // the pipeline's reduced scene (fe_stage/scenes/rolling.yaml): 10 µm in 20 ms, held to 40 ms,
-  // μ = 0.3 and the SPEC hardening (the study's defaults), the coarse ring
-  // (rolling_keys: more keys of the rolling block, each followed by ", ")
-  std::string reduced_rolling(const unsigned int n_steps, const std::string &journal = "rigid",
-                              const std::string &rolling_keys = "")
-  {
-    return "study: rolling\n"
-           "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
-           "loading: {delta_max: 1.0e-5, journal: " + journal + "}\n"
-           "rolling: {" + rolling_keys + "n_steps: " + std::to_string(n_steps) +
-           ", ramp_time: 0.02, end_time: 0.04}\n";
-  }
 } // namespace
 
 TEST(FeRolling, FrictionlessJournalDoesNotSpinAndThePushWorkIsStored)
