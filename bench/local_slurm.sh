@@ -4,6 +4,7 @@
 #
 #   bench/local_slurm.sh start DIR   # munged, slurmctld, slurmd; prints the SLURM_CONF to export
 #   bench/local_slurm.sh stop DIR    # cancels every job, stops the daemons by their pid files
+#                                      and waits (bounded) until each is gone
 #
 # DIR holds slurm.conf, the munge key and socket, pid files, logs, state and spool; keep it
 # short (slurmstepd's socket paths in DIR/spool must stay under 108 bytes), e.g. /tmp/cjs.
@@ -13,8 +14,14 @@ if [ "$cmd" = stop ]; then
   export SLURM_CONF="$dir/slurm.conf"
   scancel --full --quiet --user=root 2>/dev/null || true
   for i in $(seq 50); do [ -z "$(squeue --noheader --format=%i 2>/dev/null)" ] && break; sleep 0.2; done
+  # each daemon gone (a zombie counts: it holds nothing) before the next start: 10 s, then SIGKILL
+  alive() { local s; s="$(ps -o stat= -p "$1" 2>/dev/null)"; [ -n "$s" ] && [ "${s:0:1}" != Z ]; }
   for d in slurmd slurmctld munged; do
-    [ -f "$dir/$d.pid" ] && kill "$(cat "$dir/$d.pid")" 2>/dev/null || true
+    pid="$(cat "$dir/$d.pid" 2>/dev/null || true)"
+    [ -n "$pid" ] && [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$d" ] || continue
+    kill "$pid" 2>/dev/null || true
+    for i in $(seq 100); do alive "$pid" || break; sleep 0.1; done
+    alive "$pid" && { echo "local_slurm.sh: $d $pid still there 10 s after SIGTERM; SIGKILL" >&2; kill -9 "$pid" 2>/dev/null || true; }
   done
   exit 0
 fi

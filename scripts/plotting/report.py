@@ -344,6 +344,7 @@ th{background:#eee}figure{margin:1em 0}img{max-width:100%}figcaption{font-size:9
 .summary{background:#f6f8fb;border:1px solid #d5dbe5;padding:0.2em 1.2em 1em}
 .warn{background:#fff3e0;border-left:4px solid #e69500;padding:0.4em 0.8em}
 .warnings li{margin:0.3em 0}.ok{color:#2a6a2a}
+.flag{background:#fff3e0;border-left:3px solid #e69500;padding:0 0.3em;font-size:92%}
 details{margin:0.4em 0;border:1px solid #ddd;padding:0.3em 0.7em}summary{cursor:pointer;color:#124}
 nav ol{columns:2}"""
 
