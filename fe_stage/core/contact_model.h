@@ -112,6 +112,7 @@ namespace clearjoint::fe::detail
   using namespace dealii;
 
   class HhtStepper;
+  class SpinStepper;
 
   class ContactModel
   {
@@ -176,6 +177,11 @@ namespace clearjoint::fe::detail
     /// Study rolling (solve/rolling_stepping.cc): the bearing turning, the journal's spin from
     /// its torque balance, elastoplastic (core/plastic_assembly.cc).
     RunResult run_rolling();
+    /// Its set-up before the first step and its end after the last (solve/rolling_stepping.cc).
+    void begin_rolling(RunResult &result);
+    void finish_rolling(RunResult &result, const SpinStepper &stepper,
+                        const rolling::Motion &motion, const std::vector<double> &times,
+                        const std::vector<double> &slips);
     void init_plasticity();
     /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
     /// then the contact nodes' share of the load. Returns the number of yielding points.

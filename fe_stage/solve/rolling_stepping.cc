@@ -350,23 +350,10 @@ namespace clearjoint::fe::detail
   RunResult ContactModel::run_rolling()
   {
     RunResult result;
-    result.n_ranks = n_ranks_;
+    begin_rolling(result);
     const auto &R = scene_.rolling;
     const auto &L = scene_.loading;
     const auto &G = scene_.geometry;
-    frame_.turning = true;
-    // a deformable journal: its frame at the start (as meshed; the mortar search places it)
-    frame_.centre_previous = frame_.centre = {0.0, -G.c_r, 0.0};
-    frame_.axis_mesh = Tensor<1, dim>({0.0, -G.c_r, 0.0});
-    frame_.psi_converged = frame_.delta_psi = 0.0;
-    bodies_.build();
-    prepare_mesh();
-    init_plasticity();
-    result.n_dofs = dofs_.handler().n_dofs();
-    result.n_cells = bodies_.triangulation().n_global_active_cells();
-    result.symmetry_factor = bodies_.symmetry_factor();
-    result.h_min = bodies_.h_min();
-    result.setup_time = elapsed();
 
     const rolling::Motion motion{R.omega_B, R.ramp_time, L.delta_max, G.c_r, G.R_B, G.R_J()};
     const double t_end = rolling_end_time(scene_);
@@ -482,16 +469,45 @@ namespace clearjoint::fe::detail
         if (fields && (rec.step % R.field_stride == 0 || last))
           write_fields(field_counter++, t1);
       }
-    const double t = stepper.time();
-    if (result.message.empty() && t < t_end * (1.0 - 1e-12))
+    if (result.message.empty() && stepper.time() < t_end * (1.0 - 1e-12))
       result.message = "the step limit (" + std::to_string(max_steps) +
-                       ") was reached at t = " + format_value(t) + " s";
-    // the end state: strains across the contact zone, the slip stages, the balance
+                       ") was reached at t = " + format_value(stepper.time()) + " s";
+    finish_rolling(result, stepper, motion, times, slips);
+    return result;
+  }
+
+  /// The turning frame at rest, the mesh, DoFs and material history; the run's sizes.
+  void ContactModel::begin_rolling(RunResult &result)
+  {
+    const auto &G = scene_.geometry;
+    result.n_ranks = n_ranks_;
+    frame_.turning = true;
+    // a deformable journal: its frame at the start (as meshed; the mortar search places it)
+    frame_.centre_previous = frame_.centre = {0.0, -G.c_r, 0.0};
+    frame_.axis_mesh = Tensor<1, dim>({0.0, -G.c_r, 0.0});
+    frame_.psi_converged = frame_.delta_psi = 0.0;
+    bodies_.build();
+    prepare_mesh();
+    init_plasticity();
+    result.n_dofs = dofs_.handler().n_dofs();
+    result.n_cells = bodies_.triangulation().n_global_active_cells();
+    result.symmetry_factor = bodies_.symmetry_factor();
+    result.h_min = bodies_.h_min();
+    result.setup_time = elapsed();
+  }
+
+  /// The end state (the strains across the contact zone), the slip stages, the solver's
+  /// summary; the result closed.
+  void ContactModel::finish_rolling(RunResult &result, const SpinStepper &stepper,
+                                    const rolling::Motion &motion, const std::vector<double> &times,
+                                    const std::vector<double> &slips)
+  {
+    const double t = stepper.time();
     result.strain_profile = strain_profile(0, motion.phi(t), 30.0 * units::deg);
     if (rolling_deformable_journal())
       for (const auto &p : strain_profile(1, stepper.gamma(), 30.0 * units::deg))
         result.strain_profile.push_back(p);
-    summarise(S, times, slips, result.rolling_steps);
+    summarise(result.rolling, times, slips, result.rolling_steps);
     result.sliding_rebuilds = n_sliding_rebuilds_;
     if (rank_ == 0)
       log_solver_summary(scene_, result, stepper, rolling_deformable_journal(),
@@ -499,6 +515,5 @@ namespace clearjoint::fe::detail
     result.field_files = field_files_;
     result.complete = result.message.empty();
     result.wall_time = elapsed();
-    return result;
   }
 }  // namespace clearjoint::fe::detail
