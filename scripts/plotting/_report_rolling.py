@@ -371,6 +371,18 @@ def _strain_map(run, base, warnings):
             "contact's. From " + rel_link(m["file"], base) + ".</p>")
 
 
+def _effort(h):
+    """The run's material Newton iterations and the line search's rejected trial points, summed
+    over its steps (each step's counts include its failed attempts)."""
+    newton, rejected = _column(h, "newton_iterations"), _column(h, "line_search_steps")
+    if not newton:
+        return "not recorded"
+    text = f"{sum(newton):.0f} material Newton iterations"
+    if rejected:
+        text += f", {sum(rejected):.0f} line-search trial points rejected"
+    return text
+
+
 def _final_table(run):
     h, s = run.history, run.summary
     rate = value_of(get(s, "rolling_rate"))
@@ -384,6 +396,7 @@ def _final_table(run):
         ("end of the run", _fmt(_last(h, "time"), "{:.4g}", "s") +
          f" after {len(h['time']) - 1} time steps" +
          (f" ({sum(cuts):.0f} step cuts)" if cuts else "")),
+        ("solver effort", _effort(h)),
         ("push δ at the end", _fmt(delta * 1e3 if delta is not None else None, "{:.4g}", "mm")),
         ("contact force at the end, normal", _fmt(_last(h, "force_normal"), "{:.5g}", "N")),
         ("contact force at the end, tangential", _fmt(_last(h, "force_tangential"), "{:.5g}", "N")),

@@ -153,6 +153,7 @@ def main():
                      "+1.67 % of the work in",  # balance 0.05 J of 3 J
                      "0.05 mm",            # δ at the end
                      "0.25 s after 4 time steps (4 step cuts)",
+                     "16 material Newton iterations, 4 line-search trial points rejected",
                      "end of gross slip", "0.125 s", "0.1875 s", "0.0197 m/s",  # slip stages
                      "ω_B = 12.56 rad/s", "μ = 0.3",
                      "rolling_history.csv", "rolling_strain_profile.csv"):
