@@ -1,8 +1,8 @@
 // The FE contact model's façade (fe_model.h): run one scene, start MPI, report library versions.
-// The model itself is fe_stage/core/contact_model.h and the files it names (fe_stage/README.md).
+// The model itself is fe_stage/contact_model.h and the files it names (fe_stage/README.md).
 #include "fe_stage/fe_model.h"
 
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/study/study.h"
 
 #include <deal.II/base/revision.h>

@@ -1,7 +1,7 @@
 // What the active set adds to the system: the rigid obstacle's gaps at δ, nodal areas, the
 // constraint lines of active nodes (normal, or all free components when sticking) and the
 // friction rows of slipping nodes.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {

@@ -1,6 +1,6 @@
 // Dual-mortar pairing of non-matching surfaces (mortar.h): the verification block and its
 // deformable indenter, and the joint's bore and deformable journal (contact.pairing: mortar).
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/core/face_dofs.h"
 #include "fe_stage/mortar.h"
 

@@ -1,7 +1,7 @@
 // Contact candidates: bearing nodes against the rigid journal (or obstacle), or paired with the
 // deformable journal's node on the same ray; partner ghosts across ranks; the cells whose
 // condensed matrices change with the active set.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/core/face_dofs.h"
 
 namespace clearjoint::fe::detail

@@ -2,7 +2,7 @@
 // done again between the surfaces as they are now, x = X + u, so a node is coupled to the
 // partners that face it after the surfaces have slid past each other, not to those that faced
 // it in the reference configuration.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {

@@ -1,7 +1,7 @@
 // The elastoplastic bodies' quadrature-point history seen from the model (study rolling):
 // committing a converged step with its energies, and the per-cell and mid-plane fields that
 // the output and the rolling study's strain profiles read from it.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/material/strain_measure.h"
 
 namespace clearjoint::fe::detail

@@ -1,7 +1,7 @@
 // VTU/PVTU/PVD fields for ParaView: displacement, stress, strain, von Mises, principal strains,
 // plastic_zone (the yield check), contact pressure/gap/status/shear/slip as Abaqus's
 // CPRESS/COPEN/CSTATUS/CSHEAR/CSLIP, subdomain.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/material/strain_measure.h"
 #include "fe_stage/results/vtu_files.h"
 

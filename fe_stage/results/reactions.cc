@@ -1,6 +1,6 @@
 // Nodal reactions K u (hanging shares moved to their masters), the contact state of every node,
 // and the increment's forces and checks.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {

@@ -2,7 +2,7 @@
 // every quadrature point — per body the volume above yield and the largest stress with its
 // place, and per cell the volume fraction above yield (the plastic_zone field). The model stays
 // elastic; this tells the user where that is no longer true.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {

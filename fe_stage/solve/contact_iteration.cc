@@ -1,6 +1,6 @@
 // One load increment: active-set iterations (contact lines, assembly, solve, evaluation,
 // normal and Coulomb decisions) until the sets and the slip directions settle.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {

@@ -1,6 +1,6 @@
 #include "fe_stage/solve/hht_stepper.h"
 
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/solve/root_finder.h"
 
 namespace clearjoint::fe::detail

@@ -23,7 +23,7 @@
 //   3. what each step records, the peak and the separation: the run stops when the journal
 //      has left the bearing (out of contact for T_c/10 after contact, moving away) or at the
 //      end time.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/solve/hht_stepper.h"
 
 namespace clearjoint::fe::detail

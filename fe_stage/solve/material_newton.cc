@@ -2,7 +2,7 @@
 // elastoplastic quasi-static push): the tangent and its load at the current displacement
 // (small or finite kinematics), the active-set contact solve of the linearised problem, until
 // the correction is negligible; and the commit of a converged state's history.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 #include <algorithm>
 #include <cmath>

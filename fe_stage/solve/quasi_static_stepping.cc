@@ -2,7 +2,7 @@
 // rollback on failure, one log line per increment (as an Abaqus .sta file) with an ETA, and the
 // yield check of the last converged state; before it, the adaptive cycles (mesh.adaptive_cycles:
 // curve, Kelly indicator, refinement) and the error estimate from their sequence.
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/solve/step_controller.h"
 
 namespace clearjoint::fe::detail

@@ -6,7 +6,7 @@
 // Newton iterations, each an active-set contact solve with Coulomb friction). What this file
 // keeps: the study's set-up, what each converged step records (forces, torques, energies, the
 // paper's Eqs. 4–8), and the end state (strain profile, slip stages).
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/solve/spin_stepper.h"
 
 #include <cmath>

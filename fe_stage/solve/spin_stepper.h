@@ -15,7 +15,7 @@
 // and commits the material before accept().
 #pragma once
 
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 #include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/solve/step_controller.h"
 

@@ -1,6 +1,6 @@
 // The sparsity pattern that every active set condenses into, matrices, vectors and the solver
 // choice, on the DoF space (core/dof_space.h).
-#include "fe_stage/core/contact_model.h"
+#include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {

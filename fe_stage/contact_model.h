@@ -1,7 +1,8 @@
 // The FE contact model's remaining shared state and steps (deal.II, dim = 3). Internal: only
 // fe_stage's own .cc files include this; everything else sees the deal.II-free façade
-// fe_model.h. Its member functions are defined by concept across fe_stage/{mesh,core,contact,
-// solve,results}/ (fe_stage/README.md maps each to its file).
+// fe_model.h. Its member functions are defined by concept across fe_stage/{contact,material,
+// solve,results}/ (fe_stage/README.md maps each to its file). It composes the parts and runs the
+// steppers, so it includes solve/; it sits outside core/, which includes nothing from solve/.
 //
 // The class is being dissolved into objects that own their state (issue 29, FE_DESIGN §4.1).
 // Owners so far, each in its own header: the meshed bodies (Bodies, mesh/bodies.h), the DoF
