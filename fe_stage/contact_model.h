@@ -157,6 +157,8 @@ namespace clearjoint::fe::detail
     bool push_through(const std::vector<double> &targets, std::string &message,
                       const std::function<void(unsigned int, IncrementRecord &)> &on_converged);
     void prepare_mesh();
+    /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
+    void record_mesh(RunResult &result) const;
     /// Study impact (solve/impact_stepping.cc): the static curve, then HHT-α time steps.
     RunResult run_impact();
     /// Its steps: the mesh, the journal's mass and the integrator's α, β, γ (returned);

@@ -224,11 +224,7 @@ namespace clearjoint::fe::detail
     auto &S = result.impact;
     bodies_.build();
     prepare_mesh();
-    result.n_dofs = dofs_.handler().n_dofs();
-    result.n_cells = bodies_.triangulation().n_global_active_cells();
-    result.symmetry_factor = bodies_.symmetry_factor();
-    result.h_min = bodies_.h_min();
-    result.setup_time = elapsed();
+    record_mesh(result);
     S.velocity_in = I.velocity;
     S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, later
     // the application's operator and α, β, γ (an explicit α checked here, before the static

@@ -144,6 +144,16 @@ namespace clearjoint::fe::detail
     return rec;
   }
 
+  /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
+  void ContactModel::record_mesh(RunResult &result) const
+  {
+    result.n_dofs = dofs_.handler().n_dofs();
+    result.n_cells = bodies_.triangulation().n_global_active_cells();
+    result.symmetry_factor = bodies_.symmetry_factor();
+    result.h_min = bodies_.h_min();
+    result.setup_time = elapsed();
+  }
+
   /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
   void ContactModel::prepare_mesh()
   {
@@ -305,11 +315,7 @@ namespace clearjoint::fe::detail
     // the curve's, so the points' history is sized for it here
     if (scene_.material.model == Material::Model::elastoplastic)
       init_plasticity();
-    result.n_dofs = dofs_.handler().n_dofs();
-    result.n_cells = bodies_.triangulation().n_global_active_cells();
-    result.symmetry_factor = bodies_.symmetry_factor();
-    result.h_min = bodies_.h_min();
-    result.setup_time = elapsed();
+    record_mesh(result);
     const bool fields = options_.write_fields && !options_.output_dir.empty();
     if (fields && rank_ == 0)
       std::filesystem::create_directories(options_.output_dir + "/fields");

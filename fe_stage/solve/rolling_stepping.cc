@@ -489,11 +489,7 @@ namespace clearjoint::fe::detail
     bodies_.build();
     prepare_mesh();
     init_plasticity();
-    result.n_dofs = dofs_.handler().n_dofs();
-    result.n_cells = bodies_.triangulation().n_global_active_cells();
-    result.symmetry_factor = bodies_.symmetry_factor();
-    result.h_min = bodies_.h_min();
-    result.setup_time = elapsed();
+    record_mesh(result);
   }
 
   /// The end state (the strains across the contact zone), the slip stages, the solver's
