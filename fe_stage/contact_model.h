@@ -9,11 +9,14 @@
 // space and its fixed constraints (DofSpace, core/dof_space.h), the operator, its load, the
 // elastic cache and each iteration's condensed system (Assembler, core/assembler.h), the
 // iterate u and its nodal forces (State, core/state.h), the contact nodes and their active set
-// (ContactProblem, contact/contact_problem.h), the linear solver and its AMG
-// (SystemSolver, solve/linear_solver.h), the material law with its quadrature-point history
-// (MaterialLaw, material/material_law.h), the steppers' step-size policy (StepController,
-// solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's coefficients and
-// predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law (contact/coulomb_ssn.h).
+// (ContactProblem, contact/contact_problem.h), how they find their partners (ContactPairing,
+// contact/contact_pairing.h), the linear solver and its AMG (SystemSolver,
+// solve/linear_solver.h), the material law with its quadrature-point history (MaterialLaw,
+// material/material_law.h), the steppers that own their loops and see the model only through
+// DynamicProblem and SpinProblem (solve/stepper_interfaces.h), their step-size policy
+// (StepController, solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's
+// coefficients and predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law
+// (contact/coulomb_ssn.h).
 //
 // Method (docs/fe.md has the equations):
 //   - small strain, or finite strain (material.kinematics: total Lagrangian, the J2 law in the
@@ -34,6 +37,7 @@
 #pragma once
 
 #include "fe_stage/contact/contact_node.h"
+#include "fe_stage/contact/contact_pairing.h"
 #include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
@@ -50,6 +54,7 @@
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/linear_solver.h"
 #include "fe_stage/solve/rolling_kinematics.h"
+#include "fe_stage/solve/stepper_interfaces.h"
 #include "fe_stage/study_plan.h"
 
 #include "common/error.h"
@@ -115,32 +120,23 @@ namespace clearjoint::fe::detail
   class HhtStepper;
   class SpinStepper;
 
-  class ContactModel
+  /// The steppers see the model only through DynamicProblem and SpinProblem
+  /// (solve/stepper_interfaces.h), besides the parts they are given.
+  class ContactModel : private DynamicProblem, private SpinProblem
   {
-    // the impact study's stepper owns its loop and dynamic state; it works on the model's
-    // operator, solution and contact nodes (until those have owners of their own)
-    friend class HhtStepper;
-    friend class SpinStepper;  // the rolling study's, likewise
-
   public:
     ContactModel(const FeScene &scene, const RunOptions &options);
     RunResult run();
 
   private:
-    /// Study rolling: the journal's gap [m] and normal at the bore point X when the journal,
-    /// pushed to δ_max, is nearest to it on its path (contact/node_pairing.cc).
-    void rolling_gap_on_path(const Point<dim> &X, double &g0, Tensor<1, dim> &n) const;
     void make_block_grid();
-    void find_contact_nodes();
-    void find_mortar_contact_nodes(const std::map<types::global_dof_index, Point<dim>> &support,
-                                   std::map<types::global_dof_index, ContactNode> &by_x_dof,
-                                   const TrilinosWrappers::MPI::Vector *u = nullptr);
+    /// The pairing's contact nodes, their partners' ghosts and the contact cells
+    /// (contact/contact_pattern.cc); searched between the surfaces displaced by
+    /// `search_displacement` when given (ghosted; finite sliding's rebuild).
+    void find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
     /// contact.sliding finite: the mortar search again at the converged deformed surfaces
     /// (contact/sliding.cc); slip then counts from u_start. Returns how far the coupling moved.
     double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, bool rebuild = false);
-    /// Where the joint's mortar search looks (find_contact_nodes): the reference surfaces, or
-    /// those displaced by this ghosted vector (follow_sliding's rebuild).
-    const TrilinosWrappers::MPI::Vector *search_displacement_ = nullptr;
     /// contact.sliding finite (scene.cc admits it only for two bodies paired by mortar)
     bool finite_sliding() const { return scene_.contact.sliding == Contact::Sliding::finite; }
     unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
@@ -156,7 +152,9 @@ namespace clearjoint::fe::detail
     void set_obstacle_position(double delta);
     bool push_through(const std::vector<double> &targets, std::string &message,
                       const std::function<void(unsigned int, IncrementRecord &)> &on_converged);
-    void prepare_mesh();
+    /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
+    /// find_contact_nodes), matrices.
+    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
     /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
     void record_mesh(RunResult &result) const;
     /// Study impact (solve/impact_stepping.cc): the static curve, then HHT-α time steps.
@@ -176,7 +174,7 @@ namespace clearjoint::fe::detail
     double impact_end_time(double contact_period) const;
     /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
     /// built again).
-    void set_dynamic_operator(const MatrixCoefficients &c);
+    void set_dynamic_operator(const MatrixCoefficients &c) override;
     /// Study rolling (solve/rolling_stepping.cc): the bearing turning, the journal's spin from
     /// its torque balance, elastoplastic (core/plastic_assembly.cc).
     RunResult run_rolling();
@@ -219,15 +217,7 @@ namespace clearjoint::fe::detail
     /// iteration after a step's first, whose start already meets the step's prescribed
     /// motion): the step is shortened where it overshoots the energy's minimum along it
     /// (search_line). Throws StepFailure.
-    struct MaterialIteration
-    {
-      IncrementRecord record;
-      double correction = 0.0;  // [m] max-norm of the Newton step (its full length)
-      unsigned int n_plastic_points = 0;
-      double step_length = 1.0;             // [1] the fraction of the Newton step taken
-      unsigned int line_search_steps = 0;   // trial points rejected
-    };
-    MaterialIteration material_iteration(double delta, bool line_search = false);
+    MaterialIteration material_iteration(double delta, bool line_search) override;
     /// [N] the out-of-balance force r = K u − b at the current u with the tangent and load
     /// assembled there, the hanging DoFs' shares on their masters, zero on the constrained
     /// DoFs (supports, symmetry, push) and on the contact nodes' and their partners' (their
@@ -246,28 +236,21 @@ namespace clearjoint::fe::detail
     /// [m] Material Newton has converged when the correction is below 1e-7 of the push
     /// (δ_max = 1 mm: 0.1 nm), far below the discretisation error; quadratic convergence
     /// reaches it in a few iterations once the plastic zone and the active set have settled.
-    double material_tolerance() const { return 1e-7 * scene_.loading.delta_max; }
+    double material_tolerance() const override { return 1e-7 * scene_.loading.delta_max; }
     /// A converged state's trial states made the points' history.
     void commit_material();
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.
-    struct RollingSolve
-    {
-      double torque_journal = 0.0;  // [N m] full body, on the journal about +z
-      unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
-      unsigned int line_search_steps = 0;
-      IncrementRecord record;
-    };
-    RollingSolve solve_rolling_state(double delta);
+    RollingSolve solve_rolling_state(double delta) override;
     /// [N m] the contact's torque on the journal about its axis, full body (collective).
-    double journal_torque() const;
+    double journal_torque() const override;
     void refine_adaptively();
     /// The quasi-static study's adaptive cycles before its curve, and the sequence closed
     /// after it (solve/quasi_static_stepping.cc).
     bool run_adaptive_cycles(RunResult &result, bool &last_mesh_marked);
     void close_adaptive_sequence(RunResult &result, bool last_mesh_marked);
     /// One increment to `delta` from the current state; throws StepFailure.
-    IncrementRecord solve_increment(double delta);
+    IncrementRecord solve_increment(double delta) override;
     // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)
     void build_contact_constraints(double delta);
     void assemble_system(double delta, double c);
@@ -275,12 +258,7 @@ namespace clearjoint::fe::detail
     void record_coulomb_check(IncrementRecord &rec) const;
     /// The boundary whose nodes carry the contact constraints: the bore (or the block's top),
     /// or the journal's surface when it is the mortar slave.
-    types::boundary_id slave_surface_id() const
-    {
-      return plan_.pairing == StudyPlan::Pairing::mortar && plan_.journal_is_slave ?
-               bid_journal_surface :
-               bid_contact;
-    }
+    types::boundary_id slave_surface_id() const { return slave_surface(plan_); }
     /// +1 when the slave is the bore (or the block), −1 when it is the journal: the force on
     /// the bearing is this times the force on the slave's nodes.
     double slave_sign() const { return slave_surface_id() == bid_journal_surface ? -1.0 : 1.0; }
@@ -300,22 +278,13 @@ namespace clearjoint::fe::detail
                               Vector<double> &rhs, std::vector<types::global_dof_index> &ext) const;
     /// Every study's start: zero displacement, no contact, every node sticking with no slip
     /// history and the obstacle's surface points unmoved.
-    void start_from_rest();
-    /// What a failed attempt of a step goes back to: the displacement and the contact nodes
-    /// (active and stick sets, slip history, partners), and the count of finite sliding's
-    /// pattern rebuilds (a rebuild since then: the restored state is paired again so that the
-    /// pattern holds its partners). The one rollback of every stepper.
-    struct Snapshot
-    {
-      TrilinosWrappers::MPI::Vector u;  // owned
-      std::vector<ContactNode> nodes;
-      unsigned int sliding_rebuilds = 0;
-    };
-    Snapshot save_state() const
+    void start_from_rest() override;
+    /// What a failed attempt goes back to (Snapshot, solve/stepper_interfaces.h).
+    Snapshot save_state() const override
     {
       return {state_.u_owned(), contact_.nodes(), n_sliding_rebuilds_};
     }
-    void restore_state(const Snapshot &s);
+    void restore_state(const Snapshot &s) override;
     /// [s] since the model was made (the runs' setup and wall times).
     double elapsed() const
     {
@@ -323,7 +292,7 @@ namespace clearjoint::fe::detail
     }
     /// Each contact node's share of the step's known load b (system_.load(): the traction is
     /// K u − b in the dynamic and elastoplastic solves), for the friction rows (collective).
-    void set_contact_load_offsets();
+    void set_contact_load_offsets() override;
     void write_fields(unsigned int counter, double delta);
     /// Von Mises against scene.material.yield_stress at every quadrature point (collective);
     /// optionally each cell's volume fraction above yield (the plastic_zone field).
@@ -341,6 +310,12 @@ namespace clearjoint::fe::detail
     ContactProblem contact_;  // the contact nodes, slipping set, c_T, active-set update
 
     RigidObstacle obstacle_;
+    /// The rolling study's journal as the contact sees it (the bearing's frame angle, the
+    /// journal's centre and turn; identity elsewhere): set by the spin stepper.
+    JournalFrame frame_;
+    /// How the contact nodes find their partners (obstacle, common rays or mortar): reads
+    /// the bodies, DoFs, contact problem, obstacle and frame above.
+    std::unique_ptr<ContactPairing> pairing_;
     /// The bodies' law (make_material: J2 with its history for the rolling study, else
     /// linear elastic); material_->elastic() is the law of the static operator.
     std::unique_ptr<MaterialLaw> material_;
@@ -350,10 +325,12 @@ namespace clearjoint::fe::detail
     /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
     /// cells' matrices, the elastic cache and each iteration's condensed system.
     Assembler system_;
-    /// The rolling study's journal as the contact sees it (the bearing's frame angle, the
-    /// journal's centre and turn; identity elsewhere): set by the spin stepper.
-    JournalFrame frame_;
     bool rolling_deformable_journal() const { return frame_.turning && plan_.deformable_partner; }
+    bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
+    void pair_turned_journal(const TrilinosWrappers::MPI::Vector &u_start) override
+    {
+      follow_sliding(u_start);
+    }
     /// Σ_p w_p Q u_p: the partners' displacement as the slave node sees it (ghosted v; Q the
     /// partners' turn now unless given).
     Tensor<1, dim> partner_displacement(const ContactNode &cn,

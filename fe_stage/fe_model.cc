@@ -26,6 +26,8 @@ namespace clearjoint::fe
     {
       material_ = make_material(scene, scene.material.model == Material::Model::elastoplastic);
       obstacle_ = plan_.obstacle;
+      pairing_ = make_contact_pairing(
+        {scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, options.comm});
     }
   }  // namespace detail
 

@@ -1,9 +1,105 @@
-// The sparsity pattern that every active set condenses into, matrices, vectors and the solver
-// choice, on the DoF space (core/dof_space.h).
+// The contact nodes on the DoF space (core/dof_space.h): the pairing's nodes (contact/
+// contact_pairing.h), their partners' ghosts and the cells whose condensed matrices change with
+// the active set; then the sparsity pattern that every active set condenses into, matrices,
+// vectors and the solver choice.
 #include "fe_stage/contact_model.h"
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// Partner DoFs this rank does not see yet become ghosts (solution values, constraint
+    /// lines), and then the masters of partners that hang (a journal face refined on one
+    /// side): closed lines have no chains, so two rounds suffice. After each round the fixed
+    /// constraints are rebuilt on the enlarged set and made consistent across ranks.
+    void ghost_partners(DofSpace &dofs, const std::vector<ContactNode> &nodes, MPI_Comm comm)
+    {
+      auto add_ghosts = [&](const auto &dofs_of_partner) {
+        IndexSet extra(dofs.handler().n_dofs());
+        for (const auto &cn : nodes)
+          for (const auto &partner : cn.partners)
+            for (const auto p : partner.dofs)
+              for (const auto d : dofs_of_partner(p))
+                if (!dofs.relevant().is_element(d))
+                  extra.add_index(d);
+        extra.compress();
+        if (Utilities::MPI::max(extra.n_elements(), comm) == 0)
+          return;  // collective: every rank takes the same branch
+        dofs.add_relevant(extra);
+      };
+      add_ghosts(
+        [](const types::global_dof_index p) { return std::vector<types::global_dof_index>{p}; });
+      add_ghosts([&](const types::global_dof_index p) {
+        std::vector<types::global_dof_index> masters;
+        if (const auto *e = dofs.fixed().get_constraint_entries(p))
+          for (const auto &entry : *e)
+            masters.push_back(entry.first);
+        return masters;
+      });
+    }
+
+    /// Cells that hold a candidate DoF, or a hanging DoF that hangs from one: their condensed
+    /// contributions change with the active set (a hanging node's share moves on through the
+    /// contact line of its master); all other cells go into the static part once. Per active
+    /// cell its index among them or −1; returns their number.
+    unsigned int mark_contact_cells(const DofSpace &dofs, const std::vector<ContactNode> &nodes,
+                                    const unsigned int n_active_cells,
+                                    std::vector<int> &contact_cell_of)
+    {
+      IndexSet candidate_dofs(dofs.handler().n_dofs());
+      for (const auto &cn : nodes)
+        if (cn.candidate)
+          for (const auto d : cn.dofs)
+            candidate_dofs.add_index(d);
+      candidate_dofs.compress();
+      IndexSet hanging_on_candidates(dofs.handler().n_dofs());
+      for (const auto &line : dofs.fixed().get_lines())
+        for (const auto &entry : line.entries)
+          if (candidate_dofs.is_element(entry.first))
+            {
+              hanging_on_candidates.add_index(line.index);
+              break;
+            }
+      candidate_dofs.add_indices(hanging_on_candidates);
+      candidate_dofs.compress();
+      contact_cell_of.assign(n_active_cells, -1);
+      std::vector<types::global_dof_index> cell_dofs(dofs.fe().n_dofs_per_cell());
+      unsigned int n = 0;
+      for (const auto &cell : dofs.handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(cell_dofs);
+            for (const auto d : cell_dofs)
+              if (candidate_dofs.is_element(d))
+                {
+                  contact_cell_of[cell->active_cell_index()] = n++;
+                  break;
+                }
+          }
+      return n;
+    }
+  }  // namespace
+
+  /// The pairing's contact nodes, searched between the reference surfaces or those displaced
+  /// by `search_displacement` (ghosted; finite sliding's rebuild), then their partners' ghosts
+  /// and the contact cells.
+  void ContactModel::find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement)
+  {
+    std::map<types::global_dof_index, Point<dim>> support;
+    DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
+    contact_.nodes().clear();
+    for (auto &[d, cn] : pairing_->find(support, search_displacement))
+      contact_.nodes().push_back(cn);
+
+    if (plan_.deformable_partner && n_ranks_ > 1)
+      ghost_partners(dofs_, contact_.nodes(), comm_);
+    std::vector<int> contact_cell_of;
+    const unsigned int n =
+      mark_contact_cells(dofs_, contact_.nodes(), bodies_.triangulation().n_active_cells(),
+                         contact_cell_of);
+    system_.set_contact_cells(std::move(contact_cell_of), n);
+  }
+
   /// Matrices and vectors. The sparsity pattern is built with every candidate's contact line
   /// present, so any active set condenses into it (the two-body lines couple journal DoFs).
   void ContactModel::make_matrices()

@@ -4,7 +4,7 @@
 // solve — each node's class by contact/coulomb_ssn.h's law (the semi-smooth Newton step of
 // Hüeber–Stadler–Wohlmuth 2008; contact/active_set.cc).
 //
-// The pairings fill the nodes (contact/node_pairing.cc, contact/mortar_pairing.cc), the
+// The pairing's nodes fill it (contact/contact_pairing.h, contact/contact_pattern.cc), the
 // constraint and friction rows read them (contact/contact_rows.cc), the evaluation after a
 // solve writes their forces and gaps (results/reactions.cc).
 #pragma once

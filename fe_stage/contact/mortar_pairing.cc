@@ -1,8 +1,15 @@
 // Dual-mortar pairing of non-matching surfaces (mortar.h): the verification block and its
 // deformable indenter, and the joint's bore and deformable journal (contact.pairing: mortar).
-#include "fe_stage/contact_model.h"
+#include "fe_stage/contact/contact_pairing.h"
+#include "fe_stage/contact/mortar.h"
 #include "fe_stage/core/face_dofs.h"
-#include "fe_stage/mortar.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
@@ -116,138 +123,159 @@ namespace clearjoint::fe::detail
               }
       return sl;
     }
-  }  // namespace
-  /// Two deformable bodies coupled by dual mortar (mortar.h). Each slave node gets
-  /// ĝ = g̃0 + n·(u − Σ_m C_sm u_m) with the weighted gap g̃0 and the mortar coefficients C_sm
-  /// of the master surface's nodes; an active node's constraint is then the same kind of line
-  /// as node-to-node contact, with several partners.
-  ///   blocks: slave = the block's top face (the plane y = 0, n = −e_y into the block),
-  ///           master = the indenter's bottom;
-  ///   joint:  slave = the bore's faces that lie over the journal's length (n radial, into the
-  ///           bearing), master = the journal's cylindrical surface;
-  ///   joint, plan_.journal_is_slave (the tilted journal): slave = the journal's cylindrical
-  ///           surface (n toward its own axis, into the journal), master = the bore.
-  ///
-  /// With `u` (ghosted; contact.sliding finite) the coupling is found between the surfaces as
-  /// deformed by u, x = X + u, and each node's g0 is set so that its linearised gap at u is the
-  /// weighted gap found there: ĝ(u) = g0 + n·(u_s − Σ_m C_sm u_m) = g̃(x). Normals stay those of
-  /// the reference surfaces (small deformation of each body; the sliding is between them).
-  void ContactModel::find_mortar_contact_nodes(
-    const std::map<types::global_dof_index, Point<dim>> &support,
-    std::map<types::global_dof_index, ContactNode> &by_x_dof,
-    const TrilinosWrappers::MPI::Vector *u)
-  {
-    // a node's position in the configuration searched: X, or X + u; the rolling study's
-    // turning journal (the master) placed in the bearing's frame by its pose
-    const bool turning_journal = rolling_deformable_journal();
-    auto position = [&](const std::array<types::global_dof_index, dim> &d,
-                        const bool master_node = false) {
-      Point<dim> x = support.at(d[0]);
-      Tensor<1, dim> ud;
-      if (u)
-        for (unsigned int c = 0; c < dim; ++c)
-          ud[c] = (*u)[d[c]];
-      return turning_journal && master_node ? frame_.place(x, ud) : x + ud;
-    };
-    const bool joint = plan_.mesh == StudyPlan::Mesh::joint;
-    const bool journal_slave = joint && plan_.journal_is_slave;
-    const types::boundary_id slave_id = slave_surface_id();
-    const types::boundary_id master_id = journal_slave ? bid_contact :
-                                         joint         ? bid_journal_surface :
-                                                         bid_indenter_surface;
-    auto slave_normal = [&](const Point<dim> &X) {
-      if (!joint)
-        return Tensor<1, dim>({0.0, -1.0, 0.0});
-      if (journal_slave)
-        {
-          // −(radial direction from the journal's own axis), turned with the journal
-          const Point<dim> l = bodies_.journal_local(X);
-          const double y = l[1] + scene_.geometry.c_r;
-          const double r = std::hypot(l[0], y);
-          const auto n = plan_.journal_pose.rotate({-l[0] / r, -y / r, 0.0});
-          return Tensor<1, dim>({n[0], n[1], n[2]});
-        }
-      if (turning_journal)
-        {
-          // along the journal's radius through the bore node (X: where it is now), as
-          // set_obstacle_position keeps it
-          const double x = X[0] - frame_.centre[0], y = X[1] - frame_.centre[1];
-          const double r = std::hypot(x, y);
-          return Tensor<1, dim>({x / r, y / r, 0.0});
-        }
-      const double r = std::hypot(X[0], X[1]);
-      return Tensor<1, dim>({X[0] / r, X[1] / r, 0.0});
-    };
-    // Bore as slave: a bore face beyond the journal's end faces no journal face, and a dual
-    // basis function is non-zero on its whole face, so such a face would make the rim nodes it
-    // shares incomplete (and drop them) — it is left out: the journal's ends are mesh planes.
-    // (The journal as slave lies wholly over the longer bore.)
-    const double z_end = joint && !journal_slave ? plan_.obstacle.half_length * (1.0 + 1e-9) :
-                                                   std::numeric_limits<double>::infinity();
 
-    const MasterSurface master = gather_master_surface(
-      dofs_, support, master_id, u, [&](const NodeDofs &d) { return position(d, true); }, comm_);
-    const SlaveSurface slave =
-      collect_slave_surface(dofs_, support, slave_id, joint, z_end,
-                            [&](const NodeDofs &d) { return position(d); });
-    std::vector<mortar::SlaveNode> slave_nodes;
-    for (const auto &[id, d] : slave.dofs)
+    /// Two deformable bodies coupled by dual mortar: the block and its indenter, the bore and
+    /// the deformable journal (contact.pairing: mortar).
+    class MortarPairing : public ContactPairing
+    {
+    public:
+      explicit MortarPairing(const PairingContext &context)
+        : c_(context)
+      {}
+
+      /// Each slave node gets (contact/mortar.h)
+      /// ĝ = g̃0 + n·(u − Σ_m C_sm u_m) with the weighted gap g̃0 and the mortar coefficients C_sm
+      /// of the master surface's nodes; an active node's constraint is then the same kind of line
+      /// as node-to-node contact, with several partners.
+      ///   blocks: slave = the block's top face (the plane y = 0, n = −e_y into the block),
+      ///           master = the indenter's bottom;
+      ///   joint:  slave = the bore's faces that lie over the journal's length (n radial, into the
+      ///           bearing), master = the journal's cylindrical surface;
+      ///   joint, plan.journal_is_slave (the tilted journal): slave = the journal's cylindrical
+      ///           surface (n toward its own axis, into the journal), master = the bore.
+      ///
+      /// With `u` (ghosted; contact.sliding finite) the coupling is found between the surfaces as
+      /// deformed by u, x = X + u, and each node's g0 is set so that its linearised gap at u is the
+      /// weighted gap found there: ĝ(u) = g0 + n·(u_s − Σ_m C_sm u_m) = g̃(x). Normals stay those of
+      /// the reference surfaces (small deformation of each body; the sliding is between them).
+      Nodes find(const std::map<types::global_dof_index, Point<dim>> &support,
+                 const TrilinosWrappers::MPI::Vector *u) const override
       {
-        const Tensor<1, dim> n = slave_normal(turning_journal ? position(d) : support.at(d[0]));
-        slave_nodes.push_back({id, {n[0], n[1], n[2]}});
-      }
-    mortar::Options options;
-    // 8 × 3 Gauss points per direction of each slave face: the mortar integrals have kinks
-    // where master faces end; their error (≈ 2e-3 of a master nodal force at 8 sub-intervals,
-    // 8e-3 at 4, mortar_test) shows up as non-uniform pressure in the patch test.
-    options.subdivisions = 8;
-    // Blocks: quadrature points farther apart than this cannot close under a push of δ_max;
-    // their nodes come out incomplete and are left out (they cannot touch). Joint: every bore
-    // point over the journal faces it within 2 c_r (the top of the bore), so all of them are
-    // paired and watched for penetration, as on common rays.
-    options.max_distance = joint ? 2.0 * scene_.geometry.c_r + 4.0 * scene_.loading.delta_max :
-                                   4.0 * scene_.loading.delta_max;
-    const double window_gap = 2.0 * scene_.loading.delta_max;
-    for (const auto &cp : mortar::couple(slave.faces, slave_nodes, master.faces, options))
-      {
-        const NodeDofs &dofs = slave.dofs.at(cp.node);
-        if (!cp.complete || cp.weight <= 0.0)
-          continue;  // out of reach
-        ContactNode cn;
-        cn.dofs = dofs;
-        cn.X = support.at(dofs[0]);
-        cn.owned = dofs_.owned().is_element(dofs[0]);
-        cn.n = slave_normal(turning_journal ? position(dofs) : cn.X);
-        if (!contact_.choose_constrained_component(cn, cn.n))
-          continue;  // hanging or supported: it follows its masters
-        cn.g0 = cp.gap;
-        cn.two_body = true;
-        cn.candidate = cp.gap <= window_gap;
-        if (turning_journal)
+        // a node's position in the configuration searched: X, or X + u; the rolling study's
+        // turning journal (the master) placed in the bearing's frame by its pose
+        const bool turning_journal = c_.frame.turning && c_.plan.deformable_partner;
+        auto position = [&](const std::array<types::global_dof_index, dim> &d,
+                            const bool master_node = false) {
+          Point<dim> x = support.at(d[0]);
+          Tensor<1, dim> ud;
+          if (u)
+            for (unsigned int c = 0; c < dim; ++c)
+              ud[c] = (*u)[d[c]];
+          return turning_journal && master_node ? c_.frame.place(x, ud) : x + ud;
+        };
+        const bool joint = c_.plan.mesh == StudyPlan::Mesh::joint;
+        const bool journal_slave = joint && c_.plan.journal_is_slave;
+        const types::boundary_id slave_id = slave_surface(c_.plan);
+        const types::boundary_id master_id = journal_slave ? bid_contact :
+                                             joint         ? bid_journal_surface :
+                                                             bid_indenter_surface;
+        auto slave_normal = [&](const Point<dim> &X) {
+          if (!joint)
+            return Tensor<1, dim>({0.0, -1.0, 0.0});
+          if (journal_slave)
+            {
+              // −(radial direction from the journal's own axis), turned with the journal
+              const Point<dim> l = c_.bodies.journal_local(X);
+              const double y = l[1] + c_.scene.geometry.c_r;
+              const double r = std::hypot(l[0], y);
+              const auto n = c_.plan.journal_pose.rotate({-l[0] / r, -y / r, 0.0});
+              return Tensor<1, dim>({n[0], n[1], n[2]});
+            }
+          if (turning_journal)
+            {
+              // along the journal's radius through the bore node (X: where it is now), as
+              // set_obstacle_position keeps it
+              const double x = X[0] - c_.frame.centre[0], y = X[1] - c_.frame.centre[1];
+              const double r = std::hypot(x, y);
+              return Tensor<1, dim>({x / r, y / r, 0.0});
+            }
+          const double r = std::hypot(X[0], X[1]);
+          return Tensor<1, dim>({X[0] / r, X[1] / r, 0.0});
+        };
+        // Bore as slave: a bore face beyond the journal's end faces no journal face, and a dual
+        // basis function is non-zero on its whole face, so such a face would make the rim nodes it
+        // shares incomplete (and drop them) — it is left out: the journal's ends are mesh planes.
+        // (The journal as slave lies wholly over the longer bore.)
+        const double z_end = joint && !journal_slave ? c_.plan.obstacle.half_length * (1.0 + 1e-9) :
+                                                       std::numeric_limits<double>::infinity();
+
+        const MasterSurface master = gather_master_surface(
+          c_.dofs, support, master_id, u, [&](const NodeDofs &d) { return position(d, true); },
+          c_.comm);
+        const SlaveSurface slave =
+          collect_slave_surface(c_.dofs, support, slave_id, joint, z_end,
+                                [&](const NodeDofs &d) { return position(d); });
+        std::vector<mortar::SlaveNode> slave_nodes;
+        for (const auto &[id, d] : slave.dofs)
           {
-            // as with the rigid journal: every node the journal passes close to on its path
-            // (so that the candidates, and the pattern, do not change from step to step)
-            double g_path = 0.0;
-            Tensor<1, dim> n_path;
-            rolling_gap_on_path(cn.X, g_path, n_path);
-            cn.candidate = g_path <= window_gap;
+            const Tensor<1, dim> n = slave_normal(turning_journal ? position(d) : support.at(d[0]));
+            slave_nodes.push_back({id, {n[0], n[1], n[2]}});
           }
-        Tensor<1, dim> relative;  // u_s − Σ C_sm u_m (0 in the reference search)
-        if (u)
-          for (unsigned int c = 0; c < dim; ++c)
-            relative[c] = (*u)[dofs[c]];
-        for (const auto &[m, w] : cp.masters)
+        mortar::Options options;
+        // 8 × 3 Gauss points per direction of each slave face: the mortar integrals have kinks
+        // where master faces end; their error (≈ 2e-3 of a master nodal force at 8 sub-intervals,
+        // 8e-3 at 4, mortar_test) shows up as non-uniform pressure in the patch test.
+        options.subdivisions = 8;
+        // Blocks: quadrature points farther apart than this cannot close under a push of δ_max;
+        // their nodes come out incomplete and are left out (they cannot touch). Joint: every bore
+        // point over the journal faces it within 2 c_r (the top of the bore), so all of them are
+        // paired and watched for penetration, as on common rays.
+        options.max_distance = joint ?
+                                 2.0 * c_.scene.geometry.c_r + 4.0 * c_.scene.loading.delta_max :
+                                 4.0 * c_.scene.loading.delta_max;
+        const double window_gap = 2.0 * c_.scene.loading.delta_max;
+        Nodes by_x_dof;
+        for (const auto &cp : mortar::couple(slave.faces, slave_nodes, master.faces, options))
           {
-            const auto &[mdofs, driven] = master.dofs.at(m);
-            cn.partners.push_back({mdofs, w, driven});
-            relative -= w * master.u.at(m);
-            cn.partner_X += w * master.X.at(m);
-            cn.partner_weight += w;
+            const NodeDofs &dofs = slave.dofs.at(cp.node);
+            if (!cp.complete || cp.weight <= 0.0)
+              continue;  // out of reach
+            ContactNode cn;
+            cn.dofs = dofs;
+            cn.X = support.at(dofs[0]);
+            cn.owned = c_.dofs.owned().is_element(dofs[0]);
+            cn.n = slave_normal(turning_journal ? position(dofs) : cn.X);
+            if (!c_.contact.choose_constrained_component(cn, cn.n))
+              continue;  // hanging or supported: it follows its masters
+            cn.g0 = cp.gap;
+            cn.two_body = true;
+            cn.candidate = cp.gap <= window_gap;
+            if (turning_journal)
+              {
+                // as with the rigid journal: every node the journal passes close to on its path
+                // (so that the candidates, and the pattern, do not change from step to step)
+                double g_path = 0.0;
+                Tensor<1, dim> n_path;
+                rolling_gap_on_path(c_.scene, c_.obstacle, cn.X, g_path, n_path);
+                cn.candidate = g_path <= window_gap;
+              }
+            Tensor<1, dim> relative;  // u_s − Σ C_sm u_m (0 in the reference search)
+            if (u)
+              for (unsigned int c = 0; c < dim; ++c)
+                relative[c] = (*u)[dofs[c]];
+            for (const auto &[m, w] : cp.masters)
+              {
+                const auto &[mdofs, driven] = master.dofs.at(m);
+                cn.partners.push_back({mdofs, w, driven});
+                relative -= w * master.u.at(m);
+                cn.partner_X += w * master.X.at(m);
+                cn.partner_weight += w;
+              }
+            // (the turning journal: g0 and n are set at each iterate by set_obstacle_position)
+            cn.g0 -= cn.n * relative;
+            cn.gap = cp.gap;  // the weighted gap where it was searched (follow_sliding compares)
+            by_x_dof.emplace(dofs[0], cn);
           }
-        // (the turning journal: g0 and n are set at each iterate by set_obstacle_position)
-        cn.g0 -= cn.n * relative;
-        cn.gap = cp.gap;  // the weighted gap where it was searched (follow_sliding compares)
-        by_x_dof.emplace(dofs[0], cn);
+        return by_x_dof;
       }
+
+    private:
+      const PairingContext c_;
+    };
+  }  // namespace
+
+  std::unique_ptr<ContactPairing> make_mortar_pairing(const PairingContext &context)
+  {
+    return std::make_unique<MortarPairing>(context);
   }
 }  // namespace clearjoint::fe::detail

@@ -22,8 +22,7 @@ namespace clearjoint::fe::detail
     const double delta_max = scene_.loading.delta_max;
     std::map<types::global_dof_index, Point<dim>> support;
     DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
-    std::map<types::global_dof_index, ContactNode> fresh;
-    find_mortar_contact_nodes(support, fresh, &state_.u());
+    const ContactPairing::Nodes fresh = pairing_->find(support, &state_.u());
 
     // the new couplings fit the pattern when every new candidate was one in the pattern, with
     // the same constrained component and its new partners among the pattern's
@@ -93,9 +92,7 @@ namespace clearjoint::fe::detail
         for (const auto &cn : contact_.nodes())
           old_state.emplace(cn.dofs[0], cn);
         // the DoF numbering stays (same mesh); the ghosts, the pattern and A_static change
-        search_displacement_ = &u_ghosted;
-        prepare_mesh();
-        search_displacement_ = nullptr;
+        prepare_mesh(&u_ghosted);
         state_.u_owned() = u_owned;
         state_.publish();
         for (auto &cn : contact_.nodes())

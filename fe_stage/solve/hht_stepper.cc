@@ -1,14 +1,20 @@
 #include "fe_stage/solve/hht_stepper.h"
 
-#include "fe_stage/contact_model.h"
 #include "fe_stage/solve/root_finder.h"
+
+#include "common/error.h"
+#include "common/log.h"
+
+#include <deal.II/base/mpi.h>
 
 namespace clearjoint::fe::detail
 {
-  HhtStepper::HhtStepper(ContactModel &model, const HhtAlpha &hht, const double dt_nominal,
-                         const unsigned int max_cuts, const double m_J, const double velocity,
-                         const bool deformable_journal)
-    : m_(model)
+  HhtStepper::HhtStepper(DynamicProblem &problem, const Parts &parts, const HhtAlpha &hht,
+                         const double dt_nominal, const unsigned int max_cuts, const double m_J,
+                         const double velocity, const bool deformable_journal)
+    : problem_(problem)
+    , model_(parts)
+    , rank_(Utilities::MPI::this_mpi_process(parts.comm))
     , hht_(hht)
     // Δt: halved on failure, carried over after cuts, doubled back after four easy steps (as
     // Abaqus/Standard's automatic incrementation)
@@ -19,35 +25,35 @@ namespace clearjoint::fe::detail
     , dt_(dt_nominal)
     , dt_operator_(dt_nominal)
   {
-    m_.set_dynamic_operator(hht_.coefficients(dt_));
-    m_.start_from_rest();
+    problem_.set_dynamic_operator(hht_.coefficients(dt_));
+    problem_.start_from_rest();
     for (auto *x : {&u_, &v_, &a_, &lambda_, &u_new_, &v_new_, &a_new_, &lambda_new_, &tmp_,
                     &journal_mask_, &journal_y_})
-      x->reinit(m_.dofs_.owned(), m_.comm_);
+      x->reinit(model_.dofs.owned(), model_.comm);
     d_rate_ = velocity;
     // A deformable journal: its DoFs (mask), its y-DoFs (the direction of δ), its mass from the
     // FE mass matrix; it starts as a rigid translation at −v e_y. δ is its centre of mass's
     // displacement: −(1_yᵀ M u)/(1_yᵀ M 1_y).
     if (deformable_)
       {
-        std::vector<types::global_dof_index> dofs(m_.dofs_.fe().n_dofs_per_cell());
-        for (const auto &cell : m_.dofs_.handler().active_cell_iterators())
+        std::vector<types::global_dof_index> dofs(model_.dofs.fe().n_dofs_per_cell());
+        for (const auto &cell : model_.dofs.handler().active_cell_iterators())
           if (cell->is_locally_owned() && cell->material_id() == 1)
             {
               cell->get_dof_indices(dofs);
               for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (m_.dofs_.owned().is_element(dofs[i]))
+                if (model_.dofs.owned().is_element(dofs[i]))
                   {
                     journal_mask_[dofs[i]] = 1.0;
-                    if (m_.dofs_.fe().system_to_component_index(i).first == 1)
+                    if (model_.dofs.fe().system_to_component_index(i).first == 1)
                       journal_y_[dofs[i]] = 1.0;
                   }
             }
         journal_mask_.compress(VectorOperation::insert);
         journal_y_.compress(VectorOperation::insert);
-        m_.system_.mass().vmult(tmp_, journal_y_);
+        model_.system.mass().vmult(tmp_, journal_y_);
         journal_mass_modelled_ = journal_y_ * tmp_;
-        journal_mass_ = m_.bodies_.symmetry_factor() * journal_mass_modelled_;
+        journal_mass_ = model_.bodies.symmetry_factor() * journal_mass_modelled_;
         v_.add(-velocity, journal_y_);
       }
     ledger_.start(0.5 * journal_mass_ * velocity * velocity);
@@ -57,7 +63,7 @@ namespace clearjoint::fe::detail
   {
     if (dt != dt_operator_)
       {
-        m_.set_dynamic_operator(hht_.coefficients(dt));
+        problem_.set_dynamic_operator(hht_.coefficients(dt));
         dt_operator_ = dt;
       }
   }
@@ -67,15 +73,15 @@ namespace clearjoint::fe::detail
   {
     A.vmult(tmp_, x);
     if (!journal_only)
-      return 0.5 * m_.bodies_.symmetry_factor() * (x * tmp_);
+      return 0.5 * model_.bodies.symmetry_factor() * (x * tmp_);
     TrilinosWrappers::MPI::Vector xm = x;
     xm.scale(journal_mask_);
-    return 0.5 * m_.bodies_.symmetry_factor() * (xm * tmp_);
+    return 0.5 * model_.bodies.symmetry_factor() * (xm * tmp_);
   }
 
   double HhtStepper::centre_of_mass_y(const TrilinosWrappers::MPI::Vector &x)
   {
-    m_.system_.mass().vmult(tmp_, x);
+    model_.system.mass().vmult(tmp_, x);
     return -(journal_y_ * tmp_) / journal_mass_modelled_;
   }
 
@@ -86,8 +92,8 @@ namespace clearjoint::fe::detail
     if (end_time > 0.0 && t_ + dt > end_time * (1.0 + 1e-12))
       dt = control_.begin_step(end_time - t_);
     operator_for(dt);
-    const ContactModel::Snapshot saved{u_, m_.contact_.nodes(),
-                                       m_.n_sliding_rebuilds_};  // converged
+    Snapshot saved = problem_.save_state();
+    saved.u = u_;  // converged
     IncrementRecord inc;
     double d_new = 0.0;
     for (;;)
@@ -99,7 +105,7 @@ namespace clearjoint::fe::detail
           }
         catch (const StepFailure &f)
           {
-            m_.restore_state(saved);
+            problem_.restore_state(saved);
             if (!control_.cut())
               {
                 message = "time step " + std::to_string(rec.step) + " at t = " + format_value(t_) +
@@ -110,7 +116,7 @@ namespace clearjoint::fe::detail
             rec.cuts = control_.cuts();
             dt = control_.size();
             operator_for(dt);
-            if (m_.rank_ == 0)
+            if (rank_ == 0)
               log::warning("fe_stage: time step " + std::to_string(rec.step) + " failed (" +
                            f.reason + "); retrying with dt " + format_value(dt) + " s");
           }
@@ -128,22 +134,22 @@ namespace clearjoint::fe::detail
   {
     const double c_m = hht_.coefficients(dt).mass;
     // the predictor û and the known part b = c_m M û + α(K u_n − λ_n)
-    TrilinosWrappers::MPI::Vector u_hat(m_.dofs_.owned(), m_.comm_);
+    TrilinosWrappers::MPI::Vector u_hat(model_.dofs.owned(), model_.comm);
     hht_.predict(u_, v_, a_, dt, u_hat, HhtAlpha::Predictor::newmark);
-    m_.system_.mass().vmult(m_.system_.load(), u_hat);
-    m_.system_.load() *= c_m;
-    m_.system_.elastic_stiffness().vmult(tmp_, u_);
+    model_.system.mass().vmult(model_.system.load(), u_hat);
+    model_.system.load() *= c_m;
+    model_.system.elastic_stiffness().vmult(tmp_, u_);
     tmp_ -= lambda_;
-    m_.system_.load().add(hht_.alpha(), tmp_);
-    m_.set_contact_load_offsets();  // the friction rows read the traction K u − b
+    model_.system.load().add(hht_.alpha(), tmp_);
+    problem_.set_contact_load_offsets();  // the friction rows read the traction K u − b
     double d_hat = 0.0;
     hht_.predict(d_, d_rate_, d_acc_, dt, d_hat, HhtAlpha::Predictor::newmark);
-    m_.state_.u_owned() = u_hat;
-    m_.state_.publish();
+    model_.state.u_owned() = u_hat;
+    model_.state.publish();
     if (deformable_)
       {
         // the journal is part of the FE system: one contact solve (δ from its centre of mass)
-        inc = m_.solve_increment(0.0);
+        inc = problem_.solve_increment(0.0);
         rec.contact_iterations += inc.contact_iterations;
         rec.linear_iterations += inc.linear_iterations;
         rec.journal_iterations = 1;
@@ -154,14 +160,14 @@ namespace clearjoint::fe::detail
     // force to ~1e-10). From δ̂ (g ≥ 0 there), the second point the step with g's known slope
     // part m_J c_m ≤ g's slope: a bracket.
     auto g = [&](const double delta) {
-      inc = m_.solve_increment(delta);
+      inc = problem_.solve_increment(delta);
       rec.contact_iterations += inc.contact_iterations;
       rec.linear_iterations += inc.linear_iterations;
       return m_J_ * c_m * (delta - d_hat) + inc.force - hht_.alpha() * F_;
     };
     IncreasingRoot position{g, 1e-9, 0.0, 60, "the journal's position"};
     position.g_scale_from_first = true;
-    position.g_scale_floor = m_J_ * c_m * 1e-3 * m_.scene_.loading.delta_max;
+    position.g_scale_floor = m_J_ * c_m * 1e-3 * model_.scene.loading.delta_max;
     const RootResult root = solve_increasing_from(position, d_hat, m_J_ * c_m);
     if (!root.converged)
       throw StepFailure{root.message};
@@ -173,9 +179,9 @@ namespace clearjoint::fe::detail
                            DynamicStepRecord &rec)
   {
     // the Newmark updates, the new contact forces
-    u_new_ = m_.state_.u_owned();
+    u_new_ = model_.state.u_owned();
     hht_.update_rates(u_new_, u_, v_, a_, dt, v_new_, a_new_);
-    lambda_new_ = m_.state_.forces();  // (1+α)λ_{n+1} at the constrained DoFs
+    lambda_new_ = model_.state.forces();  // (1+α)λ_{n+1} at the constrained DoFs
     lambda_new_ *= 1.0 / hht_.weight_new();
     const double F_new = inc.force / hht_.weight_new();
     double d_rate_new = 0.0, d_acc_new = 0.0;
@@ -190,16 +196,15 @@ namespace clearjoint::fe::detail
     // net work of the contact forces: on the meshed bodies (λ at the contact DoFs, and at a
     // deformable journal's mortar partners; the supports do not move) and on a rigid journal
     // (F e_y along its displacement −δ e_y)
-    const double sym = m_.bodies_.symmetry_factor();
+    const double sym = model_.bodies.symmetry_factor();
     const double w_bodies = sym * trapezoidal_work(u_new_, u_, lambda_new_, lambda_);
     const double w_journal = deformable_ ? 0.0 : -0.5 * (d_new - d_) * (F_ + F_new);
     work_contact_ += w_bodies + w_journal;
     // the energies
-    const double strain_total = energy(m_.system_.elastic_stiffness(), u_new_, false);
-    const double strain_j =
-      deformable_ ? energy(m_.system_.elastic_stiffness(), u_new_, true) : 0.0;
-    const double kinetic_total = energy(m_.system_.mass(), v_new_, false);
-    const double kinetic_fe_journal = deformable_ ? energy(m_.system_.mass(), v_new_, true) : 0.0;
+    const double strain_total = energy(model_.system.elastic_stiffness(), u_new_, false);
+    const double strain_j = deformable_ ? energy(model_.system.elastic_stiffness(), u_new_, true) : 0.0;
+    const double kinetic_total = energy(model_.system.mass(), v_new_, false);
+    const double kinetic_fe_journal = deformable_ ? energy(model_.system.mass(), v_new_, true) : 0.0;
     const double kinetic_b = kinetic_total - kinetic_fe_journal;
     const double kinetic_j =
       deformable_ ? kinetic_fe_journal : 0.5 * m_J_ * d_rate_new * d_rate_new;
@@ -215,7 +220,7 @@ namespace clearjoint::fe::detail
     d_rate_ = d_rate_new;
     d_acc_ = d_acc_new;
     F_ = F_new;
-    for (auto &cn : m_.contact_.nodes())
+    for (auto &cn : model_.contact.nodes())
       cn.relative_converged = cn.relative;
 
     rec.time = t_;

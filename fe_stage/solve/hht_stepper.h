@@ -12,9 +12,16 @@
 // and cut.
 #pragma once
 
+#include "fe_stage/contact/contact_problem.h"
+#include "fe_stage/core/assembler.h"
+#include "fe_stage/core/dof_space.h"
+#include "fe_stage/core/state.h"
 #include "fe_stage/fe_model.h"
+#include "fe_stage/mesh/bodies.h"
+#include "fe_stage/scene.h"
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/step_controller.h"
+#include "fe_stage/solve/stepper_interfaces.h"
 
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -22,16 +29,27 @@
 
 namespace clearjoint::fe::detail
 {
-  class ContactModel;
-
   class HhtStepper
   {
   public:
+    /// The model's parts the stepper works on: it assembles the step's known load into the
+    /// assembler, sets u before each contact solve and reads the contact nodes' forces.
+    struct Parts
+    {
+      const FeScene &scene;
+      const Bodies &bodies;
+      const DofSpace &dofs;
+      Assembler &system;
+      State &state;
+      ContactProblem &contact;
+      MPI_Comm comm;
+    };
+
     /// At rest at first touch, the journal moving toward the bearing at `velocity` [m/s]
     /// (rigid: mass m_J [kg], full body; deformable: its FE DoFs, a rigid translation).
     /// Assembles the operator for dt_nominal [s].
-    HhtStepper(ContactModel &model, const HhtAlpha &hht, double dt_nominal, unsigned int max_cuts,
-               double m_J, double velocity, bool deformable_journal);
+    HhtStepper(DynamicProblem &problem, const Parts &parts, const HhtAlpha &hht, double dt_nominal,
+               unsigned int max_cuts, double m_J, double velocity, bool deformable_journal);
 
     /// One converged step from time() to time() + Δt — Δt shortened to reach end_time
     /// exactly when it is > 0 — filling rec's time, Δt, δ, δ̇, F, support force, energies,
@@ -62,7 +80,9 @@ namespace clearjoint::fe::detail
     /// The deformable journal's centre-of-mass displacement toward the bearing.
     double centre_of_mass_y(const TrilinosWrappers::MPI::Vector &x);
 
-    ContactModel &m_;
+    DynamicProblem &problem_;
+    const Parts model_;  // the model's parts it works on
+    const unsigned int rank_;
     const HhtAlpha &hht_;
     StepController control_;
     const bool deformable_;

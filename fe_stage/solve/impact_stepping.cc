@@ -201,8 +201,8 @@ namespace clearjoint::fe::detail
     auto &S = result.impact;
     const auto &I = scene_.impact;
     const double m_J = S.journal_mass;
-    HhtStepper stepper(*this, hht, S.time_step, scene_.loading.max_cuts, m_J, I.velocity,
-                       deformable);
+    HhtStepper stepper(*this, {scene_, bodies_, dofs_, system_, state_, contact_, comm_}, hht,
+                       S.time_step, scene_.loading.max_cuts, m_J, I.velocity, deformable);
     S.journal_mass = stepper.journal_mass();
     if (deformable && rank_ == 0)
       log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +

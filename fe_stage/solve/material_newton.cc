@@ -22,7 +22,7 @@ namespace clearjoint::fe::detail
     return n_plastic_points;
   }
 
-  ContactModel::MaterialIteration ContactModel::material_iteration(const double delta,
+  MaterialIteration ContactModel::material_iteration(const double delta,
                                                                    const bool line_search)
   {
     MaterialIteration it;

@@ -155,11 +155,11 @@ namespace clearjoint::fe::detail
   }
 
   /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
-  void ContactModel::prepare_mesh()
+  void ContactModel::prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement)
   {
     solver_.invalidate();  // its AMG was built for the previous mesh's matrix
     dofs_.distribute(journal_driven_);
-    find_contact_nodes();
+    find_contact_nodes(search_displacement);
     make_matrices();
     system_.assemble_static(material_->elastic(), massless_dofs(system_.kind()));
     compute_nodal_weights();

@@ -13,7 +13,7 @@
 
 namespace clearjoint::fe::detail
 {
-  ContactModel::RollingSolve ContactModel::solve_rolling_state(const double delta)
+  RollingSolve ContactModel::solve_rolling_state(const double delta)
   {
     RollingSolve rs;
     const MaterialSolve m = solve_material_state(delta, scene_.rolling.max_newton_iterations);
@@ -389,7 +389,8 @@ namespace clearjoint::fe::detail
     std::vector<double> times, slips;
     const double wall_steps_start = elapsed();
     unsigned int step = 0;
-    SpinStepper stepper(*this, motion, t_end, R.n_steps, L.max_cuts, inertia);
+    SpinStepper stepper(*this, scene_, state_, frame_, comm_, motion, t_end, R.n_steps, L.max_cuts,
+                        inertia);
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
     for (; stepper.time() < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
       {

@@ -1,6 +1,12 @@
 #include "fe_stage/solve/spin_stepper.h"
 
+#include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/solve/root_finder.h"
+
+#include "common/error.h"
+#include "common/log.h"
+
+#include <deal.II/base/mpi.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,25 +15,31 @@
 
 namespace clearjoint::fe::detail
 {
-  SpinStepper::SpinStepper(ContactModel &model, const rolling::Motion &motion, const double t_end,
-                           const unsigned int n_steps, const unsigned int max_cuts,
-                           const double inertia)
-    : m_(model)
+  SpinStepper::SpinStepper(SpinProblem &problem, const FeScene &scene, State &state,
+                           JournalFrame &frame, MPI_Comm comm, const rolling::Motion &motion,
+                           const double t_end, const unsigned int n_steps,
+                           const unsigned int max_cuts, const double inertia)
+    : problem_(problem)
+    , scene_(scene)
+    , state_(state)
+    , frame_(frame)
+    , rank_(Utilities::MPI::this_mpi_process(comm))
     , motion_(motion)
     , t_end_(t_end)
     , inertia_(inertia)
     // the step size carries over: a step that needed cuts starts the next one at its own
     // size, which doubles (up to the nominal) after two steps without a cut
     , control_(t_end / n_steps, max_cuts, 2)
-    , u_previous_step_(model.dofs_.owned(), model.comm_)
-  {}
+  {
+    u_previous_step_.reinit(state.u_owned());  // zero, on the owned DoFs
+  }
 
   bool SpinStepper::solve(Step &step, std::string &message)
   {
     step = Step{};
     step.dt = control_.begin_step(t_end_ - t_);
     step.rate = gamma_rate_;
-    saved_ = m_.save_state();
+    saved_ = problem_.save_state();
     bool predict_in_time = true;
     for (;;)
       {
@@ -40,7 +52,7 @@ namespace clearjoint::fe::detail
             // state predicted in time: the attempt is tried again from the last state (as
             // the root finder's); failed from there: the root finder, from the same start
             // at the same Δt
-            if (m_.scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
+            if (scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
                 torque_rate_slope_ < 0.0 && attempt.torque_scale > 0.0)
               {
                 if (have_previous_ && predict_in_time)
@@ -52,7 +64,7 @@ namespace clearjoint::fe::detail
                   break;
                 if (predicted_in_time)
                   throw StepFailure{"the coupled iteration failed"};
-                m_.restore_state(saved_);
+                problem_.restore_state(saved_);
                 ++n_coupled_fallbacks_;
               }
             solve_nested(attempt, step, predict_in_time, predicted_in_time);
@@ -60,7 +72,7 @@ namespace clearjoint::fe::detail
           }
         catch (const StepFailure &f)
           {
-            m_.restore_state(saved_);
+            problem_.restore_state(saved_);
             if (!retry(f, predicted_in_time, predict_in_time, step.dt, message))
               return false;
           }
@@ -73,9 +85,9 @@ namespace clearjoint::fe::detail
   SpinStepper::Attempt SpinStepper::begin_attempt(const double dt)
   {
     const double t1 = t_ + dt;
-    m_.frame_.phi = motion_.phi(t1);
-    m_.frame_.centre_previous = motion_.centre_frame(t_);
-    m_.frame_.centre = motion_.centre_frame(t1);
+    frame_.phi = motion_.phi(t1);
+    frame_.centre_previous = motion_.centre_frame(t_);
+    frame_.centre = motion_.centre_frame(t1);
     Attempt a;
     a.dt = dt;
     a.delta = motion_.delta(t1);
@@ -93,7 +105,7 @@ namespace clearjoint::fe::detail
   double SpinStepper::torque_scale(const double force, const double torque, const double t1,
                                    const double dt) const
   {
-    return std::max({m_.scene_.contact.mu * force * m_.scene_.geometry.R_J(), std::abs(torque),
+    return std::max({scene_.contact.mu * force * scene_.geometry.R_J(), std::abs(torque),
                      inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
   }
 
@@ -101,9 +113,9 @@ namespace clearjoint::fe::detail
   void SpinStepper::start_predicted_in_time(const double dt)
   {
     const double w = dt / dt_previous_;
-    m_.state_.u_owned() = saved_.u;
-    m_.state_.u_owned().sadd(1.0 + w, -w, u_previous_step_);
-    m_.state_.publish();
+    state_.u_owned() = saved_.u;
+    state_.u_owned().sadd(1.0 + w, -w, u_previous_step_);
+    state_.publish();
   }
 
   /// rolling.spin_solver nested (and the coupled iteration's fallback): the root of the torque
@@ -113,15 +125,16 @@ namespace clearjoint::fe::detail
   {
     const double dt = attempt.dt, t1 = t_ + dt;
     double &torque_scale = attempt.torque_scale;
-    ContactModel::RollingSolve &rs = step.state;
+    RollingSolve &rs = step.state;
     unsigned int n_evaluated = 0;
     double rate_last = 0.0, rate_before = 0.0;
-    TrilinosWrappers::MPI::Vector u_last(m_.dofs_.owned(), m_.comm_),
-      u_before(m_.dofs_.owned(), m_.comm_);
+    TrilinosWrappers::MPI::Vector u_last, u_before;
+    u_last.reinit(state_.u_owned());  // zero, on the owned DoFs
+    u_before.reinit(state_.u_owned());
     // g(γ̇) / scale, the scale μ F R_J (+ the inertia_ term): the balance holds to 1e-6 of
     // the largest friction torque
     auto g = [&](const double rate) {
-      m_.frame_.delta_psi = rate * dt - attempt.dphi;
+      frame_.delta_psi = rate * dt - attempt.dphi;
       // Where the material Newton iteration starts (only the start: the same converged
       // state, fewer iterations):
       // - the attempt's first evaluation: the state extrapolated linearly in time from the
@@ -143,9 +156,9 @@ namespace clearjoint::fe::detail
         {
           // start = last + w (last − before), as the quasi-static push's predictor
           const double w = (rate - rate_last) / (rate_last - rate_before);
-          m_.state_.u_owned() = u_last;
-          m_.state_.u_owned().sadd(1.0 + w, -w, u_before);
-          m_.state_.publish();
+          state_.u_owned() = u_last;
+          state_.u_owned().sadd(1.0 + w, -w, u_before);
+          state_.publish();
         }
       // The deformable journal turns over the bore: the bore nodes' partners are found
       // again for this pose, between the bore (X + u) and the journal placed at
@@ -153,22 +166,22 @@ namespace clearjoint::fe::detail
       // with them (follow_sliding, which rebuilds the sparsity pattern when they do not fit
       // it). Couplings kept from the step's start would be off by R_J Δψ²/2 in the gap:
       // 19 µm for a 3.6° step, more than the push.
-      if (m_.rolling_deformable_journal())
+      if (problem_.journal_turns_deformable())
         {
           ScopedTimer timer(search_time_);
-          m_.follow_sliding(saved_.u);
+          problem_.pair_turned_journal(saved_.u);
           ++n_searches_;
         }
-      if (log::level() <= log::Level::debug && m_.rank_ == 0)
+      if (log::level() <= log::Level::debug && rank_ == 0)
         log::debug(" torque evaluation at the journal's spin " + format_value(rate) + " rad/s (t " +
                    format_value(t1) + " s, dt " + format_value(dt) + " s)");
-      rs = m_.solve_rolling_state(attempt.delta);
+      rs = problem_.solve_rolling_state(attempt.delta);
       step.newton_iterations += rs.newton_iterations;
       step.line_search_steps += rs.line_search_steps;
       step.contact_iterations += rs.contact_iterations;
       step.linear_iterations += rs.linear_iterations;
       u_before.swap(u_last);
-      u_last = m_.state_.u_owned();
+      u_last = state_.u_owned();
       rate_before = rate_last;
       rate_last = rate;
       ++n_evaluated;
@@ -190,7 +203,7 @@ namespace clearjoint::fe::detail
     const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
     const double slope_guess =
       torque_scale > 0.0 ? (inertia_ / dt - torque_rate_slope_) / torque_scale : 0.0;
-    const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, m_.scene_.rolling.max_spin_iterations,
+    const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, scene_.rolling.max_spin_iterations,
                                  "the journal's torque balance"};
     const auto root = rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess) ?
                         solve_increasing_from(balance, a, slope_guess) :
@@ -217,16 +230,16 @@ namespace clearjoint::fe::detail
   /// bodies' own convergence, not the balance's), or whatever it is once the bodies have
   /// settled (the correction within 100 tolerances: g's change is then the balance's own, as
   /// in a step without contact, where M = 0 and the slope is I/Δt alone). Converged when one
-  /// iterate meets the material Newton tolerance (ContactModel::material_tolerance) and the
+  /// iterate meets the material Newton tolerance (SpinProblem::material_tolerance) and the
   /// root finder's (|g| ≤ 1e-6, or a γ̇ step by the iterates' secant below 1e-10 of the
   /// rolling rate). False when it diverges (the correction grew three times running), stalls,
   /// a solve fails, or it runs out of rolling.max_newton_iterations; the caller restores the
   /// state.
   bool SpinStepper::solve_coupled(const Attempt &a, Step &step)
   {
-    const double tolerance = m_.material_tolerance();
+    const double tolerance = problem_.material_tolerance();
     const double roll = motion_.rolling_rate(t_ + a.dt);
-    const unsigned int max_it = m_.scene_.rolling.max_newton_iterations;
+    const unsigned int max_it = scene_.rolling.max_newton_iterations;
     const double slope_last = (inertia_ / a.dt - torque_rate_slope_) / a.torque_scale;  // [s/rad]
     double slope = slope_last;
     // γ̇ starts at the last step's, as the root finder's bracket does: where the balance is
@@ -244,23 +257,23 @@ namespace clearjoint::fe::detail
       {
         for (unsigned int k = 0; k < max_it; ++k)
           {
-            m_.frame_.delta_psi = rate * a.dt - a.dphi;
+            frame_.delta_psi = rate * a.dt - a.dphi;
             // the deformable journal's partners for this pose (as in the root finder's
             // evaluations), found again whenever γ̇ moved
-            if (m_.rolling_deformable_journal() && !(rate == rate_searched))
+            if (problem_.journal_turns_deformable() && !(rate == rate_searched))
               {
                 ScopedTimer timer(search_time_);
-                m_.follow_sliding(saved_.u);
+                problem_.pair_turned_journal(saved_.u);
                 ++n_searches_;
                 rate_searched = rate;
               }
-            const ContactModel::MaterialIteration it =
-              m_.material_iteration(a.delta, k > 0 && m_.scene_.solver.line_search);
+            const MaterialIteration it =
+              problem_.material_iteration(a.delta, k > 0 && scene_.solver.line_search);
             ++step.newton_iterations;
             step.line_search_steps += it.line_search_steps;
             step.contact_iterations += it.record.contact_iterations;
             step.linear_iterations += it.record.linear_iterations;
-            const double torque = m_.journal_torque();
+            const double torque = problem_.journal_torque();
             const double g = (inertia_ * (rate - gamma_rate_) / a.dt - torque) / a.torque_scale;
             if (k > 0 && rate != rate_before)
               {
@@ -273,7 +286,7 @@ namespace clearjoint::fe::detail
             // slip under a small force — can send γ̇ to thousands of rad/s)
             const double rate_step =
               std::abs(g) <= 1e-6 ? 0.0 : std::clamp(-g / slope, -0.5 * roll, 0.5 * roll);
-            if (log::level() <= log::Level::debug && m_.rank_ == 0)
+            if (log::level() <= log::Level::debug && rank_ == 0)
               log::debug("  coupled iteration " + std::to_string(k + 1) + ": spin " +
                          format_value(rate) + " rad/s, balance " + format_value(g) +
                          ", correction " + format_value(it.correction) + " m, " +
@@ -302,7 +315,7 @@ namespace clearjoint::fe::detail
             last_correction = it.correction;
             if (growths >= 3)
               {
-                if (m_.rank_ == 0)
+                if (rank_ == 0)
                   log::debug(" the coupled iteration diverges; the root finder takes the step");
                 return false;
               }
@@ -313,7 +326,7 @@ namespace clearjoint::fe::detail
             if (balances.size() > 4 && std::abs(g) > 1e-6 &&
                 std::abs(g) > 0.5 * balances[balances.size() - 5])
               {
-                if (m_.rank_ == 0)
+                if (rank_ == 0)
                   log::debug(" the coupled iteration stalls on the torque balance; the root "
                              "finder takes the step");
                 return false;
@@ -325,12 +338,12 @@ namespace clearjoint::fe::detail
       }
     catch (const StepFailure &f)
       {
-        if (m_.rank_ == 0)
+        if (rank_ == 0)
           log::debug(" the coupled iteration failed (" + f.reason +
                      "); the root finder takes the step");
         return false;
       }
-    if (m_.rank_ == 0)
+    if (rank_ == 0)
       log::debug(" the coupled iteration did not converge in " + std::to_string(max_it) +
                  " iterations; the root finder takes the step");
     return false;
@@ -346,7 +359,7 @@ namespace clearjoint::fe::detail
     if (predicted_in_time)
       {
         predict_in_time = false;
-        if (m_.rank_ == 0)
+        if (rank_ == 0)
           log::debug("fe_stage: time step to t = " + format_value(t_ + dt) +
                      " s failed from the state predicted in time (" + f.reason +
                      "); again from the last state");
@@ -357,12 +370,12 @@ namespace clearjoint::fe::detail
         message = "time step to t = " + format_value(t_ + dt) + " s failed after " +
                   std::to_string(control_.cuts()) + " cuts" + control_.floor_note("s") + ": " +
                   f.reason;
-        if (m_.rank_ == 0)
+        if (rank_ == 0)
           log::error("fe_stage: " + message);
         return false;
       }
     dt = control_.size();
-    if (m_.rank_ == 0)
+    if (rank_ == 0)
       log::warning("fe_stage: time step to t = " + format_value(t_ + 2 * dt) + " s failed (" +
                    f.reason + "); retrying with dt " + format_value(dt) + " s");
     return true;

@@ -8,16 +8,23 @@
 //   a slope is known (the first step), and for a step where it fails, the root finder below;
 // - nested: a root finder on γ̇ (solve/root_finder.h) around whole material solves, each
 //   evaluation of M a converged state of the elastoplastic bodies
-//   (ContactModel::solve_rolling_state). It owns the
+//   (SpinProblem::solve_rolling_state). It owns the
 // spin's state (t, γ, γ̇), what carries from step to step — the balance's scale and slope
 // dM/dγ̇, the state before the last step (the predictor in time), Δt (solve/step_controller.h)
 // — and the journal's search counters; the study (solve/rolling_stepping.cc) records each step
 // and commits the material before accept().
 #pragma once
 
-#include "fe_stage/contact_model.h"
+#include "fe_stage/contact/journal_frame.h"
+#include "fe_stage/core/state.h"
+#include "fe_stage/core/step_failure.h"
+#include "fe_stage/scene.h"
 #include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/solve/step_controller.h"
+#include "fe_stage/solve/stepper_interfaces.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <string>
 
@@ -32,7 +39,7 @@ namespace clearjoint::fe::detail
     {
       double dt = 0.0;
       double rate = 0.0;
-      ContactModel::RollingSolve state;
+      RollingSolve state;
       unsigned int spin_evaluations = 0;
       unsigned int cuts = 0;
       /// what the step cost, failed attempts included: material Newton iterations, active-set
@@ -42,8 +49,11 @@ namespace clearjoint::fe::detail
       bool coupled = false;  // the coupled iteration converged it (else the root finder)
     };
 
-    SpinStepper(ContactModel &model, const rolling::Motion &motion, double t_end,
-                unsigned int n_steps, unsigned int max_cuts, double inertia);
+    /// Works on the model's state u and journal frame, which it moves; the rest through
+    /// `problem`.
+    SpinStepper(SpinProblem &problem, const FeScene &scene, State &state, JournalFrame &frame,
+                MPI_Comm comm, const rolling::Motion &motion, double t_end, unsigned int n_steps,
+                unsigned int max_cuts, double inertia);
 
     /// Solves the next step from time() (Δt shortened to reach t_end): the model then holds its
     /// converged state. False with `message` when it failed after its cuts (the model holds
@@ -76,7 +86,11 @@ namespace clearjoint::fe::detail
     bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
                std::string &message);
 
-    ContactModel &m_;
+    SpinProblem &problem_;
+    const FeScene &scene_;
+    State &state_;
+    JournalFrame &frame_;
+    const unsigned int rank_;
     const rolling::Motion motion_;
     const double t_end_, inertia_;
     StepController control_;
@@ -88,8 +102,8 @@ namespace clearjoint::fe::detail
     TrilinosWrappers::MPI::Vector u_previous_step_;
     double dt_previous_ = 0.0;
     bool have_previous_ = false;
-    ContactModel::Snapshot saved_;  // the converged state the step in progress starts from
-    double search_time_ = 0.0;      // [s] the deformable journal's searches and rebuilds
+    Snapshot saved_;            // the converged state the step in progress starts from
+    double search_time_ = 0.0;  // [s] the deformable journal's searches and rebuilds
     unsigned int n_searches_ = 0;
     unsigned int n_coupled_fallbacks_ = 0;
   };

@@ -1,7 +1,7 @@
-// Dual-mortar coupling (fe_stage/mortar.h): matching meshes, the patch test on non-matching
+// Dual-mortar coupling (fe_stage/contact/mortar.h): matching meshes, the patch test on non-matching
 // meshes, a curved master (paraboloid), a curved slave (cylinder bore), hanging faces, and
 // the bad-input messages. Every tolerance says why it is what it is.
-#include "fe_stage/mortar.h"
+#include "fe_stage/contact/mortar.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Dual-mortar coupling; see mortar.h for the contract and the references.
-#include "fe_stage/mortar.h"
+#include "fe_stage/contact/mortar.h"
 
 #include <Eigen/Dense>
 
