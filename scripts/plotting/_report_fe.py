@@ -693,8 +693,9 @@ def fig7_cuts(fs, run_dir, warnings):
                  f"the symmetry plane x = 0 near the contact, at δ = "
                  f"{get(man, 'extra', 'scene', 'loading', 'delta_max', default=0) * 1e3:.3g} mm "
                  f"(last increment), {esc(LOADING_WORDS.get(loading, loading))}. The paper shows "
-                 f"σ_rr in MPa on its own scale; ours is symmetric about 0 on each picture's "
-                 f"largest |σ_rr| (the journal's rim is a corner: its peak grows with the mesh)."))
+                 f"σ_rr in MPa on its own scale; ours is symmetric about 0 at the 95th percentile "
+                 f"of |σ_rr| on the cut, saturated beyond (the colour bar gives the peak: the "
+                 f"journal's rim is a corner, whose peak grows with the mesh)."))
     return "<h4>The paper's Fig. 7: radial normal stress in the side cut</h4>" + "".join(out)
 
 
