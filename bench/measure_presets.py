@@ -167,6 +167,9 @@ class Measurer:
             s = json.loads(json.dumps(matching[0]))
             s["values"] = [entry["value"]]
             s["overrides"] = {**(s.get("overrides") or {}), **extra}
+            # a sweep's own preset settings come after its overrides: `set` must win there too
+            for name, own in (s.get("presets") or {}).items():
+                s["presets"][name] = {**(own or {}), **extra}
             p["fe_sweeps"] = [s]
         elif kind == "impact":
             if "impact" not in self.pipeline:

@@ -189,6 +189,10 @@ namespace clearjoint::pipeline
           std::vector<Origin> origins = preset_origins("fe");
           for (const auto &[k, val] : sweep.overrides)
             origins.push_back({k, key + ".overrides." + k, val});
+          const auto own = sweep.preset_overrides.find(config_.preset);
+          if (own != sweep.preset_overrides.end())
+            for (const auto &[k, val] : own->second)
+              origins.push_back({k, key + ".presets." + config_.preset + "." + k, val});
           origins.push_back({sweep.key, key + ".values[" + std::to_string(v) + "]",
                              sweep.keywords[v].empty() ? nlohmann::json(sweep.values[v])
                                                        : nlohmann::json(sweep.keywords[v])});

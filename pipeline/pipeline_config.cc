@@ -15,6 +15,15 @@ namespace clearjoint::pipeline
 {
   namespace fs = std::filesystem;
 
+  Overrides sweep_overrides(const FeSweep &sweep, const std::string &preset)
+  {
+    Overrides out = sweep.overrides;
+    const auto p = sweep.preset_overrides.find(preset);
+    if (p != sweep.preset_overrides.end())
+      out.insert(out.end(), p->second.begin(), p->second.end());
+    return out;
+  }
+
   std::string value_label(const double value)
   {
     // Shortest "%.{p}g" that reads back as the same double: 0.004 stays "0.004", a computed
@@ -197,6 +206,31 @@ namespace clearjoint::pipeline
       for (const auto &[key, value] : f.overrides)
         if (key == f.key)
           s.fail("overrides", key, "keys other than the swept parameter's key '" + f.key + "'");
+      if (s.has("presets"))
+      {
+        const auto &given = s.raw("presets");
+        if (!given.is_object())
+          s.fail("presets", json_excerpt(given, 60),
+                 "a mapping of preset names (fast, standard, accurate) to scene settings");
+        StrictObject presets = s.object("presets");
+        for (const auto &preset : preset_names())
+        {
+          if (!given.contains(preset))
+            presets.fail(preset, "missing",
+                         "settings (or null) for every preset: fast, standard, accurate",
+                         "a sweep's presets name every preset, so that no preset runs this "
+                         "sweep on settings nobody measured for it");
+          Overrides o = read_overrides(presets, preset);
+          for (const auto &[key, value] : o)
+            if (key == f.key)
+              presets.fail(preset, key,
+                           "keys other than the swept parameter's key '" + f.key + "'");
+          f.preset_overrides[preset] = std::move(o);
+        }
+        presets.finish();
+      }
+      else
+        s.allow("presets");
       if (s.has("mesh_parameters"))
       {
         const auto &mp = s.raw("mesh_parameters");

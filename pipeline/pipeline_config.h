@@ -43,6 +43,11 @@ namespace clearjoint::pipeline
     std::vector<std::string> keywords;  ///< parallel to values: "" or e.g. "theta_max"
     /// Set in every case's scene after the preset's overrides (e.g. geometry.mesh).
     Overrides overrides;
+    /// `presets.<p>`: preset name → set in every case's scene after `overrides` when preset p
+    /// runs (e.g. the adaptive cycles of a sweep whose scene does not converge on the presets'
+    /// uniform levels). Empty: the global presets alone. Given, it names every preset (a
+    /// preset left out would run the sweep on settings nobody measured for it).
+    std::map<std::string, Overrides> preset_overrides;
     /// Extra `gmsh -setnumber NAME VALUE` when the scene's geometry.mesh names a .geo file
     /// (the scene's geometry keys R_B, t_B, L_B, c_r, c_a are always passed) [SI].
     std::map<std::string, double> mesh_parameters;
@@ -148,6 +153,10 @@ namespace clearjoint::pipeline
     static const std::vector<std::string> names = {"fast", "standard", "accurate"};
     return names;
   }
+
+  /// What a case of `sweep` sets after the preset's `fe` map, in order: the sweep's
+  /// `overrides`, then its `presets.<preset>` (the swept key comes last, per case).
+  Overrides sweep_overrides(const FeSweep &sweep, const std::string &preset);
 
   /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a sweep that
   /// does not exist or a value not in that sweep → InputError naming the key and valid range.

@@ -58,7 +58,7 @@ namespace clearjoint::pipeline
                                                const bool dry_run,
                                                std::vector<int> &after)
   {
-    Overrides overrides = sweep.overrides;
+    Overrides overrides = sweep_overrides(sweep, config_.preset);
     overrides.emplace_back(sweep.key, value);
     nlohmann::json scene = compose_scene(config_, sweep.scene, "fe", overrides);
     const std::string where = sweep.scene + " (sweep '" + sweep.name + "' of " + config_.source + ")";

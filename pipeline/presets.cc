@@ -51,6 +51,17 @@ namespace clearjoint::pipeline
           const auto colon = key.find(':');
           p[key.substr(0, colon)][key.substr(colon + 1)] = value;
         }
+      // A sweep's own settings for this preset (fe_sweeps[i].presets.<name>), set after its
+      // overrides in that sweep's cases only.
+      p["sweeps"] = nlohmann::json::object();
+      for (const auto &sweep : config.fe_sweeps)
+        if (const auto it = sweep.preset_overrides.find(name); it != sweep.preset_overrides.end())
+        {
+          nlohmann::json settings = nlohmann::json::object();
+          for (const auto &[key, value] : it->second)
+            settings[key] = value;
+          p["sweeps"][sweep.name] = settings;
+        }
       p["measured"] = nullptr;
       if (const auto it = config.preset_measured.find(name); it != config.preset_measured.end())
       {

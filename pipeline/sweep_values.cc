@@ -47,9 +47,10 @@ namespace clearjoint::pipeline
                          "numbers in " + sweep.unit + ", or theta_max only in a sweep whose "
                          "parameter unit is deg or rad",
                          "theta_max is an angle");
+      const Overrides overrides = sweep_overrides(sweep, config.preset);
       const std::string where = sweep.scene + " (preset " + config.preset +
-                                (sweep.overrides.empty() ? "" : ", with the sweep's overrides") + ")";
-      const auto scene = compose_scene(config, sweep.scene, "fe", sweep.overrides);
+                                (overrides.empty() ? "" : ", with the sweep's overrides") + ")";
+      const auto scene = compose_scene(config, sweep.scene, "fe", overrides);
       const auto g = scene_joint_geometry(scene, where);
       const auto theta = geometry::theta_max(g);
       if (!theta)

@@ -33,6 +33,18 @@ REASONS = {
     "t_B": "the paper's conclusion says the force falls with t_B; its §3.1 text and Fig. 4b say "
            "it grows, as ours does (SPEC §2).",
 }
+# The same, where it depends on the journal (loading.journal) of the sweep's scene.
+REASONS_BY_JOURNAL = {
+    ("theta", "core"): "not analysed for this run: on the adaptive meshes of docs/fe.md the "
+                       "core-loaded deformable journal's force falls with θ (−15 % from 1° to "
+                       "2.5°, frictionless); a step smaller than the mesh error can turn the "
+                       "sign, so compare the steps with the error per θ (preset table).",
+}
+
+
+def reason_for(sweep, loading):
+    return REASONS_BY_JOURNAL.get((sweep["parameter"], loading),
+                                  REASONS.get(sweep["parameter"], "not analysed"))
 
 
 def case_label(sweep, case):
@@ -137,6 +149,11 @@ def modelled_paragraph(fs):
                      f"{mesh.get('n_circumferential')}×{mesh.get('n_radial')}×{mesh.get('n_axial')}, "
                      f"{mesh.get('global_refinements')} global and {mesh.get('contact_refinements')} "
                      f"contact-zone refinements")
+        if (mesh.get("adaptive_cycles") or 0) > 0:
+            parts.append(f", then {mesh['adaptive_cycles']} adaptive cycles refining the "
+                         f"{100 * (mesh.get('adaptive_fraction') or 0.2):.3g} % of cells with the "
+                         f"largest Kelly indicators (the curve on the last mesh; each mesh in the "
+                         f"case's adaptive_cycles.csv)")
     if dofs:
         parts.append(f" ({thousands(dofs)} DoFs for the first case)")
     parts.append(".</p>")
@@ -291,9 +308,22 @@ def claim_table(fs):
     if claim:
         expected, text = claim
         agree = sign == expected
-        reason = "" if agree else REASONS.get(sweep["parameter"], "not analysed")
+        loading = get(fs.first_scene(), "loading", "journal", default="?")
+        reason = "" if agree else reason_for(sweep, loading)
         rows.append(f"<tr><td>trend of F at fixed δ</td><td>{esc(text)}</td><td>{ours}</td>"
                     f"<td>{'yes' if agree else '<strong>no</strong>'}</td><td>{esc(reason)}</td></tr>")
+    if sweep["parameter"] == "theta" and claim:
+        # F(θ) itself beside the claim: each value and each step against the mesh error
+        cells = []
+        for (case, law, _), F in zip(fs.cases, Fs):
+            e_case = mesh_error(law)
+            cells.append(f"{esc(case_label(sweep, case))}: {thousands(F)} N"
+                         + (f" (mesh ±{100 * e_case:.2g} %)" if e_case else ""))
+        steps = [f"{100 * (b - a) / a:+.1f} %" for a, b in zip(Fs, Fs[1:])]
+        rows.append(f"<tr><td>F at δ = {dref * 1e3:.3g} mm per θ, and each step</td>"
+                    f"<td>{esc(claim[1])}</td><td>{'; '.join(cells)}; steps {', '.join(steps)}</td>"
+                    f"<td>{'yes' if sign == claim[0] else '<strong>no</strong>'}</td>"
+                    f"<td>the journal: {esc(LOADING_WORDS.get(get(fs.first_scene(), 'loading', 'journal', default='?'), '?'))}</td></tr>")
     if sweep["parameter"] == "t_B":
         for case, law, _ in fs.cases:
             if abs(case["value"] - _paper.TB4_T_B) < 1e-9:
@@ -585,8 +615,10 @@ def pictures_and_checks(fs, run_dir, warnings):
                  f"(last increment), rendered off-screen with VTK from "
                  f"{esc(os.path.relpath(fields.last_field_file(case['fe_dir']), run_dir))}: the mesh, von "
                  f"Mises stress on the symmetry plane x = 0 near the contact (the paper's Fig. 7 "
-                 f"shows the radial normal stress; open the .pvd in ParaView for any other "
-                 f"component), contact pressure on the bore."))
+                 f"shows the radial normal stress"
+                 + (", drawn below for θ = 1° and 2.5°" if fs.sweep["parameter"] == "theta" else "")
+                 + f"; open the .pvd in ParaView for any other component), contact pressure on "
+                 f"the bore."))
     y, source = yield_check(case, man, stats)
     if y and y.get("max_von_mises") is not None:
         ys = y["yield_stress"] or scene_yield_stress(man)
@@ -614,6 +646,57 @@ def pictures_and_checks(fs, run_dir, warnings):
             out.append(f"<p>Yield check ({esc(label)}, {esc(source)}): {text}: elastic everywhere.</p>")
     out.append(contact_field_notes(stats, mu, label, warnings, fs.anchor))
     return "".join(out), stats
+
+
+# The paper's Fig. 7: the radial normal stress in the side cut at θ = 1° (a) and 2.5° (b).
+FIG7_THETAS = ((1.0, "a"), (2.5, "b"))
+
+
+def fig7_cuts(fs, run_dir, warnings):
+    """The misalignment sweep's counterpart of the paper's Fig. 7: for θ = 1° and 2.5° (the
+    cases at those values, when they have fields), the radial normal stress beside von Mises on
+    the plane x = 0 (`plot.py fields --cut`), written to pictures/<sweep>_fig7<a|b>.png."""
+    import subprocess
+    import sys
+    from plotting import fields
+    plot_py = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plot.py")
+    out = []
+    for theta, panel in FIG7_THETAS:
+        pick = [(c, m) for c, _, m in fs.cases
+                if abs(shown(c["value"], fs.sweep["unit"])[0] - theta) < 1e-9]
+        if not pick:
+            out.append(f"<p>Fig. 7{panel} (θ = {theta:g}°): no case at this θ in the sweep.</p>")
+            continue
+        case, man = pick[0]
+        label = case_label(fs.sweep, case)
+        if fields.last_field_file(case["fe_dir"]) is None:
+            out.append(f"<p>Fig. 7{panel} ({esc(label)}): the case was run without fields.</p>")
+            continue
+        R_B = get(man, "extra", "scene", "geometry", "R_B")
+        png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fig7{panel}.png")
+        os.makedirs(os.path.dirname(png), exist_ok=True)
+        ys = value_of(get(man, "extra", "yield_check", "yield_stress")) or scene_yield_stress(man)
+        r = subprocess.run([sys.executable, plot_py, "fields", case["fe_dir"], "--cut",
+                            "--output", png, "--bore-radius", repr(R_B or 0.0),
+                            "--yield-stress", repr(ys),
+                            "--title", f"{fs.sweep['name']}: theta = {theta:g} deg (paper Fig. 7{panel})"],
+                           capture_output=True, text=True) if R_B else None
+        if r is None or r.returncode != 0 or not os.path.exists(png):
+            why = ("the FE manifest's scene names no geometry.R_B" if r is None
+                   else (r.stderr or "").strip()[-300:])
+            warnings.add(f"pictures, Fig. 7{panel}", "not rendered: " + esc(why), fs.anchor)
+            continue
+        loading = get(man, "extra", "scene", "loading", "journal", default="?")
+        out.append(image_file_html(
+            png, f"The paper's Fig. 7{panel}, {esc(label)}: the radial normal stress σ_rr = n·σ·n "
+                 f"(n radial from the bearing's axis; negative: compression) beside von Mises, on "
+                 f"the symmetry plane x = 0 near the contact, at δ = "
+                 f"{get(man, 'extra', 'scene', 'loading', 'delta_max', default=0) * 1e3:.3g} mm "
+                 f"(last increment), {esc(LOADING_WORDS.get(loading, loading))}. The paper shows "
+                 f"σ_rr in MPa on its own scale; ours is symmetric about 0 at the 95th percentile "
+                 f"of |σ_rr| on the cut, saturated beyond (the colour bar gives the peak: the "
+                 f"journal's rim is a corner, whose peak grows with the mesh)."))
+    return "<h4>The paper's Fig. 7: radial normal stress in the side cut</h4>" + "".join(out)
 
 
 def per_case_details(fs, base):
@@ -668,7 +751,9 @@ def sweep_section(sweep, base, warnings):
     fe_case_warnings(fs, warnings)
     pictures, _ = pictures_and_checks(fs, base, warnings)
     parts = [head, modelled_paragraph(fs), force_figure(fs), fref_figure(fs), claim_table(fs),
-             "<h4>Fields</h4>", pictures, yield_section(fs, warnings), "<h4>Laws</h4>",
+             "<h4>Fields</h4>", pictures,
+             fig7_cuts(fs, base, warnings) if sweep["parameter"] == "theta" else "",
+             yield_section(fs, warnings), "<h4>Laws</h4>",
              law_table(fs, base),
              "<h4>Every case</h4>", per_case_details(fs, base)]
     return "".join(parts), fs

@@ -2,13 +2,15 @@
 python3-vtk9) — the counterpart of the paper's Fig. 7 — and the numbers the report needs from
 the fields (largest von Mises stress, volume above a yield stress, contact-field checks).
 
-    plot.py fields FE_DIR --output OUT.png [--yield-stress PA] [--title TEXT]
+    plot.py fields FE_DIR --output OUT.png [--yield-stress PA] [--title TEXT] [--cut]
 
 FE_DIR is an fe_stage case folder (fields/solution.pvd and manifest.json); the last increment
 is drawn. Three panels: the mesh (output patches: each Q2 cell is written as 2×2×2 sub-cells),
 von Mises stress on the x = 0 symmetry plane near the contact (the paper's side cut, Fig. 7;
 black line: the yield stress), and the contact pressure on the bearing's bore seen from the
-axis (the journal removed). VTK 9.1 from Debian renders through X: without $DISPLAY the script
+axis (the journal removed). With --cut: the paper's Fig. 7 itself, the radial normal stress
+σ_rr = n·σ·n (n radial from the bearing's axis; from the 9-component `stress` array) beside
+von Mises, both on the x = 0 plane near the contact. VTK 9.1 from Debian renders through X: without $DISPLAY the script
 runs itself again under xvfb-run (Debian package xvfb).
 """
 import argparse
@@ -231,6 +233,202 @@ def _bar(ren, lut, title):
     ren.AddActor2D(bar)
 
 
+def radial_normal_stress(points, stress):
+    """σ_rr = n·σ·n [Pa] at each point, n the unit vector from the bearing's axis (the z axis)
+    to the point in its cross-section, n = (x, y, 0)/√(x² + y²): the paper's Fig. 7 "normal
+    stress along the radial direction". points: (N, 3) [m]; stress: (N, 9), the tensor row by
+    row as fe_stage writes it (σ_xx, σ_xy, σ_xz, σ_yx, …). On the axis itself (r < 1e-12 m, the
+    journal's centre line, far from the contact) n is undefined and −y, the push direction,
+    is taken."""
+    import numpy as np
+    p = np.asarray(points, dtype=float)
+    sig = np.asarray(stress, dtype=float).reshape(-1, 3, 3)
+    r = np.hypot(p[:, 0], p[:, 1])
+    n = np.zeros((len(p), 3))
+    on_axis = r < 1e-12
+    n[~on_axis, 0] = p[~on_axis, 0] / r[~on_axis]
+    n[~on_axis, 1] = p[~on_axis, 1] / r[~on_axis]
+    n[on_axis, 1] = -1.0
+    return np.einsum("ni,nij,nj->n", n, sig, n)
+
+
+def add_radial_normal_stress(grid):
+    """Adds the point array `radial_normal_stress` [Pa] (radial_normal_stress() of the grid's
+    9-component `stress`); False when the grid has no such stress array."""
+    import vtk  # noqa: F401
+    from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    arr = grid.GetPointData().GetArray("stress")
+    if arr is None or arr.GetNumberOfComponents() != 9:
+        return False
+    srr = radial_normal_stress(vtk_to_numpy(grid.GetPoints().GetData()), vtk_to_numpy(arr))
+    v = numpy_to_vtk(srr.astype(float), deep=True)
+    v.SetName("radial_normal_stress")
+    grid.GetPointData().AddArray(v)
+    return True
+
+
+def _diverging_lut(limit):
+    """Blue (compression) – white (0) – red (tension) over [−limit, limit]."""
+    import vtk
+    ctf = vtk.vtkColorTransferFunction()
+    ctf.SetColorSpaceToDiverging()
+    ctf.AddRGBPoint(-limit, 0.230, 0.299, 0.754)
+    ctf.AddRGBPoint(0.0, 0.865, 0.865, 0.865)
+    ctf.AddRGBPoint(limit, 0.706, 0.016, 0.150)
+    lut = vtk.vtkLookupTable()
+    lut.SetNumberOfTableValues(256)
+    lut.SetTableRange(-limit, limit)
+    lut.Build()
+    for i in range(256):
+        c = ctf.GetColor(-limit + 2 * limit * i / 255)
+        lut.SetTableValue(i, c[0], c[1], c[2], 1.0)
+    return lut
+
+
+# The cut panels: (array, colour-bar title, words for the panel's caption)
+CUT_KINDS = {
+    "von_mises": ("von_mises_stress", "von Mises [MPa]", "von Mises"),
+    "radial": ("radial_normal_stress", "radial normal stress [MPa]",
+               "radial normal stress (blue: compression)"),
+}
+
+
+def _cut_panel(grid, surf, b, R_B, kind, viewport, panel_width, height, yield_stress=None):
+    """A renderer with `kind` (CUT_KINDS) on the x = 0 plane near the contact (bottom of the
+    bore), seen from −x: horizontal z (the axial direction), vertical y; the whole axial extent
+    and the wall below the bore with a little of the journal above it. von Mises on a rainbow
+    scale from 0 with the yield stress as a black line; the radial normal stress on a diverging
+    scale symmetric about 0."""
+    import vtk
+    array, bar_title, words = CUT_KINDS[kind]
+    r2 = vtk.vtkRenderer()
+    r2.SetViewport(viewport[0], 0.0, viewport[1], 1.0)
+    r2.SetBackground(1, 1, 1)
+    # keep the wall below the bore and a band above it (the journal's rim, if meshed): above
+    # that a half model would show the far side of the bore through the open plane
+    t_wall = -b[2] - R_B
+    y_cut = -R_B + 0.75 * t_wall
+    plane = vtk.vtkPlane()
+    plane.SetOrigin(0.0, y_cut, 0.0)
+    plane.SetNormal(0.0, -1.0, 0.0)
+    clip = vtk.vtkClipPolyData()
+    clip.SetInputData(surf)
+    clip.SetClipFunction(plane)
+    clip.Update()
+    vm = _scaled_copy(clip.GetOutput(), array, 1e-6)
+    shown = array + "_shown"
+    if vm is not None:
+        lo, hi = vm.GetPointData().GetArray(shown).GetRange()
+        if kind == "radial":
+            # symmetric about 0 at the 95th percentile of |σ_rr| over the cut's points (they
+            # crowd where the mesh is refined): the deformable rim is a corner whose peak grows
+            # with the mesh and would wash the rest out; the bar states the peak
+            import numpy as np
+            from vtk.util.numpy_support import vtk_to_numpy
+            vals = np.abs(vtk_to_numpy(vm.GetPointData().GetArray(shown)))
+            limit = max(float(np.percentile(vals, 95.0)) if vals.size else 0.0, 1e-9)
+            peak = float(vals.max()) if vals.size else 0.0
+            if peak > limit * (1 + 1e-9):
+                bar_title = f"{bar_title}, saturated beyond +-{limit:.0f} (peak {peak:.0f})"
+            lut, lo, hi = _diverging_lut(limit), -limit, limit
+        else:
+            lo, hi = 0.0, max(hi, 1e-9)
+            lut = _lut(lo, hi, 1e-6)
+        mv = vtk.vtkPolyDataMapper()
+        mv.SetInputData(vm)
+        mv.SetLookupTable(lut)
+        mv.SetScalarRange(lo, hi)
+        mv.SetScalarModeToUsePointData()
+        mv.InterpolateScalarsBeforeMappingOn()
+        av = vtk.vtkActor()
+        av.SetMapper(mv)
+        r2.AddActor(av)
+        if kind == "von_mises" and yield_stress is not None and hi > yield_stress * 1e-6:
+            cont = vtk.vtkContourFilter()
+            cont.SetInputData(vm)
+            cont.SetInputArrayToProcess(0, 0, 0, 0, shown)
+            cont.SetValue(0, yield_stress * 1e-6)
+            cm = vtk.vtkPolyDataMapper()
+            cm.SetInputConnection(cont.GetOutputPort())
+            cm.ScalarVisibilityOff()
+            ca = vtk.vtkActor()
+            ca.SetMapper(cm)
+            ca.GetProperty().SetColor(0, 0, 0)
+            ca.GetProperty().SetLineWidth(1.5)
+            r2.AddActor(ca)
+        _bar(r2, lut, bar_title)
+    cam = r2.GetActiveCamera()
+    cam.ParallelProjectionOn()
+    z_ext = b[5] - b[4]
+    zc = 0.5 * (b[4] + b[5])
+    aspect = panel_width / height
+    # parallel scale = half the visible height; the strip is wider than tall
+    half = max(0.5 * 1.08 * z_ext / aspect, 0.5 * 1.3 * (y_cut - b[2]))
+    yc = 0.5 * (y_cut + b[2]) - 0.12 * half  # a little low: the colour bar sits below
+    cam.SetFocalPoint(0.0, yc, zc)
+    cam.SetPosition(-1.0, yc, zc)
+    cam.SetViewUp(0, 1, 0)
+    cam.SetParallelScale(half)
+    r2.ResetCameraClippingRange()
+    line = (f"; black line: {yield_stress / 1e6:.4g} MPa"
+            if kind == "von_mises" and yield_stress is not None else "")
+    _text(r2, f"{words} on the plane x = 0 (z across, y up){line}"
+          if vm is not None else f"no {array} in the fields", top=True)
+    return r2
+
+
+def render_cut(fe_dir, out_png, R_B, yield_stress=DEFAULT_YIELD_STRESS, title="", width=1400,
+               height=560):
+    """The paper's Fig. 7 cut: the radial normal stress and von Mises side by side on the x = 0
+    plane near the contact. Returns False (and says why) without fields or without the
+    9-component `stress` array."""
+    path = last_field_file(fe_dir)
+    if path is None:
+        print(f"fields: {fe_dir}: no fields/solution.pvd with an existing last increment",
+              file=sys.stderr)
+        return False
+    import vtk
+    grid = read_grid(path)
+    if not add_radial_normal_stress(grid):
+        print(f"fields: {path}: no 9-component 'stress' array: cannot compute the radial "
+              "normal stress", file=sys.stderr)
+        return False
+    surf = _surface(grid)
+    b = grid.GetBounds()
+    win = vtk.vtkRenderWindow()
+    win.SetOffScreenRendering(1)
+    win.SetSize(width, height)
+    win.SetMultiSamples(0)
+    left = _cut_panel(grid, surf, b, R_B, "radial", (0.0, 0.5), width / 2, height)
+    win.AddRenderer(left)
+    win.AddRenderer(_cut_panel(grid, surf, b, R_B, "von_mises", (0.5, 1.0), width / 2, height,
+                               yield_stress))
+    if title:
+        t = vtk.vtkTextActor()
+        t.SetInput(title)
+        t.GetTextProperty().SetFontSize(16)
+        t.GetTextProperty().SetColor(0, 0, 0)
+        t.SetPosition(8, height - 26)
+        left.AddActor2D(t)
+    _write_png(win, out_png)
+    return True
+
+
+def _write_png(win, out_png):
+    import vtk
+    win.Render()
+    grab = vtk.vtkWindowToImageFilter()
+    grab.SetInput(win)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    writer = vtk.vtkPNGWriter()
+    tmp = out_png + ".tmp.png"
+    writer.SetFileName(tmp)
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.Write()
+    os.replace(tmp, out_png)
+
+
 def render(fe_dir, out_png, R_B, yield_stress=DEFAULT_YIELD_STRESS, title="", width=1650,
            height=560):
     """Writes the three-panel picture; returns False (and says why) if there are no fields."""
@@ -275,65 +473,9 @@ def render(fe_dir, out_png, R_B, yield_stress=DEFAULT_YIELD_STRESS, title="", wi
     _text(r1, "mesh (output patches), reference configuration")
     win.AddRenderer(r1)
 
-    # (b) von Mises on the x = 0 plane near the contact (bottom of the bore), seen from −x:
-    # horizontal z (the axial direction), vertical y; the whole axial extent and the wall below
-    # the bore with a little of the journal above it.
-    r2 = vtk.vtkRenderer()
-    r2.SetViewport(1 / 3, 0.0, 2 / 3, 1.0)
-    r2.SetBackground(1, 1, 1)
-    # keep the wall below the bore and a band above it (the journal's rim, if meshed): above
-    # that a half model would show the far side of the bore through the open plane
-    t_wall = -b[2] - R_B
-    y_cut = -R_B + 0.75 * t_wall
-    plane = vtk.vtkPlane()
-    plane.SetOrigin(0.0, y_cut, 0.0)
-    plane.SetNormal(0.0, -1.0, 0.0)
-    clip = vtk.vtkClipPolyData()
-    clip.SetInputData(surf)
-    clip.SetClipFunction(plane)
-    clip.Update()
-    vm = _scaled_copy(clip.GetOutput(), "von_mises_stress", 1e-6)
-    if vm is not None:
-        lo, hi = vm.GetPointData().GetArray("von_mises_stress_shown").GetRange()
-        lut = _lut(0.0, max(hi, 1e-9), 1e-6)
-        mv = vtk.vtkPolyDataMapper()
-        mv.SetInputData(vm)
-        mv.SetLookupTable(lut)
-        mv.SetScalarRange(0.0, max(hi, 1e-9))
-        mv.SetScalarModeToUsePointData()
-        mv.InterpolateScalarsBeforeMappingOn()
-        av = vtk.vtkActor()
-        av.SetMapper(mv)
-        r2.AddActor(av)
-        if hi > yield_stress * 1e-6:
-            cont = vtk.vtkContourFilter()
-            cont.SetInputData(vm)
-            cont.SetInputArrayToProcess(0, 0, 0, 0, "von_mises_stress_shown")
-            cont.SetValue(0, yield_stress * 1e-6)
-            cm = vtk.vtkPolyDataMapper()
-            cm.SetInputConnection(cont.GetOutputPort())
-            cm.ScalarVisibilityOff()
-            ca = vtk.vtkActor()
-            ca.SetMapper(cm)
-            ca.GetProperty().SetColor(0, 0, 0)
-            ca.GetProperty().SetLineWidth(1.5)
-            r2.AddActor(ca)
-        _bar(r2, lut, "von Mises [MPa]")
-    cam = r2.GetActiveCamera()
-    cam.ParallelProjectionOn()
-    z_ext = b[5] - b[4]
-    aspect = (width / 3) / height
-    # parallel scale = half the visible height; the strip is wider than tall
-    half = max(0.5 * 1.08 * z_ext / aspect, 0.5 * 1.3 * (y_cut - b[2]))
-    yc = 0.5 * (y_cut + b[2]) - 0.12 * half  # a little low: the colour bar sits below
-    cam.SetFocalPoint(0.0, yc, zc)
-    cam.SetPosition(-1.0, yc, zc)
-    cam.SetViewUp(0, 1, 0)
-    cam.SetParallelScale(half)
-    r2.ResetCameraClippingRange()
-    _text(r2, f"von Mises on the plane x = 0 (horizontal z, vertical y); black line: {yield_stress / 1e6:.4g} MPa",
-          top=True)
-    win.AddRenderer(r2)
+    # (b) von Mises on the x = 0 plane near the contact (bottom of the bore), seen from −x
+    win.AddRenderer(_cut_panel(grid, surf, b, R_B, "von_mises", (1 / 3, 2 / 3), width / 3, height,
+                               yield_stress))
 
     # (c) contact pressure on the bore, journal removed, seen from the axis looking −y, framed
     # on the points in contact (undeformed positions: deal.II writes the reference mesh)
@@ -395,17 +537,7 @@ def render(fe_dir, out_png, R_B, yield_stress=DEFAULT_YIELD_STRESS, title="", wi
         t.SetPosition(8, height - 26)
         r1.AddActor2D(t)
 
-    win.Render()
-    grab = vtk.vtkWindowToImageFilter()
-    grab.SetInput(win)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    writer = vtk.vtkPNGWriter()
-    tmp = out_png + ".tmp.png"
-    writer.SetFileName(tmp)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
-    os.replace(tmp, out_png)
+    _write_png(win, out_png)
     return True
 
 
@@ -434,6 +566,9 @@ def main(argv):
     p.add_argument("--bore-radius", type=float, default=None,
                    help="[m] R_B; default: from the case's manifest (scene geometry)")
     p.add_argument("--title", default="")
+    p.add_argument("--cut", action="store_true",
+                   help="instead: the paper's Fig. 7 cut, the radial normal stress and von Mises "
+                        "on the plane x = 0 (needs the 9-component 'stress' array)")
     a = p.parse_args(argv)
     if needs_virtual_display():
         rc = run_under_xvfb(argv)
@@ -458,4 +593,5 @@ def main(argv):
         print("fields: VTK's Python bindings are missing (Debian package python3-vtk9)",
               file=sys.stderr)
         return 1
-    return 0 if render(a.fe_dir, a.output, R_B, a.yield_stress, a.title) else 1
+    draw = render_cut if a.cut else render
+    return 0 if draw(a.fe_dir, a.output, R_B, a.yield_stress, a.title) else 1

@@ -177,6 +177,10 @@ def preset_section(summary):
             else:
                 cells.append(f"<td title='{html.escape(e['where'])}'>{e['percent']:.3g} %</td>")
         settings = ", ".join(f"{k} = {v}" for k, v in sorted((p.get("fe") or {}).items())) or "defaults"
+        # a sweep's own settings for this preset (fe_sweeps[i].presets), after the preset's
+        for sweep, own in sorted((p.get("sweeps") or {}).items()):
+            if own:
+                settings += f"; sweep {sweep}: " + ", ".join(f"{k} = {v}" for k, v in sorted(own.items()))
         name = html.escape(p["name"]) + (" <strong>(this run)</strong>" if p.get("chosen") else "")
         style = " style='background:#ffe9b3'" if p.get("chosen") else ""
         rows.append(f"<tr{style}><td>{name}</td><td>{html.escape(settings)}</td>"

@@ -25,9 +25,11 @@ What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
   (fe_stage/rolling_output.cc). Scene key fake_rolling_fail: true writes half the steps, both
   CSVs and the manifest marked incomplete with a message, and exits 2, as fe_stage does when a
   time step fails.
-- study misalignment: needs misalignment.theta_deg [deg] and loading.journal: rigid; rejects
-  θ > θ_max (paper Eq. 3, the closed form of docs/geometry.md) with exit 1, as fe_stage does
-  (only round-off, 1e-12 relative, is forgiven). K falls with θ.
+- study misalignment: needs misalignment.theta_deg [deg] and loading.journal rigid (the
+  default) or core, as fe_stage (end_faces and axis_line are input errors); rejects θ > θ_max
+  (paper Eq. 3, the closed form of docs/geometry.md) with exit 1, as fe_stage does (only
+  round-off, 1e-12 relative, is forgiven). K falls with θ; the core journal's K is 0.7 times the
+  rigid one's (a made-up factor: another journal, another law).
 - geometry.mesh: must be an absolute path of an existing .msh (run_pipeline meshes a .geo
   first); K is scaled by a factor from the mesh file's sha256, so another mesh gives another law.
 - missing geometry keys take the FE defaults (R_B 10, t_B 4, L_B 20, c_r 0.5, c_a 1 mm).
@@ -45,7 +47,10 @@ CLEARJOINT_FAKE_FIELDS=1 also writes fields/solution.pvd with one VTU (needs pyt
 the report's tests: a quarter of the bearing ring (x >= 0, z >= 0: symmetry factor 4), von Mises
 peaking at 600 MPa at the bottom of the bore (above the 168.2 MPa yield stress near the contact),
 and contact fields in fe_stage's (Abaqus's) meaning — pressure, active, status 0 open / 1 slip /
-2 stick, shear within Coulomb's cone (zero without friction), slip only where in contact. Scene
+2 stick, shear within Coulomb's cone (zero without friction), slip only where in contact, and
+the 9-component `stress` (row by row, as fe_stage writes it): uniaxial along the point's radial
+direction from the bore's axis, σ = −vm·n⊗n, so its von Mises stress is the von Mises field
+and its radial normal stress −vm (compression). Scene
 key fake_old_contact_fields: true writes them as fe_stage did before issue 15 (shear 1.96 x the
 pressure and 'stick' in a frictionless run, slip off contact), which the report must flag."""
 import hashlib, json, math, os, sys, time
@@ -73,8 +78,11 @@ K, n = 3.65952708e8 * g["t_B"] / 0.004, 1.0114
 
 study = scene.get("study", "radial")
 if study == "misalignment":
-    if scene.get("loading", {}).get("journal") != "rigid":
-        input_error("loading.journal", scene.get("loading", {}).get("journal"), "rigid (misalignment study)")
+    journal = scene.get("loading", {}).get("journal", "rigid")
+    if journal not in ("rigid", "core"):
+        input_error("loading.journal", journal, "rigid|core (misalignment study)")
+    if journal == "core":
+        K *= 0.7
     theta = scene["misalignment"]["theta_deg"]
     R_J, L_J, c = g["R_B"] - g["c_r"], g["L_B"] - 2 * g["c_a"], g["c_r"]
     theta_max = math.degrees(2 * math.atan(2 * c / (L_J + math.sqrt(L_J ** 2 - 4 * c * (c + 2 * R_J)))))
@@ -155,6 +163,13 @@ def write_fields(out, g, mu, old):
         a = numpy_to_vtk(np.array(values, dtype=np.float32), deep=True)
         a.SetName(name)
         grid.GetPointData().AddArray(a)
+    xyz = np.array([pts.GetPoint(i) for i in range(pts.GetNumberOfPoints())])
+    n = xyz[:, :2] / np.hypot(xyz[:, 0], xyz[:, 1])[:, None]
+    sig = np.zeros((len(xyz), 3, 3))
+    sig[:, :2, :2] = -np.array(fields["von_mises_stress"])[:, None, None] * n[:, :, None] * n[:, None, :]
+    a = numpy_to_vtk(sig.reshape(-1, 9), deep=True)
+    a.SetName("stress")
+    grid.GetPointData().AddArray(a)
     os.makedirs(os.path.join(out, "fields"), exist_ok=True)
     w = vtk.vtkXMLUnstructuredGridWriter()
     w.SetFileName(os.path.join(out, "fields", "solution_0001.vtu"))

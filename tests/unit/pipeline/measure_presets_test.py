@@ -106,6 +106,30 @@ def main():
 
     d = tempfile.mkdtemp(prefix="measure_presets_")
     try:
+        # A sweep's own preset settings (fe_sweeps[i].presets, issue 31 item 5) come after its
+        # overrides in run_pipeline, so a reference's `set` (a longer adaptive sequence) must be
+        # written after them too, or the sweep's cycles would win over the reference's.
+        args = type("A", (), {"pipeline": os.path.join(d, "p.yaml"), "work": os.path.join(d, "w"),
+                              "set": {}})()
+        sweep = {"name": "misalignment", "scene": "s.yaml", "values": [1.0],
+                 "parameter": {"name": "theta", "unit": "deg", "key": "misalignment.theta_deg"},
+                 "overrides": {"loading.journal": "core"},
+                 "presets": {"fast": {"mesh.adaptive_cycles": 2}, "standard": None,
+                             "accurate": {"mesh.adaptive_cycles": 4}}}
+        m = measure_presets.Measurer(
+            args, {"presets": {p: {"fe": None, "mbd": None} for p in measure_presets.PRESETS},
+                   "fe_sweeps": [sweep]},
+            {"studies": {"misalignment": {"kind": "fe_sweep", "value": 1.0}}})
+        gen = m.pipeline_for("misalignment", {"preset": "accurate",
+                                              "set": {"mesh.adaptive_cycles": 5}})
+        s0 = gen["fe_sweeps"][0]
+        expect(s0["presets"]["accurate"] == {"mesh.adaptive_cycles": 5}
+               and s0["presets"]["fast"] == {"mesh.adaptive_cycles": 5}
+               and s0["presets"]["standard"] == {"mesh.adaptive_cycles": 5}
+               and s0["overrides"]["loading.journal"] == "core",
+               f"a reference's set after the sweep's own presets: {s0}")
+        expect(sweep["presets"]["accurate"] == {"mesh.adaptive_cycles": 4},
+               "the pipeline's own sweep is left as it was")
         build = os.path.join(d, "build")
         fakes = os.path.join(ROOT, "tests", "data", "fake_stages")
         for link, target in [("fe_stage/fe_stage", os.path.join(fakes, "fake_fe_stage.py")),

@@ -102,6 +102,41 @@ TEST(PipelineCheck, ABadOverrideIsNamedByItsPipelineKeyBeforeAnyTaskRuns)
     }
 }
 
+// A sweep's own preset settings (fe_sweeps[i].presets, issue 31 item 5) are checked like every
+// other key: a value fe_stage rejects is named by its pipeline key — the sweep's preset's, which
+// is applied after the sweep's overrides — and only for the preset that runs.
+TEST(PipelineCheck, ASweepsOwnPresetSettingIsNamedByItsKey)
+{
+  test_support::ScratchDir dir("pipeline_check_sweep_presets");
+  const Build b(dir);
+  test_support::write_text(dir.file("mis.yaml"), "{\"study\": \"misalignment\", "
+                                                 "\"misalignment\": {\"theta_deg\": 1.0}}\n");
+  const auto write = [&](const std::string &fast) {
+    test_support::write_text(
+      dir.file("p.yaml"),
+      "schema: clearjoint.pipeline/1\nrun: r\noutput_root: " + dir.file("out") + "\npreset: fast\n"
+      "presets: {fast: {fe: null, mbd: null}, standard: {fe: null, mbd: null}, "
+      "accurate: {fe: null, mbd: null}}\n"
+      "fe_sweeps:\n  - name: misalignment\n    scene: " + dir.file("mis.yaml") + "\n"
+      "    parameter: {name: theta, unit: deg, key: misalignment.theta_deg}\n"
+      "    values: [1.0, theta_max]\n    overrides: {loading.journal: core}\n"
+      "    presets:\n      fast: " + fast + "\n"
+      "      standard: {mesh.adaptive_cycles: 3}\n      accurate: null\n"
+      "fit: {weighting: absolute}\nmbd_runs: []\nreport: false\n");
+  };
+  std::string log;
+  write("{mesh.adaptive_cycles: 2}");
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+  // The stand-in, like fe_stage, refuses the end_faces journal in the misalignment study.
+  write("{mesh.adaptive_cycles: 2, loading.journal: end_faces}");
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 1) << log;
+  EXPECT_NE(log.find("key 'fe_sweeps[0].presets.fast.loading.journal'"), std::string::npos) << log;
+  EXPECT_NE(log.find("end_faces"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out"))) << log;
+  // Another preset runs: the fast preset's setting is not used, so not checked.
+  EXPECT_EQ(run_pipeline(dir, b, "--check --preset standard", log), 0) << log;
+}
+
 TEST(PipelineCheck, UnusableOutputRootsAndNamesAreInputErrors)
 {
   test_support::ScratchDir dir("pipeline_check_root");

@@ -223,6 +223,58 @@ TEST(PipelineConfig, OverridesAndKeywordsAreKept)
   EXPECT_EQ(c.family_out_of_range, "error") << "fit_stage's default";
 }
 
+// A sweep's own settings per preset (fe_sweeps[i].presets, issue 31 item 5): the deformable
+// misalignment journal converges on adaptive meshes, not on the presets' uniform levels, so its
+// sweep sets its own mesh per preset. Read in order after the sweep's overrides; every preset
+// named; each bad shape an input error naming the key.
+TEST(PipelineConfig, ASweepsOwnPresetSettings)
+{
+  test_support::ScratchDir dir("pipeline_config_sweep_presets");
+  std::string text = good;
+  text.replace(text.find("    values: [0.002, 0.004]"), 26,
+               "    values: [0.002, 0.004]\n    overrides: {loading.journal: core}\n"
+               "    presets:\n      fast: {mesh.adaptive_cycles: 1, mesh.global_refinements: 0}\n"
+               "      standard: {mesh.adaptive_cycles: 3}\n      accurate: null");
+  test_support::write_text(dir.file("p.yaml"), text);
+  const auto c = read_pipeline_config(dir.file("p.yaml"));
+  const FeSweep &s = c.fe_sweeps.at(0);
+  ASSERT_EQ(s.preset_overrides.size(), 3u);
+  EXPECT_TRUE(s.preset_overrides.at("accurate").empty()) << "null: the global preset alone";
+  const Overrides fast = sweep_overrides(s, "fast");
+  ASSERT_EQ(fast.size(), 3u);
+  EXPECT_EQ(fast[0].first, "loading.journal") << "the sweep's overrides first";
+  EXPECT_EQ(fast[1].first, "mesh.adaptive_cycles");
+  EXPECT_EQ(fast[1].second, 1);
+  EXPECT_EQ(fast[2].first, "mesh.global_refinements");
+  const Overrides standard = sweep_overrides(s, "standard");
+  ASSERT_EQ(standard.size(), 2u);
+  EXPECT_EQ(standard[1].second, 3);
+  EXPECT_EQ(sweep_overrides(s, "accurate").size(), 1u);
+  // Without `presets`, only the overrides.
+  test_support::write_text(dir.file("q.yaml"), good);
+  EXPECT_TRUE(read_pipeline_config(dir.file("q.yaml")).fe_sweeps.at(0).preset_overrides.empty());
+
+  const std::string at = "    values: [0.002, 0.004]";
+  const auto with = [&](const std::string &presets) {
+    return error_for(at, at + "\n    presets: " + presets);
+  };
+  std::string m = with("[fast, standard]");
+  EXPECT_NE(m.find("fe_sweeps[0].presets"), std::string::npos) << m;
+  EXPECT_NE(m.find("a mapping of preset names"), std::string::npos) << m;
+  m = with("{fast: {mesh.adaptive_cycles: 1}, standard: null}");
+  EXPECT_NE(m.find("fe_sweeps[0].presets.accurate"), std::string::npos) << m;
+  EXPECT_NE(m.find("every preset"), std::string::npos) << m;
+  m = with("{fast: null, standard: null, accurate: null, quick: {mesh.adaptive_cycles: 1}}");
+  EXPECT_NE(m.find("fe_sweeps[0].presets.quick"), std::string::npos) << m;
+  EXPECT_NE(m.find("accurate, fast, standard"), std::string::npos) << m;
+  m = with("{fast: 3, standard: null, accurate: null}");
+  EXPECT_NE(m.find("fe_sweeps[0].presets.fast"), std::string::npos) << m;
+  EXPECT_NE(m.find("a mapping of scene key paths"), std::string::npos) << m;
+  m = with("{fast: {geometry.t_B: 0.003}, standard: null, accurate: null}");
+  EXPECT_NE(m.find("fe_sweeps[0].presets.fast"), std::string::npos) << m;
+  EXPECT_NE(m.find("keys other than the swept parameter's key 'geometry.t_B'"), std::string::npos) << m;
+}
+
 TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
 {
   // Their paths are relative to the source tree, where scripts/run runs them.
@@ -243,6 +295,23 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
   EXPECT_EQ(mis->key, "misalignment.theta_deg");
   ASSERT_EQ(mis->values.size(), 5u);
   EXPECT_EQ(mis->values.back(), geometry::degrees(*geometry::theta_max(geometry::JointGeometry{})));
+  // Issue 31 item 5: the deformable core-loaded journal, on the sweep's own adaptive meshes for
+  // every preset (from the coarse base level, more cycles for the finer presets).
+  const auto mis_scene =
+    read_yaml_file((std::filesystem::path(CLEARJOINT_SOURCE_DIR) / mis->scene).string());
+  EXPECT_EQ(mis_scene["loading"]["journal"], "core") << mis->scene;
+  ASSERT_EQ(mis->preset_overrides.size(), 3u);
+  int previous_cycles = 0;
+  for (const std::string p : {"fast", "standard", "accurate"})
+  {
+    std::map<std::string, nlohmann::json> set;
+    for (const auto &[k, v] : sweep_overrides(*mis, p))
+      set[k] = v;
+    EXPECT_EQ(set.at("mesh.global_refinements"), 0) << p;
+    const int cycles = set.at("mesh.adaptive_cycles").get<int>();
+    EXPECT_GT(cycles, previous_cycles) << p;
+    previous_cycles = cycles;
+  }
   EXPECT_EQ(c.family_out_of_range, "clamp");
   bool tilted = false;
   for (const auto &r : c.mbd_runs)

@@ -60,6 +60,32 @@ def main():
         expect("<strong>no</strong>" in table, "θ: 'agree?' says no")
         expect("rigid" in table and "rim" in table, "θ: the reason is shown where they differ")
 
+        # θ with the deformable core-loaded journal (issue 31 item 5; its manifests say so):
+        # F falls as the paper says, and F(θ) is set beside the claim value by value with each
+        # step; rising, the reason is the core journal's, not the rigid one's
+        core = sweep(d, "mis_core", "theta", "rad",
+                     [(0.0174533, 3700.0), (0.0261799, 3400.0), (0.0436332, 3100.0)], mesh_error=0.01)
+        for case in core.sweep["cases"]:
+            with open(os.path.join(case["fe_dir"], "manifest.json"), "w") as f:
+                json.dump({"extra": {"scene": {"loading": {"journal": "core"}}}}, f)
+        core = FeSweep(core.sweep)
+        t = trend_finding(core)
+        expect("falls monotonically" in t and "as the paper says" in t, f"core θ trend: {t}")
+        table = claim_table(core)
+        expect("<strong>no</strong>" not in table, f"core θ: agrees: {table}")
+        expect("F at δ = 0.05 mm per θ" in table and "θ = 1 °: 3 700 N (mesh ±1 %)" in table
+               and "θ = 2.5 °: 3 100 N" in table and "steps -8.1 %, -8.8 %" in table,
+               f"core θ: each F and step beside the claim: {table}")
+        expect("driven through a rigid inner core" in table, f"core θ: the journal named: {table}")
+        rising = sweep(d, "mis_core_up", "theta", "rad",
+                       [(0.0174533, 3100.0), (0.0261799, 3400.0)])
+        for case in rising.sweep["cases"]:
+            with open(os.path.join(case["fe_dir"], "manifest.json"), "w") as f:
+                json.dump({"extra": {"scene": {"loading": {"journal": "core"}}}}, f)
+        table = claim_table(FeSweep(rising.sweep))
+        expect("<strong>no</strong>" in table and "core-loaded deformable journal" in table
+               and "z_P1" not in table, f"core θ rising: the core journal's reason: {table}")
+
         # t_B: grows as the paper says; 2 of 2 steps smaller than twice a 5 % mesh error
         tb = sweep(d, "thickness", "t_B", "m",
                    [(0.002, 15000.0), (0.004, 16000.0), (0.006, 16500.0)], mesh_error=0.05)

@@ -160,6 +160,27 @@ TEST(PipelineEndToEnd, FastPresetRunsTheDefaultPipelineThenReusesIt)
   EXPECT_EQ(ran, 0) << test_support::read_text(dir.file("log2.txt"));
 }
 
+// The committed pipeline.yaml passes run_pipeline --check with the real stages for every
+// preset (issue 31 item 5): in particular the misalignment sweep's θ_max, resolved at full
+// precision, is accepted by fe_stage's own check with the deformable core-loaded journal and
+// each preset's adaptive cycles (fe_stage rejects θ > θ_max: one digit rounded up fails), and
+// nothing is written under the output root.
+TEST(PipelineEndToEnd, TheCommittedPipelineChecksWithTheRealStagesForEveryPreset)
+{
+  test_support::ScratchDir dir("pipeline_check_committed");
+  for (const std::string preset : {"fast", "standard", "accurate"})
+  {
+    const std::string cmd = std::string("cd ") + CLEARJOINT_SOURCE_DIR + " && " +
+                            RUN_PIPELINE_EXE + " pipeline.yaml --check --preset " + preset +
+                            " --output-root " + dir.file("out");
+    const int rc = test_support::run_command(cmd, dir.file("check.txt"));
+    const std::string log = test_support::read_text(dir.file("check.txt"));
+    EXPECT_EQ(rc, 0) << preset << ": " << log;
+    EXPECT_NE(log.find("every generated scene is valid"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(dir.file("out"))) << preset;
+  }
+}
+
 // The geometry swap with the real stages (issue 6 item 3): a pipeline naming a Gmsh bearing
 // (.geo, meshed by the pipeline) runs FE, fit and an MBD scene end to end, and its law records
 // the mesh it came from — apart from the default geometry's laws (another run folder). Small:
