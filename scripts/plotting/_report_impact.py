@@ -272,7 +272,7 @@ def impact_headline(impact, anchor="impact"):
              "deformable journal</a>)" if deformable else
              f"<p>Impact (<a href='#{anchor}'>FE impact study</a>)") + f", {len(v)} cases, "
             f"v = {min(v):.3g}–{max(v):.3g} m/s, journal mass "
-            f"{min(s['journal_mass_kg']):.4g}–{max(s['journal_mass_kg']):.4g} kg: δ_max "
+            f"{span(s['journal_mass_kg'], '{:.4g}').replace(' to ', '–')} kg: δ_max "
             f"{span([d * 1e6 for d in s['delta_max_m']], '{:.3g}')} µm, peak force "
             f"{min(s['peak_force_N']):.4g}–{max(s['peak_force_N']):.4g} N, "
             f"<strong>{span(gaps, '{:+.1f}')} % above the quasi-static force at the same δ"
