@@ -3,10 +3,10 @@
 item 2), so that no figure there is typed by hand.
 
     bench/measure_presets.py [--pipeline pipeline.yaml] [--plan bench/measure_presets.yaml]
-        [--presets fast standard accurate] [--studies thickness misalignment impact rolling pipeline]
+        [--presets fast standard accurate] [--studies thickness misalignment impact impact_deformable rolling pipeline]
         [--times-only] [--tiny] [--set KEY=VALUE ...] [--build-dir build]
         [--run-pipeline build/pipeline/run_pipeline] [--work /tmp/clearjoint-measure]
-        [--no-plots] [--dry-run] [--no-check]
+        [--no-plots] [--dry-run] [--no-check] [--cpu-time]
 
 For each preset and study asked for, the plan (bench/measure_presets.yaml; its header says every
 key) names the study's reference case and its reference. Every run goes through run_pipeline on
@@ -16,6 +16,10 @@ preset sets — uniform levels, adaptive cycles, a target error — is what gets
 - time [s]: the run_pipeline task's wall time (what run_pipeline prints beside the figure; with
   plots unless --no-plots), of the preset's own run, which always runs (--force), one task at
   a time; `pipeline` is the whole run_pipeline process on the pipeline file with --preset P;
+  with --cpu-time instead the CPU time (user + system) of that run_pipeline process and its
+  children — the task, and a few seconds of scene checks and impact_compare — for a shared
+  machine, where the wall time measures the other sessions' load (one-rank tasks: their CPU time
+  is what they take alone on a quiet core); `pipeline` keeps its wall time;
 - DoFs: the case's manifest (extra.n_dofs; an impact sweep's first case);
 - error [%]: |q − ref| / |ref| of the study's quantity against the plan's reference (Richardson
   over three runs, a single finer run, or a sum of parts such as time step + mesh), its `where`
@@ -43,6 +47,7 @@ import hashlib
 import json
 import math
 import os
+import resource
 import subprocess
 import sys
 import time
@@ -55,13 +60,15 @@ QUANTITY_TEXT = {"force_at_delta_max": ("F(δ_max)", "N"), "peak_force": ("peak 
                  "plastic_dissipation": ("plastic dissipation at the end", "J")}
 # The keys of `measured` this command writes, in the order written (error_F_max last).
 ORDER = ["note", "date", "machine", "fe_dofs", "fe_case_time", "case_times", "dofs",
-         "pipeline_time", "impact_time", "rolling_time", "error_F_max"]
+         "pipeline_time", "impact_time", "impact_deformable_time", "rolling_time", "error_F_max"]
 UNITS = {"fe_dofs": "[1] DoFs of the thickness sweep's reference case",
          "fe_case_time": "[s] run_pipeline's task: the thickness sweep's reference case",
          "case_times": "[s] one FE case of these sweeps (run_pipeline's task)",
          "dofs": "[1] DoFs of these studies' reference cases",
          "pipeline_time": "[s] the whole run_pipeline run",
          "impact_time": "[s] run_pipeline's task: the FE impact sweep",
+         "impact_deformable_time": "[s] run_pipeline's task: the FE impact sweep with the "
+                                   "deformable journal",
          "rolling_time": "[s] run_pipeline's task: the FE rolling study"}
 
 
@@ -179,6 +186,19 @@ class Measurer:
             presets[spec["preset"]]["fe"] = fe
             p["impact"] = {"scene": self.pipeline["impact"]["scene"],
                            "law": {"file": os.path.join(ROOT, "laws", "paper_tB4.json")}}
+        elif kind == "impact_deformable":
+            # the deformable journal's sweep as the impact study's own scene (one task, stage
+            # fe_impact): the preset, then impact.deformable.overrides, then the plan's keys —
+            # the order the pipeline's variant applies them in
+            d = (self.pipeline.get("impact") or {}).get("deformable")
+            if not d:
+                raise MeasureError("the pipeline has no impact.deformable study")
+            fe = dict(presets[spec["preset"]]["fe"] or {})
+            fe.update(d.get("overrides") or {})
+            fe.update(extra)
+            presets[spec["preset"]]["fe"] = fe
+            p["impact"] = {"scene": d["scene"],
+                           "law": {"file": os.path.join(ROOT, "laws", "paper_tB4.json")}}
         elif kind == "rolling":
             if "rolling" not in self.pipeline:
                 raise MeasureError("the pipeline has no rolling study")
@@ -212,25 +232,31 @@ class Measurer:
             cmd.append("--no-plots")
         print(f"  {'run  ' if own else 'ref  '} {study}, {self.describe(spec)}: {' '.join(cmd)}",
               flush=True)
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         done = subprocess.run(cmd, cwd=self.cwd, capture_output=True, text=True)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         if done.returncode != 0:
             raise MeasureError(f"run_pipeline failed ({done.returncode}) for {study}, "
                                f"{self.describe(spec)}:\n{done.stderr[-3000:]}")
         with open(os.path.join(self.args.work, "out", name, "pipeline_summary.json")) as f:
             summary = json.load(f)
-        stage = {"fe_sweep": "fe_stage", "impact": "fe_impact", "rolling": "fe_rolling"}[
+        stage = {"fe_sweep": "fe_stage", "impact": "fe_impact", "impact_deformable": "fe_impact",
+                 "rolling": "fe_rolling"}[
             self.plan["studies"][study]["kind"]]
         tasks = [t for t in summary["tasks"] if t["stage"] == stage]
         if len(tasks) != 1:
             raise MeasureError(f"{name}: expected one {stage} task, found {len(tasks)}")
         t = tasks[0]
         try:
-            result = {"seconds": t["wall_time"]["value"], "outcome": t["outcome"],
+            result = {"seconds": cpu if self.args.cpu_time else t["wall_time"]["value"],
+                      "wall": t["wall_time"]["value"], "cpu": cpu, "outcome": t["outcome"],
                       "value": self.quantity(study, t["output_dir"]),
                       "dofs": self.dofs(t["output_dir"]), "name": name}
         except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
             raise MeasureError(f"{name}: cannot read the result in {t['output_dir']}: {e!r}")
-        print(f"        {t['outcome']} in {result['seconds']:.1f} s: {result['value']!r}"
+        print(f"        {t['outcome']} in {result['wall']:.1f} s (run_pipeline's CPU {cpu:.1f} s): "
+              f"{result['value']!r}"
               + (f", {result['dofs']} DoFs" if result["dofs"] else ""), flush=True)
         self.results[key] = result
         if own:
@@ -286,6 +312,8 @@ class Measurer:
             case = f"{s['parameter']['name']} = {entry['value']} {s['parameter']['unit']}, "
         elif entry["kind"] == "impact":
             case = f"v = {entry['velocity']} m/s, "
+        elif entry["kind"] == "impact_deformable":
+            case = f"deformable journal, v = {entry['velocity']} m/s, "
         ref = entry["reference"]
         parts = ref["parts"] if "parts" in ref else [dict(ref, name="")]
         total, texts = 0.0, []
@@ -505,6 +533,9 @@ def main(argv=None):
     ap.add_argument("--no-plots", action="store_true", help="tasks without their plots (not what a default run does)")
     ap.add_argument("--dry-run", action="store_true", help="print the blocks, write nothing")
     ap.add_argument("--no-check", action="store_true", help="skip run_pipeline --check afterwards")
+    ap.add_argument("--cpu-time", action="store_true",
+                    help="a task's time is the CPU time of its run_pipeline run, not the task's "
+                         "wall time (a shared machine; one-rank tasks)")
     args = ap.parse_args(argv)
     args.set = parse_set(args.set)
     args.build_dir = os.path.abspath(args.build_dir)
@@ -535,12 +566,15 @@ def main(argv=None):
         kind = plan["studies"][s]["kind"]
         present = {"fe_sweep": any(x["name"] == s for x in fe_sweeps(pipeline)),
                    "impact": "impact" in pipeline, "rolling": "rolling" in pipeline,
+                   "impact_deformable": "deformable" in (pipeline.get("impact") or {}),
                    "pipeline": True}[kind]
         if not present and args.studies:
             raise SystemExit(f"measure_presets: --studies {s}: {pipeline_path} has no such study")
     studies = [s for s in studies if plan["studies"][s]["kind"] == "pipeline"
                or (plan["studies"][s]["kind"] == "fe_sweep"
                    and any(x["name"] == s for x in fe_sweeps(pipeline)))
+               or (plan["studies"][s]["kind"] == "impact_deformable"
+                   and "deformable" in (pipeline.get("impact") or {}))
                or (plan["studies"][s]["kind"] != "fe_sweep" and plan["studies"][s]["kind"] in pipeline)]
 
     m = Measurer(args, pipeline, plan)
@@ -571,6 +605,7 @@ def main(argv=None):
         kept += sorted("error_F_max." + s for s in old.get("error_F_max") or {}
                        if "error_F_max." + s not in wrote)
         note = (f"bench/measure_presets.py{' --tiny (smoke run: NOT the presets figures)' if smoke else ''}"
+                f"{' --cpu-time (task times are CPU times: a shared machine)' if args.cpu_time else ''}"
                 f" on {m.date}, load average {load_before:.1f} before and {load_after:.1f} after: "
                 f"{', '.join(wrote)}")
         if kept:

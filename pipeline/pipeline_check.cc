@@ -251,6 +251,8 @@ namespace clearjoint::pipeline
       if (!study || !study->is_string() || study->get<std::string>() != "impact")
         throw InputError(src_, "impact.scene", config_.impact->scene,
                          "a scene with study: impact");
+      if (config_.impact->deformable)
+        impact_deformable();
       if (config_.impact->law.file)
         try
         {
@@ -261,6 +263,49 @@ namespace clearjoint::pipeline
           throw InputError(src_, "impact.law.file", *config_.impact->law.file,
                            "a readable law file (clearjoint.law/1)", e.what());
         }
+    }
+
+    /// The deformable-journal impact's scene (impact.deformable): it exists, is readable, is an
+    /// impact scene whose journal is deformable (else it would repeat the rigid variant), and
+    /// fe_stage accepts it with the preset's and the block's overrides (a journal-mass key with
+    /// the deformable journal is fe_stage's input error, named there).
+    void impact_deformable()
+    {
+      const DeformableImpact &d = *config_.impact->deformable;
+      std::error_code ec;
+      if (!fs::is_regular_file(d.scene, ec))
+        throw InputError(src_, "impact.deformable.scene", d.scene,
+                         "an existing FE scene file (clearjoint.fe/1) with study: impact",
+                         "no such file (relative paths are taken from the folder run_pipeline "
+                         "runs in)");
+      nlohmann::json scene;
+      try
+      {
+        scene = runner_.impact_deformable_scene();
+      }
+      catch (const InputError &e)
+      {
+        throw InputError(src_, "impact.deformable.scene", d.scene,
+                         "a readable FE scene (clearjoint.fe/1)", e.what());
+      }
+      const nlohmann::json *study = find_key_path(scene, "study");
+      if (!study || !study->is_string() || study->get<std::string>() != "impact")
+        throw InputError(src_, "impact.deformable.scene", d.scene, "a scene with study: impact",
+                         "its study is " + (study ? json_excerpt(*study) : "radial (not stated)"));
+      const nlohmann::json *journal = find_key_path(scene, "loading.journal");
+      if (!journal || !journal->is_string() || journal->get<std::string>() == "rigid")
+        throw InputError(src_, "impact.deformable.scene", d.scene,
+                         "a scene with a deformable journal (loading.journal: end_faces or "
+                         "axis_line)",
+                         "its journal is " +
+                           (journal ? json_excerpt(*journal) : "rigid (not stated: the default)") +
+                           "; the rigid journal is impact.scene's");
+      const std::string file = write_scene("fe_impact_deformable.yaml", scene);
+      std::vector<Origin> origins = preset_origins("fe");
+      for (const auto &[k, val] : d.overrides)
+        origins.push_back({k, "impact.deformable.overrides." + k, val});
+      run_scene_check("fe_stage", file, origins, "impact.deformable.scene",
+                      "FE impact study, deformable journal (scene " + d.scene + ")");
     }
 
     /// The FE rolling study's scene: it exists, is readable, is a rolling scene, and fe_stage

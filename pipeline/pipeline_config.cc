@@ -87,11 +87,13 @@ namespace clearjoint::pipeline
       r.fe_case_time = optional_number(m, "fe_case_time", Range::positive("s"));
       r.pipeline_time = optional_number(m, "pipeline_time", Range::positive("s"));
       r.impact_time = optional_number(m, "impact_time", Range::positive("s"));
+      r.impact_deformable_time = optional_number(m, "impact_deformable_time", Range::positive("s"));
       r.rolling_time = optional_number(m, "rolling_time", Range::positive("s"));
       const auto &map = m.raw("error_F_max");
       if (!map.is_object())
         m.fail("error_F_max", map.dump(),
-               "a mapping of FE sweep names (and impact, rolling) to {percent, where}");
+               "a mapping of FE sweep names (and impact, impact_deformable, rolling) to "
+               "{percent, where}");
       auto errors = m.object("error_F_max");
       for (auto it = map.begin(); it != map.end(); ++it)
       {
@@ -119,7 +121,8 @@ namespace clearjoint::pipeline
         }
         const auto &raw = m.raw(key);
         if (!raw.is_object())
-          m.fail(key, raw.dump(), "a mapping of FE sweep names (and impact, rolling) to numbers");
+          m.fail(key, raw.dump(), "a mapping of FE sweep names (and impact, impact_deformable, rolling) "
+                         "to numbers");
         auto per_name = m.object(key);
         for (auto it = raw.begin(); it != raw.end(); ++it)
           (*target)[it.key()] = per_name.number(it.key(), range);
@@ -439,12 +442,32 @@ namespace clearjoint::pipeline
       return r;
     }
 
-    /// `impact`: the FE impact study's scene and the one law it is compared with.
+    /// `impact.deformable`: the deformable-journal variant's scene and its overrides (the scene's
+    /// journal is checked with the scenes, before the run).
+    DeformableImpact read_deformable_impact(StrictObject m)
+    {
+      DeformableImpact d;
+      d.scene = m.string("scene");
+      if (d.scene.empty())
+        m.fail("scene", "",
+               "an FE scene file (clearjoint.fe/1) with study: impact and a deformable journal "
+               "(loading.journal: end_faces or axis_line)");
+      d.overrides = read_overrides(m, "overrides");
+      m.finish();
+      return d;
+    }
+
+    /// `impact`: the FE impact study's scene and the one law it is compared with, and the
+    /// optional deformable-journal variant.
     ImpactStudy read_impact(StrictObject m, const PipelineConfig &c,
                             std::vector<std::string> &old_law_key)
     {
       ImpactStudy impact;
       impact.scene = m.string("scene");
+      if (m.has("deformable"))
+        impact.deformable = read_deformable_impact(m.object("deformable"));
+      else
+        m.allow("deformable");
       auto law = m.object("law");
       impact.law = read_law_choice(law, c, old_law_key, false);
       if (impact.law.sweep && !impact.law.value && impact.law.value_keyword.empty())
@@ -474,7 +497,9 @@ namespace clearjoint::pipeline
                                                       const bool fe_only)
     {
       std::string names;
+      const bool deformable = c.impact && c.impact->deformable;
       bool found = !fe_only && ((name == "impact" && c.impact.has_value()) ||
+                                (name == "impact_deformable" && deformable) ||
                                 (name == "rolling" && c.rolling.has_value()));
       for (const auto &f : c.fe_sweeps)
       {
@@ -483,6 +508,8 @@ namespace clearjoint::pipeline
       }
       if (c.impact && !fe_only)
         names += "|impact";
+      if (deformable && !fe_only)
+        names += "|impact_deformable";
       if (c.rolling && !fe_only)
         names += "|rolling";
       return {found, names};
@@ -508,6 +535,13 @@ namespace clearjoint::pipeline
         for (const auto &[name, n] : measured.dofs)
           check("presets." + preset + ".measured.dofs." + name, name, false);
       }
+      // the deformable impact's task time only where that task exists
+      for (const auto &[preset, measured] : c.preset_measured)
+        if (measured.impact_deformable_time && !(c.impact && c.impact->deformable))
+          throw InputError(path, "presets." + preset + ".measured.impact_deformable_time",
+                           format_value(*measured.impact_deformable_time),
+                           "absent without an impact.deformable section",
+                           "it is the time of the deformable-journal impact task");
       for (const auto &[preset, measured] : c.preset_measured)
         for (const auto &[name, error] : measured.error_F_max)
           if (const auto [found, names] = measured_name_choice(c, name, false); !found)

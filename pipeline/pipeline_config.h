@@ -74,12 +74,26 @@ namespace clearjoint::pipeline
     bool band = false;
   };
 
+  /// The impact study's second variant (issue 31 item 2): both bodies deformable, as the paper
+  /// modelled them — an impact scene whose journal is meshed and free (loading.journal
+  /// end_faces or axis_line: its mass the FE mass matrix's), run as its own fe_stage task
+  /// (fe/impact_deformable) and compared with the same law (impact/compare_deformable).
+  struct DeformableImpact
+  {
+    std::string scene;                  ///< FE scene file with study: impact, a deformable journal
+    /// Set in the scene after the preset's `fe` overrides (e.g. mesh.global_refinements: 0 to
+    /// keep the deformable impact on the coarse mesh whatever the preset).
+    Overrides overrides;
+  };
+
   /// The FE impact study (issue 12): one fe_stage run of an impact scene (its sweep.velocity
-  /// lists the velocities), compared with the MBD contact law `law` (impact_compare).
+  /// lists the velocities), compared with the MBD contact law `law` (impact_compare); and,
+  /// optionally, the same with the journal deformable (`deformable`).
   struct ImpactStudy
   {
     std::string scene;                  ///< FE scene file with study: impact
     LawChoice law;                      ///< the law of the same geometry (key unused)
+    std::optional<DeformableImpact> deformable;  ///< absent: the scene's journal only
   };
 
   /// The FE rolling study (issue 13, paper §3.4): one fe_stage run of a scene with
@@ -108,13 +122,16 @@ namespace clearjoint::pipeline
     std::optional<double> fe_dofs;           ///< [1] DoFs of the reference FE case
     std::optional<double> fe_case_time;      ///< [s] one reference FE curve
     std::optional<double> impact_time;       ///< [s] the FE impact study (its one task)
+    /// [s] the deformable-journal impact study (its one task, impact.deformable)
+    std::optional<double> impact_deformable_time;
     std::optional<double> rolling_time;      ///< [s] the FE rolling study (its one task)
     std::optional<double> pipeline_time;     ///< [s] the whole default pipeline
-    std::map<std::string, PresetError> error_F_max;  ///< sweep name, impact, rolling → error
+    /// sweep name, impact, impact_deformable, rolling → error
+    std::map<std::string, PresetError> error_F_max;
     /// FE sweep name → [s] one FE case of that sweep, where it differs from fe_case_time (which
     /// is the thickness sweep's reference case): e.g. the misalignment sweep's.
     std::map<std::string, double> case_times;
-    /// FE sweep name, impact, rolling → [1] DoFs of its reference case.
+    /// FE sweep name, impact, impact_deformable, rolling → [1] DoFs of its reference case.
     std::map<std::string, double> dofs;
     std::string date;                        ///< when measured ("" not stated)
     std::string machine_cpu;                 ///< the CPU model it was measured on ("" not stated)

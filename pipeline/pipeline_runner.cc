@@ -126,6 +126,11 @@ namespace clearjoint::pipeline
     {
       n["fe_impact"] += 1;
       n["impact_compare"] += 1;
+      if (config_.impact->deformable)
+      {
+        n["fe_impact_deformable"] += 1;
+        n["impact_compare"] += 1;
+      }
     }
     if (config_.rolling)
       n["fe_rolling"] += 1;
@@ -146,6 +151,8 @@ namespace clearjoint::pipeline
       return std::nullopt;
     if (which == "impact_time")
       return m->second.impact_time;
+    if (which == "impact_deformable_time")
+      return m->second.impact_deformable_time;
     if (which == "rolling_time")
       return m->second.rolling_time;
     return which == "fe_case_time" ? m->second.fe_case_time : m->second.pipeline_time;
@@ -243,31 +250,60 @@ namespace clearjoint::pipeline
     return fe;
   }
 
-  /// The FE impact study (one fe_stage run over the scene's sweep.velocity), and, where the MBD
-  /// half is built, its comparison with the law of the same geometry (impact_compare).
+  /// The FE impact study (one fe_stage run over the scene's sweep), and, where the MBD half is
+  /// built, its comparison with the law of the same geometry (impact_compare); then the same
+  /// for the deformable-journal variant (impact.deformable), if given: its own tasks and
+  /// folders (fe/impact_deformable, impact/compare_deformable) and summary entry.
   void PipelineRunner::run_impact(const LawsBySweep &laws)
   {
     const ImpactStudy &impact = *config_.impact;
-    const std::string run = run_dir();
-    log::info("FE impact study: " + impact.scene);
-    const nlohmann::json scene_json = compose_scene(config_, impact.scene, "fe", {});
-    const std::string scene = write_scene(scene_json, impact.scene, "fe_impact");
-    // its own stage in the ETA: five impacts, not one FE curve
-    const Task fe = fe_stage_task(scene, "fe/impact", "fe_impact");
-    const int fe_node = add(fe, "fe", {}, config_.mpi_ranks, scene_json);
-    attach_figure(fe_node);
     std::string law;
+    std::optional<int> law_node;
     if (impact.law.file)
       law = fs::absolute(*impact.law.file).string();
     else
-      law = laws.at(*impact.law.sweep).at(value_label(*impact.law.value)).path;
-    summary_["impact"] = {{"scene", scene},
-                          {"fe_dir", fe.output_dir},
-                          {"sweep", fe.output_dir + "/impact_sweep.csv"},
-                          {"law", law}};
+    {
+      const auto &fitted = laws.at(*impact.law.sweep).at(value_label(*impact.law.value));
+      law = fitted.path;
+      law_node = fitted.node;
+    }
+    log::info("FE impact study: " + impact.scene);
+    add_impact_variant(compose_scene(config_, impact.scene, "fe", {}), impact.scene, "", law,
+                       law_node);
+    if (impact.deformable)
+    {
+      log::info("FE impact study, deformable journal: " + impact.deformable->scene);
+      add_impact_variant(impact_deformable_scene(), impact.deformable->scene, "_deformable",
+                         law, law_node);
+    }
+  }
+
+  nlohmann::json PipelineRunner::impact_deformable_scene() const
+  {
+    const DeformableImpact &d = *config_.impact->deformable;
+    return compose_scene(config_, d.scene, "fe", d.overrides);
+  }
+
+  void PipelineRunner::add_impact_variant(const nlohmann::json &scene_json,
+                                          const std::string &base, const std::string &suffix,
+                                          const std::string &law, const std::optional<int> law_node)
+  {
+    const std::string run = run_dir();
+    const std::string scene = write_scene(scene_json, base, "fe_impact" + suffix);
+    // its own stage in the ETA: several impacts, not one FE curve
+    const Task fe = fe_stage_task(scene, "fe/impact" + suffix, "fe_impact" + suffix);
+    const int fe_node = add(fe, "fe", {}, config_.mpi_ranks, scene_json);
+    attach_figure(fe_node);
+    const nlohmann::json *journal = find_key_path(scene_json, "loading.journal");
+    nlohmann::json &entry = summary_["impact" + suffix];
+    entry = {{"scene", scene},
+             {"fe_dir", fe.output_dir},
+             {"sweep", fe.output_dir + "/impact_sweep.csv"},
+             {"law", law},
+             {"journal", journal && journal->is_string() ? journal->get<std::string>() : "rigid"}};
     // The same impacts with the MBD law and each damping model (mbd_stage's impact_compare).
     Task cmp;
-    cmp.name = "impact/compare";
+    cmp.name = "impact/compare" + suffix;
     cmp.stage = "impact_compare";
     cmp.executable = (fs::path(options_.build_dir) / "mbd_stage" / "impact_compare").string();
     if (!fs::is_regular_file(cmp.executable))
@@ -279,11 +315,11 @@ namespace clearjoint::pipeline
       cmp.args.push_back("--no-plots");
     cmp.input_files = {law, sweep};
     std::vector<int> after = {fe_node};
-    if (impact.law.sweep)
-      after.push_back(laws.at(*impact.law.sweep).at(value_label(*impact.law.value)).node);
-    cmp.output_dir = run + "/impact/compare";
+    if (law_node)
+      after.push_back(*law_node);
+    cmp.output_dir = run + "/impact/compare" + suffix;
     add(cmp, "mbd", after);
-    summary_["impact"]["compare_dir"] = cmp.output_dir;
+    entry["compare_dir"] = cmp.output_dir;
   }
 
   nlohmann::json PipelineRunner::rolling_scene() const
@@ -548,6 +584,7 @@ namespace clearjoint::pipeline
     eta_->set_concurrency(executor->capacity(),
                           {{"fe_stage", executor->slots_for(config_.mpi_ranks)},
                            {"fe_impact", executor->slots_for(config_.mpi_ranks)},
+                           {"fe_impact_deformable", executor->slots_for(config_.mpi_ranks)},
                            {"fe_rolling", executor->slots_for(config_.mpi_ranks)}});
     log::info("run_pipeline: " + std::to_string(executor->capacity()) +
               (executor->kind() == "slurm" ? " Slurm jobs at once" : " slots on this machine") +
@@ -571,7 +608,8 @@ namespace clearjoint::pipeline
     fs::create_directories(run);
     eta_ = std::make_unique<RunEta>(planned_tasks(), preset_time("fe_case_time"),
                                     preset_time("pipeline_time"), preset_time("impact_time"),
-                                    preset_time("rolling_time"));
+                                    preset_time("rolling_time"),
+                                    preset_time("impact_deformable_time"));
 
     FittedLaws fitted;
     for (const auto &sweep : config_.fe_sweeps)

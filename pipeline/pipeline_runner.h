@@ -93,8 +93,19 @@ namespace clearjoint::pipeline
     /// the scene names join its inputs when it starts (add).
     Task fe_stage_task(const std::string &scene, const std::string &name,
                        const std::string &stage) const;
-    /// The FE impact study and its comparison with the MBD law (config_.impact).
+    /// The FE impact study and its comparison with the MBD law (config_.impact), and its
+    /// deformable-journal variant (impact.deformable) if given.
     void run_impact(const LawsBySweep &laws);
+    /// One impact variant: the fe_stage task of `scene_json` (written as
+    /// scenes/fe_impact<suffix>.yaml) into fe/impact<suffix>, its impact_compare against `law`
+    /// (after the task `law_node` that fits it, if any) into impact/compare<suffix>, and the
+    /// summary's entry impact<suffix>. Stage fe_impact<suffix> (its own measured time).
+    void add_impact_variant(const nlohmann::json &scene_json, const std::string &base,
+                            const std::string &suffix, const std::string &law,
+                            std::optional<int> law_node);
+    /// The deformable impact's scene: base scene, the preset's `fe` overrides,
+    /// impact.deformable.overrides.
+    nlohmann::json impact_deformable_scene() const;
     /// The FE rolling study (config_.rolling): one fe_stage task, fe/rolling. It is a first
     /// step (docs/fe.md): a failure of it is recorded in the summary (status, message, where
     /// its partial output is) and the run goes on; run_pipeline then exits 2 after the report.
@@ -124,8 +135,8 @@ namespace clearjoint::pipeline
     std::vector<std::string> discretisation_error_args(const std::string &sweep) const;
     /// Tasks per stage this run will execute or reuse (for "task k of N").
     std::map<std::string, int> planned_tasks() const;
-    /// The chosen preset's measured fe_case_time, pipeline_time, impact_time or rolling_time
-    /// [s], if measured.
+    /// The chosen preset's measured fe_case_time, pipeline_time, impact_time,
+    /// impact_deformable_time or rolling_time [s], if measured.
     std::optional<double> preset_time(const std::string &which) const;
     void check_output_root() const;
     class Checker;  ///< the steps of check() after the names (pipeline_check.cc)

@@ -79,6 +79,7 @@ namespace clearjoint::pipeline
                          {"fe_dofs", opt(m.fe_dofs, "1")},
                          {"fe_case_time", opt(m.fe_case_time, "s")},
                          {"impact_time", opt(m.impact_time, "s")},
+                         {"impact_deformable_time", opt(m.impact_deformable_time, "s")},
                          {"rolling_time", opt(m.rolling_time, "s")},
                          {"pipeline_time", opt(m.pipeline_time, "s")},
                          {"error_F_max", errors}};
@@ -124,6 +125,8 @@ namespace clearjoint::pipeline
     }
     if (stage == "fe_impact")
       return named("impact_time", m.impact_time);
+    if (stage == "fe_impact_deformable")
+      return named("impact_deformable_time", m.impact_deformable_time);
     if (stage == "fe_rolling")
       return named("rolling_time", m.rolling_time);
     return std::nullopt;

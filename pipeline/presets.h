@@ -34,6 +34,7 @@ namespace clearjoint::pipeline
 
   /// The chosen preset's measured time of one task [s] and the key of `measured` it comes from:
   /// stage fe_stage → case_times.<sweep>, else fe_case_time; fe_impact → impact_time;
+  /// fe_impact_deformable → impact_deformable_time;
   /// fe_rolling → rolling_time. nullopt for other stages and for figures not measured.
   std::optional<std::pair<std::string, double>> task_figure(const PipelineConfig &config,
                                                             const std::string &stage,

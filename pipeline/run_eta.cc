@@ -8,10 +8,13 @@ namespace clearjoint::pipeline
 {
   RunEta::RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
                  std::optional<double> pipeline_time, std::optional<double> impact_time,
-                 std::optional<double> rolling_time)
+                 std::optional<double> rolling_time,
+                 std::optional<double> impact_deformable_time)
     : fe_case_time_(fe_case_time)
     , pipeline_time_(pipeline_time)
-    , own_times_{{"fe_impact", impact_time}, {"fe_rolling", rolling_time}}
+    , own_times_{{"fe_impact", impact_time},
+                 {"fe_impact_deformable", impact_deformable_time},
+                 {"fe_rolling", rolling_time}}
   {
     for (const auto &[stage, n] : planned)
       stages_[stage].planned = n;

@@ -3,8 +3,9 @@
 //
 // Before a task of a stage has finished, a task of that stage is expected to take:
 //   fe_stage  — the preset's fe_case_time (one reference FE curve);
-//   fe_impact, fe_rolling — the preset's impact_time, rolling_time (one task each, a study of
-//               its own; unknown when not measured, and then left out of the estimate);
+//   fe_impact, fe_impact_deformable, fe_rolling — the preset's impact_time,
+//               impact_deformable_time, rolling_time (one task each, a study of its own;
+//               unknown when not measured, and then left out of the estimate);
 //   the rest  — (pipeline_time − n_fe·fe_case_time) / n_other, the measured whole pipeline
 //               minus its FE share, spread over the other tasks (fits, MBD runs, meshes).
 // Once tasks of a stage have finished, their mean wall time replaces that guess, and the
@@ -30,10 +31,13 @@ namespace clearjoint::pipeline
     /// planned: number of tasks per stage ("fe_stage", "fit_stage", "mbd_stage", "mesh").
     /// fe_case_time, pipeline_time: the preset's measured times [s], when measured.
     /// impact_time: the FE impact study's measured time [s] (stage "fe_impact"), if measured;
-    /// rolling_time: the FE rolling study's [s] (stage "fe_rolling"), if measured.
+    /// rolling_time: the FE rolling study's [s] (stage "fe_rolling"), if measured;
+    /// impact_deformable_time: the deformable-journal impact's [s] (stage
+    /// "fe_impact_deformable"), if measured.
     RunEta(std::map<std::string, int> planned, std::optional<double> fe_case_time,
            std::optional<double> pipeline_time, std::optional<double> impact_time = std::nullopt,
-           std::optional<double> rolling_time = std::nullopt);
+           std::optional<double> rolling_time = std::nullopt,
+           std::optional<double> impact_deformable_time = std::nullopt);
 
     /// Tasks at once: `slots` (run_pipeline --jobs) and the slots one task of a stage takes
     /// (default 1; an FE case on R MPI ranks takes R). Without a call: one at a time.

@@ -4,7 +4,13 @@ peak, energy left in the bearing; what does not change across the sweep stated o
 paper's two claims on the gap beside our numbers, Fig. 5a and 5b, each case's F(t), δ(t), F(δ)
 and energy plot folded away, and, where impact_compare ran, the MBD laws' comparison (the law of
 the same journal and mesh, c_e with its error bar from Δt and mesh). A restitution ≥ 1 is flagged
-beside its value: the time step's resolution, not an energy gain (its c_e unreachable)."""
+beside its value: the time step's resolution, not an energy gain (its c_e unreachable).
+
+Two variants may have run (issue 31 item 2): the rigid journal (summary `impact`, section
+#impact) and the deformable, free journal (summary `impact_deformable`, #impact_deformable); each
+gets its section, and where both ran, a table sets them side by side at the velocities and the
+journal mass they share. Each section names the time integrator (Abaqus's application, HHT α, β,
+γ) as the FE stage wrote it."""
 import os
 
 from plotting._common import read_table
@@ -40,28 +46,98 @@ def restitution_flag(e, steps):
             "and rerun with a finer impact time step</span>")
 
 
-def impact_section(impact, base, warnings):
-    """HTML of the impact section, or "" if the run has no impact study."""
+def journal_of(impact):
+    """The variant's journal: the summary's `journal` (loading.journal: rigid, end_faces,
+    axis_line), else the first case's manifest's scene, else rigid (runs before issue 31
+    item 2 had the rigid journal only)."""
+    if impact.get("journal"):
+        return impact["journal"]
+    sweep = impact.get("sweep")
+    if sweep and os.path.exists(sweep):
+        for c in case_folders(sweep):
+            man = load_or_none(os.path.join(c, "manifest.json")) or {}
+            j = man.get("extra", {}).get("scene", {}).get("loading", {}).get("journal")
+            if j:
+                return j
+    return "rigid"
+
+
+def integrator_html(sweep):
+    """The time integrator as the FE stage wrote it: the application's name from the first
+    case's manifest (extra.scene.impact.application, defaults resolved) and the scheme with its
+    α, β, γ from the first comment line of its impact_history.csv ("Abaqus application
+    moderate_dissipation: HHT alpha = …, beta = …, gamma = …"); "" when neither is there."""
+    folders = case_folders(sweep) if sweep and os.path.exists(sweep) else []
+    if not folders:
+        return ""
+    man = load_or_none(os.path.join(folders[0], "manifest.json")) or {}
+    application = man.get("extra", {}).get("scene", {}).get("impact", {}).get("application")
+    scheme = ""
+    history = os.path.join(folders[0], "impact_history.csv")
+    if os.path.exists(history):
+        with open(history) as f:
+            first = f.readline()
+        at = first.find("Abaqus application ")
+        if at >= 0:
+            scheme = first[at + len("Abaqus application "):].strip()
+    if not application and not scheme:
+        return ""
+    text = scheme or esc(application)
+    alpha = man.get("extra", {}).get("impact", {}).get("alpha")
+    if not scheme and alpha is not None:
+        text += f" (HHT α = {alpha:.5g})"
+    return (f"<p><strong>Time integration</strong>: Abaqus/Standard's application "
+            f"<code>{esc(text)}</code> (<code>impact.application</code>: "
+            "transient_fidelity | moderate_dissipation | quasi_static; the paper ran moderate "
+            "dissipation, docs/fe.md).</p>")
+
+
+def is_deformable(journal):
+    return journal not in ("rigid", None)
+
+
+def impact_section(impact, base, warnings, anchor="impact"):
+    """HTML of one impact section (`anchor`: impact, or impact_deformable for the variant with
+    the deformable journal), or "" if the run has no such study."""
     if not impact:
         return ""
     fe_dir = impact["fe_dir"]
-    parts = ["<h2 id='impact'>FE impact study (paper §3.2)</h2>",
-             "<p>The journal is launched at first touch toward the bearing (t_B as in the "
-             "impact scene) and followed through the impact by Hilber–Hughes–Taylor α implicit "
-             "dynamics, with the exact active-set contact at every step and the contact nodes "
-             "massless (docs/fe.md). The sweep runs every impact velocity with every journal "
-             "mass (sweep.velocity × sweep.journal_mass: a heavier journal stands for the mass a "
-             "mechanism puts on the pin), so that δ_max spans the quasi-static studies' range. "
-             "Beside each impact, the quasi-static curve of the same journal and mesh: the "
-             "dynamic peak is compared with the quasi-static force at the same δ (the dynamic "
-             "gap).</p>"]
+    journal = journal_of(impact)
+    deformable = is_deformable(journal)
+    label = "impact, deformable journal" if deformable else "impact"
+    if deformable:
+        head = (f"<h2 id='{anchor}'>FE impact study (paper §3.2): both bodies deformable</h2>"
+                "<p>As the paper modelled it: the journal is meshed and free (loading.journal: "
+                f"{esc(journal)}), its mass the FE mass matrix's, coupled to the bore by dual "
+                "mortar; it is launched at first touch toward the bearing (t_B as in the scene) "
+                "and followed through the impact by Hilber–Hughes–Taylor α implicit dynamics, "
+                "with the contact nodes of the bore massless (docs/fe.md). The sweep runs the "
+                "impact velocities at the journal's own mass (a deformable journal's mass is its "
+                "mesh's: no journal-mass sweep; the heavier journals are the rigid one's). Beside "
+                "each impact, the quasi-static curve of the same journal and mesh, pushed at its "
+                "end faces: the dynamic peak is compared with the quasi-static force at the same "
+                "δ (the dynamic gap); δ is the journal's centre of mass's displacement.</p>")
+    else:
+        head = (f"<h2 id='{anchor}'>FE impact study (paper §3.2)"
+                + (": rigid journal" if journal == "rigid" else "") + "</h2>"
+                "<p>The journal is launched at first touch toward the bearing (t_B as in the "
+                "impact scene) and followed through the impact by Hilber–Hughes–Taylor α implicit "
+                "dynamics, with the exact active-set contact at every step and the contact nodes "
+                "massless (docs/fe.md). The sweep runs every impact velocity with every journal "
+                "mass (sweep.velocity × sweep.journal_mass: a heavier journal stands for the mass "
+                "a mechanism puts on the pin), so that δ_max spans the quasi-static studies' "
+                "range. Beside each impact, the quasi-static curve of the same journal and mesh: "
+                "the dynamic peak is compared with the quasi-static force at the same δ (the "
+                "dynamic gap).</p>")
+    parts = [head]
     sweep = impact.get("sweep")
     if not sweep or not os.path.exists(sweep):
-        warnings.add("impact study", f"no sweep table in {esc(fe_dir)} (did the FE task fail?)",
-                     "impact")
+        warnings.add(f"{label} study", f"no sweep table in {esc(fe_dir)} (did the FE task "
+                     "fail?)", anchor)
         return "\n".join(parts)
+    parts.append(integrator_html(sweep))
     s = read_sweep(sweep)
-    parts.append(case_table(s, warnings))
+    parts.append(case_table(s, warnings, label, anchor))
     parts.append(claims_html(s))
     for name, caption in [
             ("fig5a.png", "The paper's Fig. 5a: every case's F(δ) through the impact over the "
@@ -81,11 +157,11 @@ def impact_section(impact, base, warnings):
             worst = max(yc.get("bodies", []), key=lambda b: b["max_von_mises"]["value"],
                         default=None)
             if worst:
-                warnings.add(f"impact {esc(c)}",
+                warnings.add(f"{label} {esc(c)}",
                              f"von Mises reaches {worst['max_von_mises']['value'] / 1e6:.4g} MPa "
                              f"in the {esc(worst['body'])} at the peak force, above the yield "
                              f"stress {yc['yield_stress']['value'] / 1e6:.4g} MPa: the linear-"
-                             "elastic result is not valid there", "impact")
+                             "elastic result is not valid there", anchor)
     for c in cases:
         img = os.path.join(fe_dir, c, "impact.png")
         if os.path.exists(img):
@@ -101,7 +177,7 @@ def impact_section(impact, base, warnings):
                                              f"FE impact against the MBD law ({esc(name)})"))
         man = load_or_none(os.path.join(compare, "manifest.json"))
         if man is None:
-            warnings.add("impact comparison", "no manifest in " + esc(compare), "impact")
+            warnings.add(f"{label} comparison", "no manifest in " + esc(compare), anchor)
             return "\n".join(parts)
         fits = man.get("extra", {}).get("fitted_restitution_coefficient", {})
         extra = man.get("extra", {})
@@ -109,7 +185,8 @@ def impact_section(impact, base, warnings):
         bar_from = extra.get("error_bar_from", {}).get("error_bar", "none given")
         if fits:
             rows = ["<p>The c_e with which each damping model's single impact (the journal's "
-                    "mass on the MBD law, bearing rigid) returns the FE restitution. The law: "
+                    "mass on the MBD law, bearing rigid) returns the FE restitution"
+                    + (" of the deformable journal" if deformable else "") + ". The law: "
                     + ("each case's own quasi-static curve (the same journal and mesh as the "
                        "impact), fitted F = K δ^n" if own else
                        "the law file given (not the impact's own curve)")
@@ -173,12 +250,14 @@ def fitted_per_case(path):
     return text + details("each case's fitted c_e", "".join(rows) + "</table>")
 
 
-def impact_headline(impact):
+def impact_headline(impact, anchor="impact"):
     """One sentence for the report's summary: the range of δ_max and of the dynamic gap, the
     restitution, the paper's claims found or not, and the c_e that reproduces the restitution;
-    "" without an impact study."""
+    "" without an impact study. `anchor`: the section it links to (impact_deformable for the
+    deformable journal's)."""
     if not impact or not impact.get("sweep") or not os.path.exists(impact["sweep"]):
         return ""
+    deformable = is_deformable(journal_of(impact))
     s = read_sweep(impact["sweep"])
     v, gaps, e = s["v_in_m_per_s"], [100 * g for g in s["dynamic_gap"]], s["restitution"]
     def span(values, fmt):
@@ -189,9 +268,11 @@ def impact_headline(impact):
     claims = paper_claims(s)
     found = "; ".join(f"“{esc(c)}”: {'yes' if ok else 'no' if ok is False else 'not tested'}"
                       for c, _, _, ok in claims)
-    text = (f"<p>Impact (<a href='#impact'>FE impact study</a>), {len(v)} cases, "
+    text = (("<p>Impact, both bodies deformable (<a href='#" + anchor + "'>FE impact study, "
+             "deformable journal</a>)" if deformable else
+             f"<p>Impact (<a href='#{anchor}'>FE impact study</a>)") + f", {len(v)} cases, "
             f"v = {min(v):.3g}–{max(v):.3g} m/s, journal mass "
-            f"{min(s['journal_mass_kg']):.4g}–{max(s['journal_mass_kg']):.4g} kg: δ_max "
+            f"{span(s['journal_mass_kg'], '{:.4g}').replace(' to ', '–')} kg: δ_max "
             f"{span([d * 1e6 for d in s['delta_max_m']], '{:.3g}')} µm, peak force "
             f"{min(s['peak_force_N']):.4g}–{max(s['peak_force_N']):.4g} N, "
             f"<strong>{span(gaps, '{:+.1f}')} % above the quasi-static force at the same δ"
@@ -210,8 +291,9 @@ def impact_headline(impact):
     return text + ".</p>"
 
 
-def case_table(s, warnings):
-    """Per case the quantities that change across the sweep; those that do not, once below."""
+def case_table(s, warnings, label="impact", anchor="impact"):
+    """Per case the quantities that change across the sweep; those that do not, once below.
+    `label`, `anchor`: the variant's name in the warnings and the section they link to."""
     varying, constant = split_quantities(s)
     head = ("<table><tr><th>v [m/s]</th><th>journal mass [kg]</th>" +
             "".join(f"<th>{esc(label)}</th>" for _, _, label, _ in varying) +
@@ -232,13 +314,13 @@ def case_table(s, warnings):
                     f"<td>{100 * s['bearing_energy_left_J'][i] / s['kinetic_initial_J'][i]:.2f}"
                     "</td></tr>")
         if not separated:
-            warnings.add(f"impact at v = {v:.3g} m/s, m = {m:.4g} kg",
-                         "the journal had not left the bearing at the end time", "impact")
+            warnings.add(f"{label} at v = {v:.3g} m/s, m = {m:.4g} kg",
+                         "the journal had not left the bearing at the end time", anchor)
         elif e is not None and e >= 1.0 + E_RESOLUTION:
-            warnings.add(f"impact at v = {v:.3g} m/s, m = {m:.4g} kg",
+            warnings.add(f"{label} at v = {v:.3g} m/s, m = {m:.4g} kg",
                          f"restitution {e:.4f}: the journal left with more energy than it "
                          "brought, beyond the time step's resolution (check the energy "
-                         "balance; a finer impact time step)", "impact")
+                         "balance; a finer impact time step)", anchor)
     rows.append("</table>")
     if constant:
         separated = all(x > 0.5 for x in s["separated"])
@@ -257,5 +339,59 @@ def claims_html(s):
     for claim, numbers, finding, ok in paper_claims(s):
         rows.append(f"<tr><td>{esc(claim)}</td><td>{esc(numbers)}</td><td>{esc(finding)}</td>"
                     f"<td>{'yes' if ok else 'no' if ok is False else '—'}</td></tr>")
+    rows.append("</table>")
+    return "".join(rows)
+
+
+# [1] Two journal masses are the same journal's when they agree to this: the rigid journal's
+# ρπR_J²L_J against the deformable one's FE mass matrix, 1e-6 apart on the curved mapping
+# (docs/fe.md), far below any mass a sweep would set beside it.
+SAME_MASS = 1e-3
+
+# (column, scale, label, format) set side by side for the two journals
+BOTH = [("peak_force_N", 1.0, "peak force [N]", "{:.4g}"),
+        ("impulse_Ns", 1e3, "impulse [mN s]", "{:.4g}"),
+        ("delta_max_m", 1e6, "δ_max [µm]", "{:.4g}"),
+        ("contact_duration_s", 1e6, "contact time [µs]", "{:.4g}"),
+        ("restitution", 1.0, "restitution [1]", "{:.4f}"),
+        ("dynamic_gap", 100.0, "dynamic gap [%]", "{:+.2f}")]
+
+
+def both_journals_html(rigid, deformable):
+    """The rigid and the deformable journal side by side at the velocities and the journal mass
+    both ran (the rigid journal's own mass against the deformable one's FE mass); "" when they
+    share no case (or a table is missing)."""
+    if not rigid.get("sweep") or not deformable.get("sweep"):
+        return ""
+    if not os.path.exists(rigid["sweep"]) or not os.path.exists(deformable["sweep"]):
+        return ""
+    r, d = read_sweep(rigid["sweep"]), read_sweep(deformable["sweep"])
+    pairs = []
+    for j, (v, m) in enumerate(zip(d["v_in_m_per_s"], d["journal_mass_kg"])):
+        i = next((i for i, (vr, mr) in enumerate(zip(r["v_in_m_per_s"], r["journal_mass_kg"]))
+                  if abs(vr - v) <= 1e-9 * v and abs(mr - m) <= SAME_MASS * m), None)
+        if i is not None:
+            pairs.append((i, j))
+    if not pairs:
+        return ""
+    cols = [q for q in BOTH if q[0] in r and q[0] in d]
+    head = ("<h3>Rigid and deformable journal side by side</h3>"
+            "<p>The same impacts (velocity and the journal's own mass) with the journal rigid "
+            "(a point mass behind a rigid bore-shaped surface) and deformable (meshed, free: "
+            "the paper's set-up); each cell rigid / deformable, and the deformable one's ratio "
+            "to the rigid. Both on this run's mesh and time step (the preset; the deformable "
+            "variant's overrides may keep it coarser: the scenes in scenes/).</p>"
+            "<table><tr><th>v [m/s]</th><th>journal mass [kg]</th>" +
+            "".join(f"<th>{esc(label)}</th>" for _, _, label, _ in cols) + "</tr>")
+    rows = [head]
+    for i, j in sorted(pairs, key=lambda p: d["v_in_m_per_s"][p[1]]):
+        cells = ""
+        for key, scale, _, fmt in cols:
+            a, b = r[key][i], d[key][j]
+            ratio = f" ({b / a:.3f}×)" if key != "dynamic_gap" and a else ""
+            cells += f"<td>{fmt.format(a * scale)} / {fmt.format(b * scale)}{ratio}</td>"
+        rows.append(f"<tr><td>{d['v_in_m_per_s'][j]:.3g}</td>"
+                    f"<td>{r['journal_mass_kg'][i]:.5g} / {d['journal_mass_kg'][j]:.5g}</td>"
+                    f"{cells}</tr>")
     rows.append("</table>")
     return "".join(rows)

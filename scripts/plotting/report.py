@@ -20,7 +20,7 @@ import os
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
 from plotting._report_fe import f_ref_interval, mesh_error, sweep_section, trend_finding
-from plotting._report_impact import impact_headline, impact_section
+from plotting._report_impact import both_journals_html, impact_headline, impact_section
 from plotting._report_mbd import headline_table, mbd_section
 from plotting._report_rolling import rolling_headline, rolling_section
 
@@ -28,12 +28,15 @@ from plotting._report_rolling import rolling_headline, rolling_section
 # What each preset error (presets.<p>.measured.error_F_max.<name>) is the error of: F(δ_max) for
 # a quasi-static FE sweep; the impact study's peak force; the rolling study's plastic dissipation
 # (pipeline.yaml, docs/pipeline.md "Presets' measured error and cost").
-ERROR_OF = {"impact": "peak force", "rolling": "plastic dissipation"}
+ERROR_OF = {"impact": "peak force", "impact_deformable": "peak force",
+            "rolling": "plastic dissipation"}
 
 # The presets' measured times [s]: key in measured, column heading, format, and the summary
 # section whose presence shows the column even when no preset has measured it (None: always).
 PRESET_TIMES = [("fe_case_time", "one FE curve", "{:.3g}", None),
                 ("impact_time", "FE impact sweep", "{:.3g}", "impact"),
+                ("impact_deformable_time", "FE impact sweep, deformable journal", "{:.3g}",
+                 "impact_deformable"),
                 ("rolling_time", "FE rolling study", "{:.3g}", "rolling"),
                 ("pipeline_time", "whole pipeline", "{:.0f}", None)]
 
@@ -309,6 +312,7 @@ def summary_section(summary, sweeps, runs, warnings, has_band):
                      f"(contact models, the ideal joint, the tilted crank); joint friction μ ∈ "
                      f"{{{', '.join(f'{m:g}' for m in mus)}}}.</p>")
     parts.append(impact_headline(summary.get("impact")))
+    parts.append(impact_headline(summary.get("impact_deformable"), "impact_deformable"))
     parts.append(rolling_headline(summary.get("rolling")))
     parts.append("<h3>Headline law beside the paper's</h3>")
     parts.append(headline_laws(sweeps, has_band))
@@ -325,12 +329,16 @@ def summary_section(summary, sweeps, runs, warnings, has_band):
     return "".join(parts)
 
 
-def toc(sweeps, has_mbd, has_band, has_impact=False, has_rolling=False):
+def toc(sweeps, has_mbd, has_band, has_impact=False, has_rolling=False,
+        has_impact_deformable=False):
     items = ["<li><a href='#summary'>Summary</a> (<a href='#warnings'>warnings</a>)</li>"]
     for fs in sweeps:
         items.append(f"<li><a href='#{esc(fs.anchor)}'>FE sweep “{esc(fs.sweep['name'])}”</a></li>")
     if has_impact:
         items.append("<li><a href='#impact'>FE impact study</a></li>")
+    if has_impact_deformable:
+        items.append("<li><a href='#impact_deformable'>FE impact study, deformable "
+                     "journal</a></li>")
     if has_rolling:
         items.append("<li><a href='#rolling'>FE rolling study</a></li>")
     if has_mbd:
@@ -368,6 +376,10 @@ def main(argv):
         sweep_html.append(html_)
         sweeps.append(fs)
     impact_html = impact_section(summary.get("impact"), base, warnings)
+    deformable_html = impact_section(summary.get("impact_deformable"), base, warnings,
+                                     "impact_deformable")
+    if impact_html and deformable_html:
+        deformable_html += both_journals_html(summary["impact"], summary["impact_deformable"])
     rolling_html = rolling_section(summary.get("rolling"), base, warnings)
     mbd_html, runs = ("", [])
     if summary.get("mbd_runs"):
@@ -380,9 +392,10 @@ def main(argv):
              f"(δ in m, F in N) and in the paper's units (δ in mm, F in N).</p>",
              summary_section(summary, sweeps, runs, warnings, "id='band'" in mbd_html),
              toc(sweeps, bool(runs), "id='band'" in mbd_html, bool(impact_html),
-                 bool(rolling_html))]
+                 bool(rolling_html), bool(deformable_html))]
     parts += sweep_html
     parts.append(impact_html)
+    parts.append(deformable_html)
     parts.append(rolling_html)
     parts.append(mbd_html)
     parts.append(preset_section(summary))

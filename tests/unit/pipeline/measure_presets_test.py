@@ -210,9 +210,11 @@ def main():
                f"the summary's tasks carry the figure they were compared with: {keys}")
         expect(summary.get("wall_time", {}).get("unit") == "s", "the summary has the run's wall time")
 
-        # 3. a subset: one preset, one study (by fe_stage's scene name), times only
+        # 3. a subset: one preset, one study (by fe_stage's scene name), times only — as CPU
+        # times (--cpu-time, for a shared machine: the note says so)
         before = yaml.safe_load(open(p))["presets"]
-        sub = subprocess.run(command + ["--presets", "fast", "--studies", "radial", "--times-only"],
+        sub = subprocess.run(command + ["--presets", "fast", "--studies", "radial", "--times-only",
+                                        "--cpu-time"],
                              capture_output=True, text=True, cwd=d)
         expect(sub.returncode == 0, f"the subset: exit {sub.returncode}\n{sub.stderr[-2000:]}")
         after = yaml.safe_load(open(p))["presets"]
@@ -223,6 +225,9 @@ def main():
                "only the thickness case's time and DoFs measured")
         expect("fe_case_time, fe_dofs" in a["note"] and "error_F_max.thickness" in a["note"].split("from earlier")[1],
                f"the note says what this run wrote and what is older: {a['note']}")
+        expect("--cpu-time (task times are CPU times" in a["note"], f"CPU times said: {a['note']}")
+        expect(isinstance(a["fe_case_time"], (int, float)) and a["fe_case_time"] > 0,
+               f"a CPU time written: {a['fe_case_time']}")
 
         # 4. the whole pipeline's time
         whole = subprocess.run(command + ["--presets", "fast", "--studies", "pipeline"],

@@ -231,6 +231,54 @@ TEST(PipelineCheck, TheImpactSectionIsChecked)
   EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
 }
 
+// The impact section's deformable variant (issue 31 item 2) is checked with the rest: its scene
+// must exist, read, be an impact study and have a deformable journal (a rigid one would repeat
+// impact.scene's), and fe_stage must accept it; each failure is an input error naming the
+// pipeline key, exit 1, nothing written. (A journal-mass key with the deformable journal is
+// fe_stage's own error: the end-to-end test checks it with the real stage.)
+TEST(PipelineCheck, TheDeformableImpactIsChecked)
+{
+  test_support::ScratchDir dir("pipeline_check_impact_deformable");
+  const Build b(dir);
+  const std::string law_ok = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  test_support::write_text(dir.file("impact.yaml"), "{\"study\": \"impact\"}\n");
+  test_support::write_text(dir.file("deformable.yaml"),
+                           "{\"study\": \"impact\", \"loading\": {\"journal\": \"end_faces\"}}\n");
+  test_support::write_text(dir.file("rigid.yaml"),
+                           "{\"study\": \"impact\", \"loading\": {\"journal\": \"rigid\"}}\n");
+  test_support::write_text(dir.file("radial.yaml"),
+                           "{\"loading\": {\"journal\": \"end_faces\"}}\n");
+  test_support::write_text(dir.file("broken.yaml"), "{\"study\": [\n");
+  const auto with = [&](const std::string &deformable) {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("report: false"), 13,
+                 "impact: {scene: " + dir.file("impact.yaml") + ", law: {file: " + law_ok +
+                   "}, deformable: " + deformable + "}\nreport: false");
+    test_support::write_text(dir.file("p.yaml"), text);
+  };
+  for (const auto &[deformable, says] : std::vector<std::pair<std::string, std::string>>{
+         {"{scene: " + dir.file("missing.yaml") + "}", "no such file"},
+         {"{scene: " + dir.file("broken.yaml") + "}", "readable"},
+         {"{scene: " + dir.file("radial.yaml") + "}", "study: impact"},
+         {"{scene: " + dir.file("impact.yaml") + "}", "deformable journal"},  // default: rigid
+         {"{scene: " + dir.file("rigid.yaml") + "}", "deformable journal"},
+         // the overrides make it rigid again
+         {"{scene: " + dir.file("deformable.yaml") + ", overrides: {loading.journal: rigid}}",
+          "deformable journal"}})
+  {
+    with(deformable);
+    std::string log;
+    EXPECT_EQ(run_pipeline(dir, b, "--check", log), 1) << deformable << log;
+    EXPECT_NE(log.find("key 'impact.deformable.scene'"), std::string::npos) << deformable << log;
+    EXPECT_NE(log.find(says), std::string::npos) << deformable << log;
+    EXPECT_FALSE(fs::exists(dir.file("out"))) << deformable;
+  }
+  with("{scene: " + dir.file("deformable.yaml") + ", overrides: {mesh.global_refinements: 0}}");
+  std::string log;
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out")));
+}
+
 // The rolling section is checked with the rest (issue 13 item 5): its scene must exist and be a
 // rolling study, and fe_stage must accept it with the preset's and the section's overrides;
 // each failure is an input error naming the pipeline key, exit 1, nothing written.

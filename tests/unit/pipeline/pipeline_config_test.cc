@@ -373,6 +373,88 @@ TEST(PipelineConfig, ImpactStudy)
             "(accepted)");
 }
 
+// The impact study's deformable-journal variant (issue 31 item 2): `impact.deformable` with a
+// scene and optional overrides; its measured figures (impact_deformable_time, dofs and
+// error_F_max.impact_deformable) only with it; every bad value an input error naming its key.
+TEST(PipelineConfig, DeformableImpact)
+{
+  const std::string head = "impact:\n  scene: i.yaml\n  law: {file: l.json}\n";
+  {
+    test_support::ScratchDir dir("pipeline_config_impact_deformable");
+    std::string text = good;
+    text.replace(text.find("mbd_runs:"), 9,
+                 head + "  deformable: {scene: d.yaml, overrides: {mesh.global_refinements: 0}}\n"
+                        "mbd_runs:");
+    test_support::write_text(dir.file("p.yaml"), text);
+    const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
+    ASSERT_TRUE(c.impact && c.impact->deformable);
+    EXPECT_EQ(c.impact->deformable->scene, "d.yaml");
+    ASSERT_EQ(c.impact->deformable->overrides.size(), 1u);
+    EXPECT_EQ(c.impact->deformable->overrides[0].first, "mesh.global_refinements");
+    EXPECT_EQ(c.impact->deformable->overrides[0].second, 0);
+  }
+  // without it: no variant
+  {
+    test_support::ScratchDir dir("pipeline_config_impact_rigid_only");
+    std::string text = good;
+    text.replace(text.find("mbd_runs:"), 9, head + "mbd_runs:");
+    test_support::write_text(dir.file("p.yaml"), text);
+    EXPECT_FALSE(read_pipeline_config(dir.file("p.yaml")).impact->deformable.has_value());
+  }
+  const auto bad = [&](const std::string &block) {
+    return error_for("mbd_runs:", head + block + "mbd_runs:");
+  };
+  for (const auto &[block, key] : std::vector<std::pair<std::string, std::string>>{
+         {"  deformable: {overrides: {}}\n", "impact.deformable.scene"},
+         {"  deformable: {scene: ''}\n", "impact.deformable.scene"},
+         {"  deformable: {scene: [d.yaml]}\n", "impact.deformable.scene"},
+         {"  deformable: d.yaml\n", "impact.deformable"},
+         {"  deformable: {scene: d.yaml, overrides: [1]}\n", "impact.deformable.overrides"},
+         {"  deformable: {scene: d.yaml, journal: end_faces}\n", "impact.deformable.journal"}})
+  {
+    const std::string m = bad(block);
+    EXPECT_NE(m.find(key), std::string::npos) << block << ": " << m;
+  }
+  // the variant's measured figures: accepted with it, input errors naming the key without it
+  const auto measured = [](const std::string &m) {
+    return "  fast: {fe: {mesh.level: 0}, mbd: null, measured: {note: x, " + m + "}}";
+  };
+  const std::string preset_line = "  fast: {fe: {mesh.level: 0}, mbd: null}";
+  for (const std::string &m :
+       {std::string("impact_deformable_time: 40, error_F_max: {}"),
+        std::string("dofs: {impact_deformable: 3588}, error_F_max: {}"),
+        std::string("error_F_max: {impact_deformable: {percent: 3.0, where: here}}")})
+  {
+    test_support::ScratchDir dir("pipeline_config_impact_deformable_measured");
+    std::string text = good;
+    text.replace(text.find(preset_line), preset_line.size(), measured(m));
+    const std::string rigid_only = text;
+    text.replace(text.find("mbd_runs:"), 9, head + "  deformable: {scene: d.yaml}\nmbd_runs:");
+    test_support::write_text(dir.file("p.yaml"), text);
+    EXPECT_EQ(test_support::input_error_of([&] { read_pipeline_config(dir.file("p.yaml")); }),
+              "(accepted)")
+      << m;
+    std::string no_variant = rigid_only;
+    no_variant.replace(no_variant.find("mbd_runs:"), 9, head + "mbd_runs:");
+    test_support::write_text(dir.file("q.yaml"), no_variant);
+    const std::string e =
+      test_support::input_error_of([&] { read_pipeline_config(dir.file("q.yaml")); });
+    EXPECT_NE(e.find("impact_deformable"), std::string::npos) << m << ": " << e;
+    EXPECT_NE(e.find("presets.fast.measured."), std::string::npos) << m << ": " << e;
+  }
+  {
+    test_support::ScratchDir dir("pipeline_config_impact_deformable_time");
+    std::string text = good;
+    text.replace(text.find(preset_line), preset_line.size(),
+                 measured("impact_deformable_time: -3, error_F_max: {}"));
+    text.replace(text.find("mbd_runs:"), 9, head + "  deformable: {scene: d.yaml}\nmbd_runs:");
+    test_support::write_text(dir.file("p.yaml"), text);
+    const std::string e =
+      test_support::input_error_of([&] { read_pipeline_config(dir.file("p.yaml")); });
+    EXPECT_NE(e.find("presets.fast.measured.impact_deformable_time"), std::string::npos) << e;
+  }
+}
+
 // The rolling study (issue 13 item 5): one scene and optional overrides after the preset; a
 // missing, empty or non-string scene, an unknown key or a block that is not a mapping are input
 // errors naming the key under `rolling`.

@@ -161,6 +161,9 @@ TEST(Presets, MeasuredMachineDateAndPerSweepFigures)
   EXPECT_NE(e.find("presets.fast.measured.fe_case_time"), std::string::npos) << e;
   e = error_for("measured: {note: x, impact_time: -14, error_F_max: {}}");
   EXPECT_NE(e.find("presets.fast.measured.impact_time"), std::string::npos) << e;
+  // the deformable impact's time without its study (issue 31 item 2)
+  e = error_for("measured: {note: x, impact_deformable_time: 40, error_F_max: {}}");
+  EXPECT_NE(e.find("presets.fast.measured.impact_deformable_time"), std::string::npos) << e;
   e = error_for("measured: {note: x, case_times: 3, error_F_max: {}}");
   EXPECT_NE(e.find("presets.fast.measured.case_times"), std::string::npos) << e;
   e = error_for("measured: {note: x, machine: {cpu: c, cores: 0}, error_F_max: {}}");

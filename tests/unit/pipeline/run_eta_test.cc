@@ -96,6 +96,26 @@ TEST(RunEta, TheRollingStudyHasItsOwnTime)
   EXPECT_FALSE(unknown.time_left()->lower_bound);
 }
 
+// The deformable journal's impact (issue 31 item 2) is a task of its own, like the rigid
+// journal's: its measured time is its own and is taken out of what the others share; unknown →
+// a lower bound until it has run.
+TEST(RunEta, TheDeformableImpactHasItsOwnTime)
+{
+  // others: (240 − 10·10 − 60 − 40)/4 = 10 s each
+  const RunEta eta({{"fe_stage", 10}, {"fe_impact", 1}, {"fe_impact_deformable", 1},
+                    {"fit_stage", 4}},
+                   10.0, 240.0, 60.0, std::nullopt, 40.0);
+  EXPECT_EQ(eta.expected_seconds("fe_impact_deformable").value_or(-1), 40.0);
+  ASSERT_TRUE(eta.time_left().has_value());
+  EXPECT_NEAR(eta.time_left()->seconds, 10 * 10.0 + 60.0 + 40.0 + 4 * 10.0, 1e-9);
+  EXPECT_FALSE(eta.time_left()->lower_bound);
+  RunEta unknown({{"fe_stage", 2}, {"fe_impact_deformable", 1}, {"fit_stage", 2}}, 10.0, 50.0);
+  EXPECT_FALSE(unknown.expected_seconds("fe_impact_deformable").has_value());
+  EXPECT_TRUE(unknown.time_left()->lower_bound);
+  unknown.finished("fe_impact_deformable", true, 7.0);
+  EXPECT_FALSE(unknown.time_left()->lower_bound);
+}
+
 TEST(RunEta, TasksAtOnceShareTheWork)
 {
   // The numbers of RunPipeline.TheRollingStudyIsOneTaskWithItsOwnTime: 2 FE cases of 1 s, the
