@@ -121,8 +121,9 @@ namespace clearjoint::fe::detail
   class SpinStepper;
 
   /// The steppers see the model only through DynamicProblem and SpinProblem
-  /// (solve/stepper_interfaces.h), besides the parts they are given.
-  class ContactModel : private DynamicProblem, private SpinProblem
+  /// (solve/stepper_interfaces.h), and the material Newton iteration through MaterialProblem
+  /// (solve/material_newton.h), besides the parts they are given.
+  class ContactModel : private DynamicProblem, private SpinProblem, private MaterialProblem
   {
   public:
     ContactModel(const FeScene &scene, const RunOptions &options);
@@ -186,7 +187,7 @@ namespace clearjoint::fe::detail
     void init_plasticity();
     /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
     /// then the contact nodes' share of the load. Returns the number of yielding points.
-    unsigned int assemble_plastic();
+    unsigned int assemble_plastic() override;
     bool elastoplastic() const { return system_.kind() == Assembler::Operator::tangent; }
     struct PlasticEnergies
     {
@@ -202,41 +203,13 @@ namespace clearjoint::fe::detail
                              Vector<float> &alpha_max, Vector<float> &vm_max) const;
     std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
                                                    double half_angle) const;
-    /// The material Newton iteration at the push δ (solve/material_newton.cc): tangent and
-    /// load at the current u, the active-set contact solve, until the correction is below
-    /// 1e-7 δ_max; at most max_it iterations. Throws StepFailure.
-    struct MaterialSolve
+    /// One material Newton iteration (SpinProblem: the coupled spin iteration's), and its
+    /// tolerance: the iteration's own (MaterialNewton).
+    MaterialIteration material_iteration(double delta, bool line_search) override
     {
-      IncrementRecord record;  // of the last contact solve
-      unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
-      unsigned int line_search_steps = 0;
-    };
-    MaterialSolve solve_material_state(double delta, unsigned int max_it);
-    /// One material Newton iteration from the current u: the tangent, its load and the
-    /// active-set contact solve at the push δ; how far u moved [m]. `line_search` (an
-    /// iteration after a step's first, whose start already meets the step's prescribed
-    /// motion): the step is shortened where it overshoots the energy's minimum along it
-    /// (search_line). Throws StepFailure.
-    MaterialIteration material_iteration(double delta, bool line_search) override;
-    /// [N] the out-of-balance force r = K u − b at the current u with the tangent and load
-    /// assembled there, the hanging DoFs' shares on their masters, zero on the constrained
-    /// DoFs (supports, symmetry, push) and on the contact nodes' and their partners' (their
-    /// balance holds the contact forces, which only a contact solve gives). Collective.
-    TrilinosWrappers::MPI::Vector interior_forces() const;
-    /// The line search along the Newton step `step` from `u_start`, g0 = step · r(u_start) < 0
-    /// (solve/material_newton.cc); leaves u at the point it accepts.
-    void search_line(MaterialIteration &it, double g0, const TrilinosWrappers::MPI::Vector &u_start,
-                     const TrilinosWrappers::MPI::Vector &step);
-    /// The line search leaves the tangent assembled at the point it accepts: the next
-    /// iteration starts from it instead of assembling again, if u is still that point and
-    /// neither the history nor the matrices changed since (commit, make_matrices clear it).
-    bool tangent_current_ = false;
-    TrilinosWrappers::MPI::Vector u_at_tangent_;
-    unsigned int n_plastic_at_tangent_ = 0;
-    /// [m] Material Newton has converged when the correction is below 1e-7 of the push
-    /// (δ_max = 1 mm: 0.1 nm), far below the discretisation error; quadratic convergence
-    /// reaches it in a few iterations once the plastic zone and the active set have settled.
-    double material_tolerance() const override { return 1e-7 * scene_.loading.delta_max; }
+      return newton_.iterate(delta, line_search);
+    }
+    double material_tolerance() const override { return newton_.tolerance(); }
     /// A converged state's trial states made the points' history.
     void commit_material();
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
@@ -355,6 +328,9 @@ namespace clearjoint::fe::detail
     State state_;  // u (owned and ghosted) and the nodal forces it leaves
 
     SystemSolver solver_;  // KLU or CG/GMRES with the AMG it owns
+    /// The material Newton iteration of an elastoplastic state, with its line search and the
+    /// tangent it leaves assembled.
+    MaterialNewton newton_;
 
     std::vector<std::pair<double, std::string>> pvd_records_;
     std::vector<std::string> field_files_;

@@ -22,6 +22,7 @@ namespace clearjoint::fe
       , dofs_(scene, plan_, bodies_, options.comm)
       , contact_(scene, dofs_, options.comm)
       , system_(scene, bodies_, dofs_, options.comm)
+      , newton_(*this, {scene_, dofs_, system_, state_, contact_, options.comm})
       , start_(std::chrono::steady_clock::now())
     {
       material_ = make_material(scene, scene.material.model == Material::Model::elastoplastic);

@@ -104,7 +104,7 @@ namespace clearjoint::fe::detail
   /// present, so any active set condenses into it (the two-body lines couple journal DoFs).
   void ContactModel::make_matrices()
   {
-    tangent_current_ = false;  // the matrices are made again
+    newton_.forget_tangent();  // the matrices are made again
     AffineConstraints<double> worst(dofs_.relevant());
     pattern_partners_.clear();
     for (const auto &cn : contact_.nodes())

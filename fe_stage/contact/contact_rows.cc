@@ -104,7 +104,7 @@ namespace clearjoint::fe::detail
   void ContactModel::start_from_rest()
   {
     state_.set_zero();
-    tangent_current_ = false;
+    newton_.forget_tangent();
     for (auto &cn : contact_.nodes())
       {
         cn.active = false;

@@ -1,5 +1,5 @@
 // The elastoplastic bodies' quadrature-point history seen from the model (study rolling):
-// committing a converged step with its energies, and the per-cell and mid-plane fields that
+// the tangent assembled from it, committing a converged step with its energies, and the per-cell and mid-plane fields that
 // the output and the rolling study's strain profiles read from it.
 #include "fe_stage/contact_model.h"
 #include "fe_stage/material/strain_measure.h"
@@ -19,7 +19,7 @@ namespace clearjoint::fe::detail
   /// energies from the committed states.
   ContactModel::PlasticEnergies ContactModel::commit_plasticity()
   {
-    tangent_current_ = false;  // the history changes
+    newton_.forget_tangent();  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
     const unsigned int n_q = quadrature.size();
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
@@ -196,5 +196,54 @@ namespace clearjoint::fe::detail
     std::sort(profile.begin(), profile.end(),
               [](const auto &a, const auto &b) { return a.angle < b.angle; });
     return profile;
+  }
+
+  /// The tangent and its load at the current displacement (small or finite kinematics),
+  /// then the contact nodes' share of the load (MaterialProblem).
+  unsigned int ContactModel::assemble_plastic()
+  {
+    unsigned int n_plastic_points = 0;
+    {
+      ScopedTimer timer(t_assemble_);
+      n_plastic_points = scene_.material.kinematics == Material::Kinematics::finite ?
+                           system_.assemble_finite_tangent(*material_, state_.u()) :
+                           system_.assemble_tangent(*material_, state_.u());
+    }
+    set_contact_load_offsets();
+    return n_plastic_points;
+  }
+
+
+  /// The last assembly left trial states at the last Newton iterate, not at the converged
+  /// displacement: evaluate every point there again, then make it the point's history.
+  void ContactModel::commit_material()
+  {
+    newton_.forget_tangent();  // the history changes
+    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
+    const unsigned int n_q = quadrature.size();
+    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, dim>> grad_u(n_q);
+    const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fv.reinit(cell);
+          fv[u].get_function_gradients(state_.u(), grad_u);
+          const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const bool converged =
+                finite ? material_->evaluate_finite(first + q, grad_u[q]).converged :
+                         material_->evaluate(first + q, symmetrize(grad_u[q])).converged;
+              if (!converged)  // (nothing committed yet: the step can still be cut)
+                throw StepFailure{"the material law failed at a quadrature point of the "
+                                  "converged state"};
+            }
+        }
+    for (const auto &cell : dofs_.handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int q = 0; q < n_q; ++q)
+          material_->commit(std::size_t(cell->active_cell_index()) * n_q + q);
   }
 }  // namespace clearjoint::fe::detail

@@ -1,54 +1,48 @@
-// The material Newton iteration of an elastoplastic state (the rolling study's states and the
-// elastoplastic quasi-static push): the tangent and its load at the current displacement
-// (small or finite kinematics), the active-set contact solve of the linearised problem, until
-// the correction is negligible; and the commit of a converged state's history.
-#include "fe_stage/contact_model.h"
+// The material Newton iteration (solve/material_newton.h).
+#include "fe_stage/solve/material_newton.h"
+
+#include "fe_stage/core/step_failure.h"
+
+#include "common/error.h"
+#include "common/log.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace clearjoint::fe::detail
 {
-  unsigned int ContactModel::assemble_plastic()
-  {
-    unsigned int n_plastic_points = 0;
-    {
-      ScopedTimer timer(t_assemble_);
-      n_plastic_points = scene_.material.kinematics == Material::Kinematics::finite ?
-                           system_.assemble_finite_tangent(*material_, state_.u()) :
-                           system_.assemble_tangent(*material_, state_.u());
-    }
-    set_contact_load_offsets();
-    return n_plastic_points;
-  }
+  MaterialNewton::MaterialNewton(MaterialProblem &problem, const Parts &parts)
+    : problem_(problem)
+    , parts_(parts)
+    , rank_(Utilities::MPI::this_mpi_process(parts.comm))
+  {}
 
-  MaterialIteration ContactModel::material_iteration(const double delta,
-                                                                   const bool line_search)
+  MaterialIteration MaterialNewton::iterate(const double delta, const bool line_search)
   {
     MaterialIteration it;
     if (tangent_current_ && [&] {
-          TrilinosWrappers::MPI::Vector moved = state_.u_owned();
+          TrilinosWrappers::MPI::Vector moved = parts_.state.u_owned();
           moved -= u_at_tangent_;
           return moved.linfty_norm() == 0.0;
         }())
       {
-        set_contact_load_offsets();  // (the contact nodes may have been paired again)
+        problem_.set_contact_load_offsets();  // (the contact nodes may have been paired again)
         it.n_plastic_points = n_plastic_at_tangent_;
       }
     else
-      it.n_plastic_points = assemble_plastic();
+      it.n_plastic_points = problem_.assemble_plastic();
     tangent_current_ = false;
     TrilinosWrappers::MPI::Vector r_start;
     if (line_search)
       r_start = interior_forces();
-    const TrilinosWrappers::MPI::Vector u_start = state_.u_owned();
-    it.record = solve_increment(delta);
-    TrilinosWrappers::MPI::Vector step = state_.u_owned();
+    const TrilinosWrappers::MPI::Vector u_start = parts_.state.u_owned();
+    it.record = problem_.solve_increment(delta);
+    TrilinosWrappers::MPI::Vector step = parts_.state.u_owned();
     step -= u_start;
     it.correction = step.linfty_norm();
     if (!std::isfinite(it.correction))
       throw StepFailure{"non-finite displacement in the material Newton iteration"};
-    if (line_search && it.correction > material_tolerance())
+    if (line_search && it.correction > tolerance())
       {
         // g(0) < 0 for a Newton step (d·r = −d·K_t d); not a descent direction (a contact
         // solve that moved the active set): the full step, as without a search
@@ -68,9 +62,9 @@ namespace clearjoint::fe::detail
   /// elastic one with the SPEC hardening) the full step overshoots; on the paper's 1 mm case
   /// the corrections then grew ×2 an iteration and the step was cut (docs/fe.md). Each
   /// evaluation assembles the tangent at u + s d: the accepted one's is the next iteration's.
-  void ContactModel::search_line(MaterialIteration &it, const double g0,
-                                 const TrilinosWrappers::MPI::Vector &u_start,
-                                 const TrilinosWrappers::MPI::Vector &step)
+  void MaterialNewton::search_line(MaterialIteration &it, const double g0,
+                                   const TrilinosWrappers::MPI::Vector &u_start,
+                                   const TrilinosWrappers::MPI::Vector &step)
   {
     constexpr unsigned int max_reductions = 4;
     constexpr double accept = 0.5, s_min = 0.05;
@@ -80,7 +74,7 @@ namespace clearjoint::fe::detail
     double s = 1.0;
     for (unsigned int reductions = 0;; ++reductions)
       {
-        const unsigned int n_plastic = assemble_plastic();
+        const unsigned int n_plastic = problem_.assemble_plastic();
         const double g = interior_forces() * step;
         if (log::level() <= log::Level::debug && rank_ == 0)
           log::debug("  line search: step length " + format_value(s) + ", slope " +
@@ -89,7 +83,7 @@ namespace clearjoint::fe::detail
             reductions == max_reductions || s == s_min)
           {
             tangent_current_ = true;
-            u_at_tangent_ = state_.u_owned();
+            u_at_tangent_ = parts_.state.u_owned();
             n_plastic_at_tangent_ = n_plastic;
             it.n_plastic_points = n_plastic;
             it.step_length = s;
@@ -104,45 +98,44 @@ namespace clearjoint::fe::detail
         const double width = s_hi - s_lo;
         const double root = s_lo - g_lo * (s_hi - s_lo) / (g_hi - g_lo);
         s = std::max(std::clamp(root, s_lo + 0.1 * width, s_lo + 0.9 * width), s_min);
-        state_.u_owned() = u_start;
-        state_.u_owned().add(s, step);
-        state_.publish();
+        parts_.state.u_owned() = u_start;
+        parts_.state.u_owned().add(s, step);
+        parts_.state.publish();
       }
   }
 
-  TrilinosWrappers::MPI::Vector ContactModel::interior_forces() const
+  TrilinosWrappers::MPI::Vector MaterialNewton::interior_forces() const
   {
-    TrilinosWrappers::MPI::Vector r(dofs_.owned(), comm_);
-    system_.operator_matrix().vmult(r, state_.u_owned());
-    r -= system_.load();
-    dofs_.condense_hanging(r);
-    for (const auto &line : dofs_.fixed().get_lines())
-      if (dofs_.owned().is_element(line.index))
+    TrilinosWrappers::MPI::Vector r(parts_.dofs.owned(), parts_.comm);
+    parts_.system.operator_matrix().vmult(r, parts_.state.u_owned());
+    r -= parts_.system.load();
+    parts_.dofs.condense_hanging(r);
+    for (const auto &line : parts_.dofs.fixed().get_lines())
+      if (parts_.dofs.owned().is_element(line.index))
         r[line.index] = 0.0;
-    for (const auto &cn : contact_.nodes())
+    for (const auto &cn : parts_.contact.nodes())
       {
         for (const auto d : cn.dofs)
-          if (dofs_.owned().is_element(d))
+          if (parts_.dofs.owned().is_element(d))
             r[d] = 0.0;
         for (const auto &p : cn.partners)
           for (const auto d : p.dofs)
-            if (dofs_.owned().is_element(d))
+            if (parts_.dofs.owned().is_element(d))
               r[d] = 0.0;
       }
     r.compress(VectorOperation::insert);
     return r;
   }
 
-  ContactModel::MaterialSolve ContactModel::solve_material_state(const double delta,
-                                                                 const unsigned int max_it)
+  MaterialSolve MaterialNewton::solve(const double delta, const unsigned int max_it)
   {
     MaterialSolve ms;
-    const double tolerance = material_tolerance();
+    const double tolerance = this->tolerance();
     double last_correction = 0.0;
     unsigned int growths = 0;
     for (unsigned int k = 0;; ++k)
       {
-        const MaterialIteration it = material_iteration(delta, k > 0 && scene_.solver.line_search);
+        const MaterialIteration it = iterate(delta, k > 0 && parts_.scene.solver.line_search);
         ms.record = it.record;
         ms.line_search_steps += it.line_search_steps;
         ms.contact_iterations += it.record.contact_iterations;
@@ -172,36 +165,4 @@ namespace clearjoint::fe::detail
     return ms;
   }
 
-  /// The last assembly left trial states at the last Newton iterate, not at the converged
-  /// displacement: evaluate every point there again, then make it the point's history.
-  void ContactModel::commit_material()
-  {
-    tangent_current_ = false;  // the history changes
-    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
-    const unsigned int n_q = quadrature.size();
-    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
-    const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<2, dim>> grad_u(n_q);
-    const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fv.reinit(cell);
-          fv[u].get_function_gradients(state_.u(), grad_u);
-          const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
-          for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const bool converged =
-                finite ? material_->evaluate_finite(first + q, grad_u[q]).converged :
-                         material_->evaluate(first + q, symmetrize(grad_u[q])).converged;
-              if (!converged)  // (nothing committed yet: the step can still be cut)
-                throw StepFailure{"the material law failed at a quadrature point of the "
-                                  "converged state"};
-            }
-        }
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (unsigned int q = 0; q < n_q; ++q)
-          material_->commit(std::size_t(cell->active_cell_index()) * n_q + q);
-  }
 }  // namespace clearjoint::fe::detail

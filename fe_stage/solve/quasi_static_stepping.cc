@@ -52,7 +52,7 @@ namespace clearjoint::fe::detail
                 if (elastoplastic())
                   {
                     const MaterialSolve m =
-                      solve_material_state(try_delta, scene_.solver.max_newton_iterations);
+                      newton_.solve(try_delta, scene_.solver.max_newton_iterations);
                     rec = m.record;
                     rec.contact_iterations = m.contact_iterations;
                     rec.linear_iterations = m.linear_iterations;
@@ -99,7 +99,7 @@ namespace clearjoint::fe::detail
 
   void ContactModel::restore_state(const Snapshot &s)
   {
-    tangent_current_ = false;
+    newton_.forget_tangent();
     state_.u_owned() = s.u;
     state_.publish();
     contact_.nodes() = s.nodes;

@@ -16,7 +16,7 @@ namespace clearjoint::fe::detail
   RollingSolve ContactModel::solve_rolling_state(const double delta)
   {
     RollingSolve rs;
-    const MaterialSolve m = solve_material_state(delta, scene_.rolling.max_newton_iterations);
+    const MaterialSolve m = newton_.solve(delta, scene_.rolling.max_newton_iterations);
     rs.record = m.record;
     rs.newton_iterations = m.newton_iterations;
     rs.line_search_steps = m.line_search_steps;

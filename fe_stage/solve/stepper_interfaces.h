@@ -5,12 +5,13 @@
 // attempt), one of the interfaces below, which ContactModel implements:
 //   - DynamicProblem: the impact study's HHT-α stepper (solve/hht_stepper.h);
 //   - SpinProblem:    the rolling study's spin stepper (solve/spin_stepper.h).
-// Also here: the values those operations return.
+// Also here: the values those operations return (MaterialIteration: solve/material_newton.h).
 #pragma once
 
 #include "fe_stage/contact/contact_node.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/solve/hht.h"
+#include "fe_stage/solve/material_newton.h"
 
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -27,17 +28,6 @@ namespace clearjoint::fe::detail
     TrilinosWrappers::MPI::Vector u;  // owned
     std::vector<ContactNode> nodes;
     unsigned int sliding_rebuilds = 0;
-  };
-
-  /// One material Newton iteration from the current u (solve/material_newton.cc): the
-  /// tangent, its load and the active-set contact solve at the push δ.
-  struct MaterialIteration
-  {
-    IncrementRecord record;
-    double correction = 0.0;  // [m] max-norm of the Newton step (its full length)
-    unsigned int n_plastic_points = 0;
-    double step_length = 1.0;            // [1] the fraction of the Newton step taken
-    unsigned int line_search_steps = 0;  // trial points rejected
   };
 
   /// One converged state of the rolling bearing for a given journal spin (the torque
