@@ -213,6 +213,19 @@ def _text(ren, text, size=14, top=False):
     ren.AddActor2D(t)
 
 
+def _title(ren, title, height):
+    """The picture's title in the top left corner of `ren` (nothing when empty)."""
+    import vtk
+    if not title:
+        return
+    t = vtk.vtkTextActor()
+    t.SetInput(title)
+    t.GetTextProperty().SetFontSize(16)
+    t.GetTextProperty().SetColor(0, 0, 0)
+    t.SetPosition(8, height - 26)
+    ren.AddActor2D(t)
+
+
 def _bar(ren, lut, title):
     import vtk
     bar = vtk.vtkScalarBarActor()
@@ -403,13 +416,7 @@ def render_cut(fe_dir, out_png, R_B, yield_stress=DEFAULT_YIELD_STRESS, title=""
     win.AddRenderer(left)
     win.AddRenderer(_cut_panel(grid, surf, b, R_B, "von_mises", (0.5, 1.0), width / 2, height,
                                yield_stress))
-    if title:
-        t = vtk.vtkTextActor()
-        t.SetInput(title)
-        t.GetTextProperty().SetFontSize(16)
-        t.GetTextProperty().SetColor(0, 0, 0)
-        t.SetPosition(8, height - 26)
-        left.AddActor2D(t)
+    _title(left, title, height)
     _write_png(win, out_png)
     return True
 
@@ -529,13 +536,7 @@ def render(fe_dir, out_png, R_B, yield_stress=DEFAULT_YIELD_STRESS, title="", wi
     _text(r3, "contact pressure on the bore seen from the axis\n(horizontal z, vertical x; grey: no contact)", top=True)
     win.AddRenderer(r3)
 
-    if title:
-        t = vtk.vtkTextActor()
-        t.SetInput(title)
-        t.GetTextProperty().SetFontSize(16)
-        t.GetTextProperty().SetColor(0, 0, 0)
-        t.SetPosition(8, height - 26)
-        r1.AddActor2D(t)
+    _title(r1, title, height)
 
     _write_png(win, out_png)
     return True
