@@ -13,10 +13,12 @@
 // contact/contact_pairing.h), the linear solver and its AMG (SystemSolver,
 // solve/linear_solver.h), the material law with its quadrature-point history (MaterialLaw,
 // material/material_law.h), the steppers that own their loops and see the model only through
-// DynamicProblem and SpinProblem (solve/stepper_interfaces.h), their step-size policy
+// QuasiStaticProblem, DynamicProblem and SpinProblem (the quasi-static push QuasiStaticStepper,
+// HhtStepper, SpinStepper; solve/stepper_interfaces.h), their step-size policy
 // (StepController, solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's
 // coefficients and predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law
-// (contact/coulomb_ssn.h).
+// (contact/coulomb_ssn.h), the fields with their PVD records and the yield check
+// (FieldOutput, results/field_output.h).
 //
 // Method (docs/fe.md has the equations):
 //   - small strain, or finite strain (material.kinematics: total Lagrangian, the J2 law in the
@@ -50,6 +52,7 @@
 #include "fe_stage/material/material_law.h"
 #include "fe_stage/mesh/bodies.h"
 #include "fe_stage/mesh/boundary_ids.h"
+#include "fe_stage/results/field_output.h"
 #include "fe_stage/solve/adaptive_estimate.h"
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/linear_solver.h"
@@ -118,12 +121,16 @@ namespace clearjoint::fe::detail
   using namespace dealii;
 
   class HhtStepper;
+  class QuasiStaticStepper;
   class SpinStepper;
 
-  /// The steppers see the model only through DynamicProblem and SpinProblem
-  /// (solve/stepper_interfaces.h), and the material Newton iteration through MaterialProblem
-  /// (solve/material_newton.h), besides the parts they are given.
-  class ContactModel : private DynamicProblem, private SpinProblem, private MaterialProblem
+  /// The steppers see the model only through QuasiStaticProblem, DynamicProblem and
+  /// SpinProblem (solve/stepper_interfaces.h), and the material Newton iteration through
+  /// MaterialProblem (solve/material_newton.h), besides the parts they are given.
+  class ContactModel : private QuasiStaticProblem,
+                       private DynamicProblem,
+                       private SpinProblem,
+                       private MaterialProblem
   {
   public:
     ContactModel(const FeScene &scene, const RunOptions &options);
@@ -140,10 +147,11 @@ namespace clearjoint::fe::detail
     double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, bool rebuild = false);
     /// contact.sliding finite (scene.cc admits it only for two bodies paired by mortar)
     bool finite_sliding() const { return scene_.contact.sliding == Contact::Sliding::finite; }
+    double pair_deformed_surfaces(const TrilinosWrappers::MPI::Vector &u_start) override
+    {
+      return follow_sliding(u_start);
+    }
     unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
-    unsigned int n_sliding_resolves_ = 0;  // settle_sliding: increments solved again
-    IncrementRecord settle_sliding(double delta, const TrilinosWrappers::MPI::Vector &u_start,
-                                   IncrementRecord rec);
     void make_matrices();
     /// The contact surface's DoFs, massless in an operator of this kind (the impact study's
     /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
@@ -151,8 +159,13 @@ namespace clearjoint::fe::detail
     std::set<types::global_dof_index> massless_dofs(Assembler::Operator kind) const;
     void compute_nodal_weights();
     void set_obstacle_position(double delta);
-    bool push_through(const std::vector<double> &targets, std::string &message,
-                      const std::function<void(unsigned int, IncrementRecord &)> &on_converged);
+    void evaluate_contact_at(double delta) override
+    {
+      set_obstacle_position(delta);
+      evaluate_contact(delta);
+    }
+    /// The quasi-static push's parts (QuasiStaticStepper::Parts).
+    QuasiStaticStepper quasi_static_stepper();
     /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
     /// find_contact_nodes), matrices.
     void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
@@ -167,8 +180,8 @@ namespace clearjoint::fe::detail
     /// why, result.wall_time is set.
     HhtAlpha begin_impact(RunResult &result);
     bool compute_impact_reference(RunResult &result);
-    bool march_impact(RunResult &result, HhtStepper &stepper,
-                      TrilinosWrappers::MPI::Vector &u_peak, bool &have_peak);
+    bool march_impact(RunResult &result, HhtStepper &stepper, TrilinosWrappers::MPI::Vector &u_peak,
+                      bool &have_peak);
     void finish_impact(RunResult &result, const HhtStepper &stepper,
                        const TrilinosWrappers::MPI::Vector *u_peak);
     /// [s] impact.end_time, or 4 T_c (twice a linear contact's duration).
@@ -188,7 +201,7 @@ namespace clearjoint::fe::detail
     /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
     /// then the contact nodes' share of the load. Returns the number of yielding points.
     unsigned int assemble_plastic() override;
-    bool elastoplastic() const { return system_.kind() == Assembler::Operator::tangent; }
+    bool elastoplastic() const override { return system_.kind() == Assembler::Operator::tangent; }
     struct PlasticEnergies
     {
       double plastic_work_step = 0.0;  // [J] full body
@@ -199,8 +212,6 @@ namespace clearjoint::fe::detail
       double bearing_plastic_work_step = 0.0, bearing_elastic_energy = 0.0;  // [J]
     };
     PlasticEnergies commit_plasticity();
-    void plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
-                             Vector<float> &alpha_max, Vector<float> &vm_max) const;
     std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
                                                    double half_angle) const;
     /// One material Newton iteration (SpinProblem: the coupled spin iteration's), and its
@@ -211,7 +222,7 @@ namespace clearjoint::fe::detail
     }
     double material_tolerance() const override { return newton_.tolerance(); }
     /// A converged state's trial states made the points' history.
-    void commit_material();
+    void commit_material() override;
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.
     RollingSolve solve_rolling_state(double delta) override;
@@ -220,7 +231,8 @@ namespace clearjoint::fe::detail
     void refine_adaptively();
     /// The quasi-static study's adaptive cycles before its curve, and the sequence closed
     /// after it (solve/quasi_static_stepping.cc).
-    bool run_adaptive_cycles(RunResult &result, bool &last_mesh_marked);
+    bool run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
+                             bool &last_mesh_marked);
     void close_adaptive_sequence(RunResult &result, bool last_mesh_marked);
     /// One increment to `delta` from the current state; throws StepFailure.
     IncrementRecord solve_increment(double delta) override;
@@ -266,11 +278,6 @@ namespace clearjoint::fe::detail
     /// Each contact node's share of the step's known load b (system_.load(): the traction is
     /// K u − b in the dynamic and elastoplastic solves), for the friction rows (collective).
     void set_contact_load_offsets() override;
-    void write_fields(unsigned int counter, double delta);
-    /// Von Mises against scene.material.yield_stress at every quadrature point (collective);
-    /// optionally each cell's volume fraction above yield (the plastic_zone field).
-    YieldCheck check_yield(Vector<float> *cell_fraction_above) const;
-    void log_yield_check(const YieldCheck &check) const;
 
     const FeScene &scene_;
     const StudyPlan plan_;  // what the scene's study sets up (study/*.cc)
@@ -332,8 +339,8 @@ namespace clearjoint::fe::detail
     /// tangent it leaves assembled.
     MaterialNewton newton_;
 
-    std::vector<std::pair<double, std::string>> pvd_records_;
-    std::vector<std::string> field_files_;
+    /// The fields for ParaView, their PVD records and the yield check.
+    FieldOutput fields_;
     std::chrono::steady_clock::time_point start_;
     double t_assemble_ = 0, t_solve_ = 0, t_evaluate_ = 0;
   };

@@ -21,11 +21,13 @@ namespace clearjoint::fe
       , bodies_(scene, plan_, options.comm)
       , dofs_(scene, plan_, bodies_, options.comm)
       , contact_(scene, dofs_, options.comm)
+      , material_(make_material(scene, scene.material.model == Material::Model::elastoplastic))
       , system_(scene, bodies_, dofs_, options.comm)
       , newton_(*this, {scene_, dofs_, system_, state_, contact_, options.comm})
+      , fields_({scene_, plan_, bodies_, dofs_, state_, contact_, *material_, options.comm},
+                options.output_dir, options.write_fields)
       , start_(std::chrono::steady_clock::now())
     {
-      material_ = make_material(scene, scene.material.model == Material::Model::elastoplastic);
       obstacle_ = plan_.obstacle;
       pairing_ = make_contact_pairing(
         {scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, options.comm});

@@ -122,6 +122,21 @@ namespace clearjoint::fe::detail
     rhs_static_unit_.compress(VectorOperation::add);  // from the journal load at δ = 1
   }
 
+  void Assembler::place_tangent_cell_matrix(const unsigned int active_cell_index,
+                                            const std::vector<types::global_dof_index> &dofs,
+                                            const FullMatrix<double> &D,
+                                            const ContactCellUpdate update)
+  {
+    K_.add(dofs, D);
+    const int k = contact_cell_of_[active_cell_index];
+    if (k < 0)
+      dofs_.fixed().distribute_local_to_global(D, dofs, A_static_);
+    else if (update == ContactCellUpdate::replace)
+      contact_cell_matrices_[k] = D;
+    else
+      contact_cell_matrices_[k].add(1.0, D);
+  }
+
   void Assembler::begin_system()
   {
     A_.copy_from(A_static_);

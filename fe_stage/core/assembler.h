@@ -121,6 +121,20 @@ namespace clearjoint::fe::detail
     unsigned int n_q_points() const;
 
   private:
+    /// How a tangent's cell matrix D enters a contact cell's cached matrix: it replaces it
+    /// (finite strain: D is the whole tangent) or is added to it (small strain: D is the
+    /// plastic correction K_t − K_el to the elastic cache).
+    enum class ContactCellUpdate
+    {
+      replace,
+      add
+    };
+    /// A tangent's cell matrix D into the operator K_, and into the contact cell's cached
+    /// matrix (`update`; its contact rows are added per iteration) or else, condensed with
+    /// the fixed constraints, into the static part A_static_.
+    void place_tangent_cell_matrix(unsigned int active_cell_index,
+                                   const std::vector<types::global_dof_index> &dofs,
+                                   const FullMatrix<double> &D, ContactCellUpdate update);
     void lump_and_redistribute(FullMatrix<double> &cell_mass,
                                const std::vector<types::global_dof_index> &dofs,
                                const std::set<types::global_dof_index> &surface) const;

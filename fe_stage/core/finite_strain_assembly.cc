@@ -80,12 +80,7 @@ namespace clearjoint::fe::detail
           D.vmult(b_cell, u_cell);  // b = K_t u − f_int
           b_cell -= f_cell;
           load_.add(dofs, b_cell);
-          K_.add(dofs, D);
-          const int k = contact_cell_of_[cell->active_cell_index()];
-          if (k >= 0)
-            contact_cell_matrices_[k] = D;
-          else
-            dofs_.fixed().distribute_local_to_global(D, dofs, A_static_);
+          place_tangent_cell_matrix(cell->active_cell_index(), dofs, D, ContactCellUpdate::replace);
         }
     K_.compress(VectorOperation::add);
     A_static_.compress(VectorOperation::add);

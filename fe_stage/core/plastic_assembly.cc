@@ -113,12 +113,7 @@ namespace clearjoint::fe::detail
           load_.add(dofs, b_cell);
           if (!yields)
             continue;
-          K_.add(dofs, D);
-          const int k = contact_cell_of_[cell->active_cell_index()];
-          if (k >= 0)
-            contact_cell_matrices_[k].add(1.0, D);
-          else
-            dofs_.fixed().distribute_local_to_global(D, dofs, A_static_);
+          place_tangent_cell_matrix(cell->active_cell_index(), dofs, D, ContactCellUpdate::add);
         }
     K_.compress(VectorOperation::add);
     A_static_.compress(VectorOperation::add);

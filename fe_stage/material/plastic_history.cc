@@ -77,43 +77,6 @@ namespace clearjoint::fe::detail
     return e;
   }
 
-  /// Per cell: the quadrature points' mean plastic strain tensor (the fields' stress is
-  /// C (ε − ε̄_p)), their largest equivalent plastic strain, and the largest von Mises stress of
-  /// the committed states.
-  void ContactModel::plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
-                                         Vector<float> &alpha_max, Vector<float> &vm_max) const
-  {
-    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
-    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
-    const unsigned int n_q = quadrature.size();
-    const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<2, dim>> grad_u(n_q);
-    std::vector<SymmetricTensor<2, dim>> eps(n_q);
-    const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
-    mean_eps_p.assign(bodies_.triangulation().n_active_cells(), SymmetricTensor<2, dim>());
-    alpha_max.reinit(bodies_.triangulation().n_active_cells());
-    vm_max.reinit(bodies_.triangulation().n_active_cells());
-    const LinearElastic &C = material_->elastic();
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fv.reinit(cell);
-          fv[u].get_function_gradients(state_.u(), grad_u);
-          for (unsigned int q = 0; q < n_q; ++q)
-            eps[q] = strain_measure(grad_u[q], finite);
-          const unsigned int c = cell->active_cell_index();
-          const std::size_t first = std::size_t(c) * n_q;
-          for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const SymmetricTensor<2, dim> ep = material_->plastic_strain(first + q);
-              mean_eps_p[c] += ep / double(n_q);
-              alpha_max[c] =
-                std::max(alpha_max[c], float(material_->equivalent_plastic_strain(first + q)));
-              vm_max[c] = std::max(vm_max[c], float(von_mises(C.stress(eps[q] - ep))));
-            }
-        }
-  }
-
   /// A body's strains at the axial mid-plane within ±half_angle of the contact point, which
   /// sits at the body's frame angle −turn (the fixed-frame bottom; turn = φ for the bearing,
   /// γ for the deformable journal, angles about the body's own axis): the face quadrature
@@ -212,7 +175,6 @@ namespace clearjoint::fe::detail
     set_contact_load_offsets();
     return n_plastic_points;
   }
-
 
   /// The last assembly left trial states at the last Newton iterate, not at the converged
   /// displacement: evaluate every point there again, then make it the point's history.

@@ -2,33 +2,42 @@
 // every quadrature point — per body the volume above yield and the largest stress with its
 // place, and per cell the volume fraction above yield (the plastic_zone field). The model stays
 // elastic; this tells the user where that is no longer true.
-#include "fe_stage/contact_model.h"
+#include "fe_stage/results/field_output.h"
+
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <array>
 
 namespace clearjoint::fe::detail
 {
-  YieldCheck ContactModel::check_yield(Vector<float> *cell_fraction_above) const
+  YieldCheck FieldOutput::check_yield(Vector<float> *cell_fraction_above) const
   {
-    const QGauss<dim> quadrature(dofs_.fe().degree + 1);
-    FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
+    const QGauss<dim> quadrature(parts_.dofs.fe().degree + 1);
+    FEValues<dim> fv(parts_.bodies.mapping(), parts_.dofs.fe(), quadrature,
                      update_gradients | update_JxW_values | update_quadrature_points);
     const FEValuesExtractors::Vector u(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
-    const double yield = scene_.material.yield_stress;
+    const double yield = parts_.scene.material.yield_stress;
     // bodies by material id: 0 the bearing (or the verification block), 1 the journal (or
     // the indenter)
     constexpr unsigned int n_bodies = 2;
     std::array<double, n_bodies> volume{}, above{}, max_vm{};
     std::array<Point<dim>, n_bodies> where;
-    for (const auto &cell : dofs_.handler().active_cell_iterators())
+    for (const auto &cell : parts_.dofs.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
-          fv[u].get_function_symmetric_gradients(state_.u(), eps);
+          fv[u].get_function_symmetric_gradients(parts_.state.u(), eps);
           const unsigned int b = cell->material_id() == 1 ? 1 : 0;
           double cell_volume = 0.0, cell_above = 0.0;
           for (const unsigned int q : fv.quadrature_point_indices())
             {
-              const double vm = von_mises(material_->elastic().stress(eps[q]));
+              const double vm = von_mises(parts_.material.elastic().stress(eps[q]));
               cell_volume += fv.JxW(q);
               if (vm > yield)
                 cell_above += fv.JxW(q);
@@ -49,16 +58,17 @@ namespace clearjoint::fe::detail
     check.yield_stress = yield;
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
-        const double v = Utilities::MPI::sum(volume[b], comm_);
+        const double v = Utilities::MPI::sum(volume[b], parts_.comm);
         // the largest stress and its place: every rank's candidate, the first largest wins
         std::vector<double> mine = {max_vm[b], where[b][0], where[b][1], where[b][2]};
-        const auto all = Utilities::MPI::all_gather(comm_, mine);
+        const auto all = Utilities::MPI::all_gather(parts_.comm, mine);
         if (v <= 0.0)
           continue;  // no such body (a rigid journal or indenter)
         YieldCheck::Body body;
-        body.name = plan_.body_names[b];
-        body.volume = bodies_.symmetry_factor() * v;
-        body.volume_above_yield = bodies_.symmetry_factor() * Utilities::MPI::sum(above[b], comm_);
+        body.name = parts_.plan.body_names[b];
+        body.volume = parts_.bodies.symmetry_factor() * v;
+        body.volume_above_yield =
+          parts_.bodies.symmetry_factor() * Utilities::MPI::sum(above[b], parts_.comm);
         for (const auto &r : all)
           if (r[0] > body.max_von_mises)
             {
@@ -70,7 +80,7 @@ namespace clearjoint::fe::detail
     return check;
   }
 
-  void ContactModel::log_yield_check(const YieldCheck &check) const
+  void FieldOutput::log_yield_check(const YieldCheck &check) const
   {
     if (rank_ != 0)
       return;

@@ -25,6 +25,7 @@
 //      end time.
 #include "fe_stage/contact_model.h"
 #include "fe_stage/solve/hht_stepper.h"
+#include "fe_stage/solve/quasi_static_stepper.h"
 
 namespace clearjoint::fe::detail
 {
@@ -256,8 +257,9 @@ namespace clearjoint::fe::detail
     // 1. The static probe and the quasi-static reference curve on this mesh.
     const double delta_probe = 0.02 * L.delta_max;
     double f_probe = 0.0;
-    if (!push_through({delta_probe}, result.message,
-                      [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
+    QuasiStaticStepper stepper = quasi_static_stepper();
+    if (!stepper.push_through({delta_probe}, result.message,
+                              [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
       return failed("static probe of the contact stiffness: " + result.message);
     if (!(f_probe > 0.0))
       return failed("the static probe at delta = " + format_value(delta_probe) +
@@ -275,7 +277,7 @@ namespace clearjoint::fe::detail
     for (unsigned int k = 1; k <= L.n_increments; ++k)
       targets.push_back(delta_curve * k / L.n_increments);
     const bool curve_ok =
-      push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
+      stepper.push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
         r.wall_time = elapsed();
         result.increments.push_back(r);
         if (options_.on_increment)
@@ -310,18 +312,16 @@ namespace clearjoint::fe::detail
     const double t_end = impact_end_time(S.contact_period);
     const auto failed = [&]() {
       result.wall_time = elapsed();
-      result.field_files = field_files_;
+      result.field_files = fields_.files(false);
       return false;
     };
     SeparationWatch watch;
-    const bool fields = options_.write_fields && !options_.output_dir.empty();
-    if (fields && rank_ == 0)
-      std::filesystem::create_directories(options_.output_dir + "/fields");
-    if (fields)
+    fields_.create_directory();
+    if (fields_.enabled())
       {
         set_obstacle_position(0.0);
         evaluate_contact(0.0);
-        write_fields(0, 0.0);
+        fields_.write(0, 0.0);
       }
     const double wall_dynamic_start = elapsed();
     unsigned int step = 0;
@@ -354,8 +354,8 @@ namespace clearjoint::fe::detail
           log_step(rec, t, dt, I.end_time, t_end, S.contact_period, wall_dynamic_start);
         const bool last =
           watch.update(result.dynamic_steps, t, dt_step, dt, S.contact_period, S.separated);
-        if (fields && (rec.step % I.field_stride == 0 || last))
-          write_fields(rec.step, t);
+        if (fields_.enabled() && (rec.step % I.field_stride == 0 || last))
+          fields_.write(rec.step, t);
         if (last && !S.separated)
           {
             S.separated = true;
@@ -387,14 +387,11 @@ namespace clearjoint::fe::detail
       {
         state_.u_owned() = *u_peak;
         state_.publish();
-        result.yield_check = check_yield(nullptr);
-        log_yield_check(result.yield_check);
+        result.yield_check = fields_.check_yield(nullptr);
+        fields_.log_yield_check(result.yield_check);
       }
     result.complete = true;
     result.wall_time = elapsed();
-    result.field_files = field_files_;
-    const bool fields = options_.write_fields && !options_.output_dir.empty();
-    if (rank_ == 0 && fields)
-      result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
+    result.field_files = fields_.files(true);
   }
 }  // namespace clearjoint::fe::detail

@@ -1,100 +1,16 @@
-// Quasi-static stepping: increments of δ from 0 to δ_max, a linear predictor, step cutting with
-// rollback on failure, one log line per increment (as an Abaqus .sta file) with an ETA, and the
-// yield check of the last converged state; before it, the adaptive cycles (mesh.adaptive_cycles:
+// The quasi-static studies: the push from 0 to δ_max in increments (QuasiStaticStepper,
+// solve/quasi_static_stepper.h), one log line per increment (as an Abaqus .sta file) with an
+// ETA, and the yield check of the last converged state; before it, the adaptive cycles (mesh.adaptive_cycles:
 // curve, Kelly indicator, refinement) and the error estimate from their sequence.
 #include "fe_stage/contact_model.h"
-#include "fe_stage/solve/step_controller.h"
+#include "fe_stage/solve/quasi_static_stepper.h"
 
 namespace clearjoint::fe::detail
 {
-  /// Pushes from δ = 0 through `targets` (increasing, the last δ_max): each target reached
-  /// from the last converged state, with a linear predictor, and halved on failure up to
-  /// loading.max_cuts times (state restored; solve/step_controller.h, one controller per
-  /// target: the increments to a target never grow back). `on_converged(k, record)` is called
-  /// for target k = 1, 2, … Returns false with `message` set when an increment fails for good.
-  bool ContactModel::push_through(
-    const std::vector<double> &targets, std::string &message,
-    const std::function<void(unsigned int, IncrementRecord &)> &on_converged)
+  QuasiStaticStepper ContactModel::quasi_static_stepper()
   {
-    const auto &L = scene_.loading;
-    start_from_rest();
-    double delta_done = 0.0, delta_previous = 0.0;
-    bool have_previous = false;
-    TrilinosWrappers::MPI::Vector solution_previous(dofs_.owned(), comm_);
-    for (unsigned int inc = 1; inc <= targets.size(); ++inc)
-      {
-        const double target = targets[inc - 1];
-        StepController control(target - delta_done, L.max_cuts, 1);
-        IncrementRecord rec;
-        unsigned int total_contact_its = 0, total_linear_its = 0;
-        while (delta_done < target)
-          {
-            const double try_delta = std::min(target, delta_done + control.size());
-            // keep what converged so far, to restore after a failed attempt
-            const Snapshot saved = save_state();
-            try
-              {
-                // Predictor: extrapolate the displacement linearly in δ from the last two
-                // converged states and start with every node the prediction penetrates
-                // activated (the active set then mostly settles in one or two iterations).
-                if (have_previous && delta_done > delta_previous)
-                  {
-                    const double ratio = (try_delta - delta_done) / (delta_done - delta_previous);
-                    state_.u_owned().sadd(1.0 + ratio, -ratio, solution_previous);
-                    state_.publish();
-                    set_obstacle_position(try_delta);
-                    evaluate_contact(try_delta);
-                    const double eps_g = 1e-9 * L.delta_max;
-                    for (auto &cn : contact_.nodes())
-                      if (cn.candidate && cn.gap < -eps_g)
-                        cn.active = true;
-                  }
-                if (elastoplastic())
-                  {
-                    const MaterialSolve m =
-                      newton_.solve(try_delta, scene_.solver.max_newton_iterations);
-                    rec = m.record;
-                    rec.contact_iterations = m.contact_iterations;
-                    rec.linear_iterations = m.linear_iterations;
-                  }
-                else
-                  rec = solve_increment(try_delta);
-                if (finite_sliding())
-                  rec = settle_sliding(try_delta, saved.u, rec);
-                if (elastoplastic())
-                  commit_material();  // the last step that may throw: the increment is accepted
-                for (auto &cn : contact_.nodes())
-                  cn.relative_converged = cn.relative;  // friction: slip counts from here
-                solution_previous = saved.u;
-                delta_previous = delta_done;
-                have_previous = true;
-                total_contact_its += rec.contact_iterations;
-                total_linear_its += rec.linear_iterations;
-                delta_done = try_delta;
-              }
-            catch (const StepFailure &f)
-              {
-                restore_state(saved);
-                if (!control.cut())
-                  {
-                    message = "increment " + std::to_string(inc) +
-                              " to delta = " + format_value(try_delta) + " m failed after " +
-                              std::to_string(control.cuts()) + " cuts: " + f.reason;
-                    if (rank_ == 0)
-                      log::error("fe_stage: " + message);
-                    return false;
-                  }
-                if (rank_ == 0)
-                  log::warning("fe_stage: increment " + std::to_string(inc) +
-                               " to delta = " + format_value(try_delta) + " m failed (" + f.reason +
-                               "); retrying with step " + format_value(control.size()) + " m");
-              }
-          }
-        rec.contact_iterations = total_contact_its;
-        rec.linear_iterations = total_linear_its;
-        on_converged(inc, rec);
-      }
-    return true;
+    return QuasiStaticStepper(*this,
+                              {scene_, dofs_, state_, contact_, newton_, comm_, finite_sliding()});
   }
 
   void ContactModel::restore_state(const Snapshot &s)
@@ -108,40 +24,6 @@ namespace clearjoint::fe::detail
     // journal, not finite sliding, searches again at its next evaluation anyway)
     if (finite_sliding() && n_sliding_rebuilds_ != s.sliding_rebuilds)
       follow_sliding(s.u, true);
-  }
-
-  /// Finite sliding: the mortar search again at the converged surfaces, and the increment
-  /// solved again with the new coupling (slip counted from the increment's start `u_start`)
-  /// until the coupling stops moving — Σ_m |ΔC_sm| and |Δgap|/δ_max below 1e-3 at every
-  /// node: then the converged state is in equilibrium with the partners that face it. At most
-  /// 10 searches; a coupling still moving then fails the increment (it is cut).
-  IncrementRecord ContactModel::settle_sliding(const double delta,
-                                               const TrilinosWrappers::MPI::Vector &u_start,
-                                               IncrementRecord rec)
-  {
-    constexpr unsigned int max_searches = 10;
-    constexpr double settled = 1e-3;
-    unsigned int its = rec.contact_iterations, linear = rec.linear_iterations;
-    for (unsigned int search = 1;; ++search)
-      {
-        const double change = follow_sliding(u_start);
-        if (rank_ == 0)
-          log::debug("fe_stage: finite sliding: search " + std::to_string(search) +
-                     ", coupling moved by " + format_value(change));
-        if (change <= settled)
-          break;
-        if (search == max_searches)
-          throw StepFailure{"finite sliding: the contact coupling still moved by " +
-                            format_value(change) + " after " + std::to_string(max_searches) +
-                            " searches (the surfaces slide too far in one increment)"};
-        rec = solve_increment(delta);
-        its += rec.contact_iterations;
-        linear += rec.linear_iterations;
-        ++n_sliding_resolves_;
-      }
-    rec.contact_iterations = its;
-    rec.linear_iterations = linear;
-    return rec;
   }
 
   /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
@@ -196,7 +78,8 @@ namespace clearjoint::fe::detail
   /// on the mesh the curve is computed on. False (result.message set) when a marking push
   /// failed. last_mesh_marked: a target error stopped the cycles on a mesh that has its marking
   /// run in the sequence.
-  bool ContactModel::run_adaptive_cycles(RunResult &result, bool &last_mesh_marked)
+  bool ContactModel::run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
+                                         bool &last_mesh_marked)
   {
     // Adaptive cycles (mesh.adaptive_cycles): the push is computed on the current mesh (not
     // recorded), F(δ_max) kept, and the cells where Kelly's indicator is largest refined; the
@@ -221,10 +104,11 @@ namespace clearjoint::fe::detail
         AdaptiveCycle c;
         c.n_dofs = dofs_.handler().n_dofs();
         c.n_cells = bodies_.triangulation().n_global_active_cells();
-        if (!push_through(marking_targets, result.message, [&](unsigned int, IncrementRecord &r) {
-              c.force = r.force;
-              c.contact_iterations += r.contact_iterations;
-            }))
+        if (!stepper.push_through(marking_targets, result.message,
+                                  [&](unsigned int, IncrementRecord &r) {
+                                    c.force = r.force;
+                                    c.contact_iterations += r.contact_iterations;
+                                  }))
           {
             result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
             result.wall_time = elapsed();
@@ -309,16 +193,15 @@ namespace clearjoint::fe::detail
     const std::vector<double> targets = equal_steps(L.delta_max, L.n_increments);
     bodies_.build();
     bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
-    if (!run_adaptive_cycles(result, last_mesh_marked))
+    QuasiStaticStepper stepper = quasi_static_stepper();
+    if (!run_adaptive_cycles(result, stepper, last_mesh_marked))
       return result;
     // the elastoplastic patch test (scene.cc admits no adaptive cycles with it): the mesh is
     // the curve's, so the points' history is sized for it here
     if (scene_.material.model == Material::Model::elastoplastic)
       init_plasticity();
     record_mesh(result);
-    const bool fields = options_.write_fields && !options_.output_dir.empty();
-    if (fields && rank_ == 0)
-      std::filesystem::create_directories(options_.output_dir + "/fields");
+    fields_.create_directory();
     const unsigned int n_candidates = Utilities::MPI::sum(
       (unsigned int)std::count_if(contact_.nodes().begin(), contact_.nodes().end(),
                                   [](const ContactNode &c) { return c.owned && c.candidate; }),
@@ -330,12 +213,12 @@ namespace clearjoint::fe::detail
                 " contact cells (rank 0), " + (solver_.direct() ? "direct" : "CG+AMG") +
                 " solver, setup " + log::format_duration(result.setup_time));
 
-    if (fields)
+    if (fields_.enabled())
       {
         state_.set_zero();
         set_obstacle_position(0.0);
         evaluate_contact(0.0);
-        write_fields(0, 0.0);
+        fields_.write(0, 0.0);
       }
     // One line per converged increment: what an Abaqus user reads in the .sta file. The ETA
     // prices the remaining push at the cost per metre of the increments after the first: the
@@ -367,24 +250,24 @@ namespace clearjoint::fe::detail
                     log::format_duration(r.wall_time).c_str(), eta.c_str());
       log::info(buf);
     };
-    const bool complete =
-      push_through(targets, result.message, [&](const unsigned int inc, IncrementRecord &rec) {
-        rec.wall_time = elapsed();
-        result.increments.push_back(rec);
-        if (options_.on_increment)
-          options_.on_increment(rec);
-        if (fields)
-          write_fields(inc, targets[inc - 1]);
-        log_increment(inc, rec);
-      });
+    const auto record_increment = [&](const unsigned int inc, IncrementRecord &rec) {
+      rec.wall_time = elapsed();
+      result.increments.push_back(rec);
+      if (options_.on_increment)
+        options_.on_increment(rec);
+      if (fields_.enabled())
+        fields_.write(inc, targets[inc - 1]);
+      log_increment(inc, rec);
+    };
+    const bool complete = stepper.push_through(targets, result.message, record_increment);
     if (!complete)
       {
         result.wall_time = elapsed();
-        result.field_files = field_files_;
+        result.field_files = fields_.files(false);
         if (!result.increments.empty() && !elastoplastic())
           {
-            result.yield_check = check_yield(nullptr);
-            log_yield_check(result.yield_check);
+            result.yield_check = fields_.check_yield(nullptr);
+            fields_.log_yield_check(result.yield_check);
           }
         return result;
       }
@@ -392,19 +275,19 @@ namespace clearjoint::fe::detail
     if (!result.adaptive_cycles.empty())
       close_adaptive_sequence(result, last_mesh_marked);
     result.sliding_rebuilds = n_sliding_rebuilds_;
-    result.sliding_resolves = n_sliding_resolves_;
+    result.sliding_resolves = stepper.sliding_resolves();
     if (rank_ == 0 && finite_sliding())
       log::info("fe_stage: finite sliding: the mortar search was redone after every converged "
                 "increment; " +
                 std::to_string(n_sliding_rebuilds_) +
                 " times its partners needed a new sparsity pattern, " +
-                std::to_string(n_sliding_resolves_) +
+                std::to_string(stepper.sliding_resolves()) +
                 " increments solved again with the new "
                 "coupling");
     if (!elastoplastic())  // (an elastoplastic body yields where it must)
       {
-        result.yield_check = check_yield(nullptr);
-        log_yield_check(result.yield_check);
+        result.yield_check = fields_.check_yield(nullptr);
+        fields_.log_yield_check(result.yield_check);
       }
     result.wall_time = elapsed();
     if (rank_ == 0)
@@ -412,9 +295,7 @@ namespace clearjoint::fe::detail
                 ", linear solves " + log::format_duration(t_solve_) + " (of which AMG setup " +
                 log::format_duration(solver_.amg_setup_time()) + "), contact evaluation " +
                 log::format_duration(t_evaluate_));
-    result.field_files = field_files_;
-    if (rank_ == 0 && fields)
-      result.field_files.push_back(options_.output_dir + "/fields/solution.pvd");
+    result.field_files = fields_.files(true);
     return result;
   }
 }  // namespace clearjoint::fe::detail

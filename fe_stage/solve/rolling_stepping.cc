@@ -370,18 +370,16 @@ namespace clearjoint::fe::detail
     const PaperNodes paper =
       find_paper_nodes(scene_, dofs_, contact_, rolling_deformable_journal(), comm_);
 
-    const bool fields = options_.write_fields && !options_.output_dir.empty();
     unsigned int field_counter = 0;
-    if (fields && rank_ == 0)
-      std::filesystem::create_directories(options_.output_dir + "/fields");
-    if (fields)
+    fields_.create_directory();
+    if (fields_.enabled())
       {
         frame_.phi = 0.0;
         frame_.centre_previous = frame_.centre = motion.centre_frame(0.0);
         frame_.delta_psi = 0.0;
         set_obstacle_position(0.0);
         evaluate_contact(0.0);
-        write_fields(field_counter++, 0.0);
+        fields_.write(field_counter++, 0.0);
       }
 
     FrameWork frame_work;
@@ -467,8 +465,8 @@ namespace clearjoint::fe::detail
         if (options_.on_rolling_step)
           options_.on_rolling_step(rec);
         const bool last = t1 >= t_end * (1.0 - 1e-12);
-        if (fields && (rec.step % R.field_stride == 0 || last))
-          write_fields(field_counter++, t1);
+        if (fields_.enabled() && (rec.step % R.field_stride == 0 || last))
+          fields_.write(field_counter++, t1);
       }
     if (result.message.empty() && stepper.time() < t_end * (1.0 - 1e-12))
       result.message = "the step limit (" + std::to_string(max_steps) +
@@ -509,7 +507,7 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log_solver_summary(scene_, result, stepper, rolling_deformable_journal(),
                          n_sliding_rebuilds_);
-    result.field_files = field_files_;
+    result.field_files = fields_.files(false);
     result.complete = result.message.empty();
     result.wall_time = elapsed();
   }

@@ -3,8 +3,9 @@
 // space, the assembler, the state u, the contact nodes, the journal frame — and, for what only
 // the whole model can do (a contact solve, a material Newton iteration, the rollback of a failed
 // attempt), one of the interfaces below, which ContactModel implements:
-//   - DynamicProblem: the impact study's HHT-α stepper (solve/hht_stepper.h);
-//   - SpinProblem:    the rolling study's spin stepper (solve/spin_stepper.h).
+//   - QuasiStaticProblem: the quasi-static push (solve/quasi_static_stepper.h);
+//   - DynamicProblem:     the impact study's HHT-α stepper (solve/hht_stepper.h);
+//   - SpinProblem:        the rolling study's spin stepper (solve/spin_stepper.h).
 // Also here: the values those operations return (MaterialIteration: solve/material_newton.h).
 #pragma once
 
@@ -38,6 +39,31 @@ namespace clearjoint::fe::detail
     unsigned int newton_iterations = 0, contact_iterations = 0, linear_iterations = 0;
     unsigned int line_search_steps = 0;
     IncrementRecord record;
+  };
+
+  /// What the quasi-static push asks of the model.
+  class QuasiStaticProblem
+  {
+  public:
+    /// Zero displacement, no contact, every node sticking with no slip history.
+    virtual void start_from_rest() = 0;
+    virtual Snapshot save_state() const = 0;
+    virtual void restore_state(const Snapshot &s) = 0;
+    /// The obstacle at the push δ and the contact nodes' gaps at the current u (the
+    /// predictor's active set).
+    virtual void evaluate_contact_at(double delta) = 0;
+    /// One contact solve to the push δ from the current state; throws StepFailure.
+    virtual IncrementRecord solve_increment(double delta) = 0;
+    /// The bodies are elastoplastic: a state is the material Newton iteration's, and a
+    /// converged one is committed to the points' history.
+    virtual bool elastoplastic() const = 0;
+    virtual void commit_material() = 0;
+    /// Finite sliding: the mortar search again at the deformed surfaces, slip counted from
+    /// `u_start`; how far the coupling moved.
+    virtual double pair_deformed_surfaces(const TrilinosWrappers::MPI::Vector &u_start) = 0;
+
+  protected:
+    ~QuasiStaticProblem() = default;
   };
 
   /// What the impact study's stepper asks of the model.

@@ -1,0 +1,78 @@
+// What the model leaves for the user to look at, besides the CSV tables: the fields a ParaView
+// user opens (VTU pieces per rank, a PVTU per written state, one PVD indexing them) and the
+// yield check (von Mises of the linear-elastic stress against the yield stress, per body and
+// per cell). FieldOutput owns the PVD records and the list of files written; it reads the
+// model's parts and changes none of them.
+#pragma once
+
+#include "fe_stage/contact/contact_problem.h"
+#include "fe_stage/core/dof_space.h"
+#include "fe_stage/core/state.h"
+#include "fe_stage/fe_model.h"
+#include "fe_stage/material/material_law.h"
+#include "fe_stage/mesh/bodies.h"
+#include "fe_stage/scene.h"
+#include "fe_stage/study_plan.h"
+
+#include <deal.II/lac/vector.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace clearjoint::fe::detail
+{
+  class FieldOutput
+  {
+  public:
+    /// The parts the output reads.
+    struct Parts
+    {
+      const FeScene &scene;
+      const StudyPlan &plan;  // the bodies' names
+      const Bodies &bodies;
+      const DofSpace &dofs;
+      const State &state;
+      const ContactProblem &contact;
+      const MaterialLaw &material;
+      MPI_Comm comm;
+    };
+
+    /// Fields are written to <output_dir>/fields when `write_fields` and an output directory
+    /// are given; otherwise write() is never called and files() is empty.
+    FieldOutput(const Parts &parts, const std::string &output_dir, bool write_fields);
+
+    bool enabled() const { return enabled_; }
+    /// <output_dir>/fields made (rank 0) before the first write.
+    void create_directory() const;
+    /// The fields of the current state as state `counter` at time (or push) `t`, and the PVD
+    /// written again to index it. Collective. Displacement, stress, strain, von Mises,
+    /// principal strains; contact pressure/gap/status/shear/slip as Abaqus's CPRESS/COPEN/
+    /// CSTATUS/CSHEAR/CSLIP; subdomain; with a material history (the law's has_history()) the
+    /// equivalent plastic strain and the largest von Mises of the committed states, else the
+    /// yield check's plastic_zone.
+    void write(unsigned int counter, double t);
+    /// The files written so far (rank 0's list); `with_pvd`: the PVD that indexes them too
+    /// (a run that completed).
+    std::vector<std::string> files(bool with_pvd) const;
+
+    /// Von Mises against scene.material.yield_stress at every quadrature point (collective);
+    /// optionally each cell's volume fraction above yield (the plastic_zone field).
+    YieldCheck check_yield(dealii::Vector<float> *cell_fraction_above) const;
+    /// One log line per body (rank 0): a warning where the linear-elastic result is not valid.
+    void log_yield_check(const YieldCheck &check) const;
+
+  private:
+    /// Per cell: the points' mean plastic strain tensor, their largest equivalent plastic
+    /// strain and the largest von Mises stress of the committed states.
+    void plastic_cell_fields(std::vector<dealii::SymmetricTensor<2, 3>> &mean_eps_p,
+                             dealii::Vector<float> &alpha_max, dealii::Vector<float> &vm_max) const;
+
+    Parts parts_;
+    std::string dir_;  // <output_dir>/fields
+    bool enabled_;
+    unsigned int rank_;
+    std::vector<std::pair<double, std::string>> pvd_records_;  // (t, PVTU file) per state
+    std::vector<std::string> files_;
+  };
+}  // namespace clearjoint::fe::detail
