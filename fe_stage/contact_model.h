@@ -1,24 +1,31 @@
-// The FE contact model's remaining shared state and steps (deal.II, dim = 3). Internal: only
-// fe_stage's own .cc files include this; everything else sees the deal.II-free façade
-// fe_model.h. Its member functions are defined by concept across fe_stage/{contact,material,
-// solve,results}/ (fe_stage/README.md maps each to its file). It composes the parts and runs the
-// steppers, so it includes solve/; it sits outside core/, which includes nothing from solve/.
+// The FE contact model as the composition root of fe_stage (deal.II, dim = 3): it owns one of
+// each part and runs no study itself. run() chooses the study's run once from the scene's plan
+// — QuasiStaticRun (radial, misalignment, Hertz, patch), ImpactRun or RollingRun, each its own
+// object in solve/*_run.{h,cc} — and the runs, the steppers and the material Newton iteration
+// see the model only through the interfaces it implements for what needs several parts at
+// once (the mesh and all that depends on it, a stepper over the parts, the rollback of a failed
+// attempt, a rolling state, the material's commit): StudyModel (solve/study_model.h),
+// QuasiStaticProblem, DynamicProblem, SpinProblem (solve/stepper_interfaces.h) and
+// MaterialProblem (solve/material_newton.h). Internal: only fe_stage's own .cc files include
+// this; everything else sees the deal.II-free façade fe_model.h. Its own functions are in
+// contact_model.cc, contact/{contact_pattern,sliding}.cc and material/plastic_history.cc
+// (fe_stage/README.md maps every file). It includes solve/; core/ includes nothing from solve/.
 //
-// The class is being dissolved into objects that own their state (issue 29, FE_DESIGN §4.1).
-// Owners so far, each in its own header: the meshed bodies (Bodies, mesh/bodies.h), the DoF
-// space and its fixed constraints (DofSpace, core/dof_space.h), the operator, its load, the
-// elastic cache and each iteration's condensed system (Assembler, core/assembler.h), the
-// iterate u and its nodal forces (State, core/state.h), the contact nodes and their active set
-// (ContactProblem, contact/contact_problem.h), how they find their partners (ContactPairing,
-// contact/contact_pairing.h), the linear solver and its AMG (SystemSolver,
-// solve/linear_solver.h), the material law with its quadrature-point history (MaterialLaw,
-// material/material_law.h), the steppers that own their loops and see the model only through
-// QuasiStaticProblem, DynamicProblem and SpinProblem (the quasi-static push QuasiStaticStepper,
-// HhtStepper, SpinStepper; solve/stepper_interfaces.h), their step-size policy
-// (StepController, solve/step_controller.h) and root finder (solve/root_finder.h), HHT-α's
-// coefficients and predictor (HhtAlpha, solve/hht.h), the per-node Coulomb law
-// (contact/coulomb_ssn.h), the fields with their PVD records and the yield check
-// (FieldOutput, results/field_output.h).
+// The parts, each the one owner of its state (issue 29, FE_DESIGN §4.1): the meshed bodies
+// (Bodies, mesh/bodies.h), the DoF space and its fixed constraints (DofSpace,
+// core/dof_space.h), the operator, its load, the elastic cache and each iteration's condensed
+// system (Assembler, core/assembler.h), the iterate u and its nodal forces (State,
+// core/state.h), the contact nodes and their active set (ContactProblem,
+// contact/contact_problem.h), how they find their partners (ContactPairing,
+// contact/contact_pairing.h), one increment's contact solve with its constraints (ContactSolve,
+// solve/contact_solve.h), the linear solver and its AMG (SystemSolver, solve/linear_solver.h),
+// the material law with its quadrature-point history (MaterialLaw, material/material_law.h) and
+// its Newton iteration (MaterialNewton, solve/material_newton.h), the fields with their PVD
+// records and the yield check (FieldOutput, results/field_output.h). The steppers own their
+// loops and state (QuasiStaticStepper, HhtStepper, SpinStepper), with one step-size policy
+// (StepController, solve/step_controller.h), one root finder (solve/root_finder.h), HHT-α's
+// coefficients and predictor (HhtAlpha, solve/hht.h) and the per-node Coulomb law
+// (contact/coulomb_ssn.h).
 //
 // Method (docs/fe.md has the equations):
 //   - small strain, or finite strain (material.kinematics: total Lagrangian, the J2 law in the
@@ -54,10 +61,12 @@
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/results/field_output.h"
 #include "fe_stage/solve/adaptive_estimate.h"
+#include "fe_stage/solve/contact_solve.h"
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/linear_solver.h"
 #include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/solve/stepper_interfaces.h"
+#include "fe_stage/solve/study_model.h"
 #include "fe_stage/study_plan.h"
 
 #include "common/error.h"
@@ -120,24 +129,23 @@ namespace clearjoint::fe::detail
 {
   using namespace dealii;
 
-  class HhtStepper;
-  class QuasiStaticStepper;
-  class SpinStepper;
-
   /// The steppers see the model only through QuasiStaticProblem, DynamicProblem and
-  /// SpinProblem (solve/stepper_interfaces.h), and the material Newton iteration through
-  /// MaterialProblem (solve/material_newton.h), besides the parts they are given.
+  /// SpinProblem (solve/stepper_interfaces.h), the material Newton iteration through
+  /// MaterialProblem (solve/material_newton.h), and the studies' runs through StudyModel
+  /// (solve/study_model.h), besides the parts they are given.
   class ContactModel : private QuasiStaticProblem,
                        private DynamicProblem,
                        private SpinProblem,
-                       private MaterialProblem
+                       private MaterialProblem,
+                       private StudyModel
   {
   public:
     ContactModel(const FeScene &scene, const RunOptions &options);
+    /// The scene's study, chosen once from its plan: QuasiStaticRun, ImpactRun or
+    /// RollingRun.
     RunResult run();
 
   private:
-    void make_block_grid();
     /// The pairing's contact nodes, their partners' ghosts and the contact cells
     /// (contact/contact_pattern.cc); searched between the surfaces displaced by
     /// `search_displacement` when given (ghosted; finite sliding's rebuild).
@@ -157,63 +165,37 @@ namespace clearjoint::fe::detail
     /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
     /// otherwise.
     std::set<types::global_dof_index> massless_dofs(Assembler::Operator kind) const;
-    void compute_nodal_weights();
-    void set_obstacle_position(double delta);
     void evaluate_contact_at(double delta) override
     {
-      set_obstacle_position(delta);
-      evaluate_contact(delta);
+      contact_solve_.set_obstacle_position(delta);
+      contact_solve_.evaluate_contact(delta);
     }
-    /// The quasi-static push's parts (QuasiStaticStepper::Parts).
-    QuasiStaticStepper quasi_static_stepper();
+    /// The steppers over the model's parts (contact_model.cc).
+    QuasiStaticStepper quasi_static_stepper() override;
+    HhtStepper hht_stepper(const HhtAlpha &hht, double dt_nominal, unsigned int max_cuts,
+                           double m_J, double velocity, bool deformable_journal) override;
+    SpinStepper spin_stepper(const rolling::Motion &motion, double t_end, unsigned int n_steps,
+                             unsigned int max_cuts, double inertia) override;
+    unsigned int sliding_rebuilds() const override { return n_sliding_rebuilds_; }
+    void build_mesh() override;
+    void refine_mesh() override;
+    void free_journal() override;
     /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
     /// find_contact_nodes), matrices.
     void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
     /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
-    void record_mesh(RunResult &result) const;
-    /// Study impact (solve/impact_stepping.cc): the static curve, then HHT-α time steps.
-    RunResult run_impact();
-    /// Its steps: the mesh, the journal's mass and the integrator's α, β, γ (returned);
-    /// the static probe and the quasi-static reference curve with the contact period and Δt
-    /// they set; the time steps to the separation or the end time, keeping the displacement at
-    /// the peak force; the summary and the yield check at the peak. False: result.message says
-    /// why, result.wall_time is set.
-    HhtAlpha begin_impact(RunResult &result);
-    bool compute_impact_reference(RunResult &result);
-    bool march_impact(RunResult &result, HhtStepper &stepper, TrilinosWrappers::MPI::Vector &u_peak,
-                      bool &have_peak);
-    void finish_impact(RunResult &result, const HhtStepper &stepper,
-                       const TrilinosWrappers::MPI::Vector *u_peak);
-    /// [s] impact.end_time, or 4 T_c (twice a linear contact's duration).
-    double impact_end_time(double contact_period) const;
+    void record_mesh(RunResult &result) const override;
     /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
     /// built again).
     void set_dynamic_operator(const MatrixCoefficients &c) override;
-    /// Study rolling (solve/rolling_stepping.cc): the bearing turning, the journal's spin from
-    /// its torque balance, elastoplastic (core/plastic_assembly.cc).
-    RunResult run_rolling();
-    /// Its set-up before the first step and its end after the last (solve/rolling_stepping.cc).
-    void begin_rolling(RunResult &result);
-    void finish_rolling(RunResult &result, const SpinStepper &stepper,
-                        const rolling::Motion &motion, const std::vector<double> &times,
-                        const std::vector<double> &slips);
-    void init_plasticity();
+    void init_plasticity() override;
     /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
     /// then the contact nodes' share of the load. Returns the number of yielding points.
     unsigned int assemble_plastic() override;
     bool elastoplastic() const override { return system_.kind() == Assembler::Operator::tangent; }
-    struct PlasticEnergies
-    {
-      double plastic_work_step = 0.0;  // [J] full body
-      double elastic_energy = 0.0;     // [J]
-      double plastic_volume = 0.0;     // [m^3]
-      double max_plastic_strain = 0.0, max_strain = 0.0;
-      // the bearing's own (material 0): its balance in its frame
-      double bearing_plastic_work_step = 0.0, bearing_elastic_energy = 0.0;  // [J]
-    };
-    PlasticEnergies commit_plasticity();
+    PlasticEnergies commit_plasticity() override;
     std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
-                                                   double half_angle) const;
+                                                   double half_angle) const override;
     /// One material Newton iteration (SpinProblem: the coupled spin iteration's), and its
     /// tolerance: the iteration's own (MaterialNewton).
     MaterialIteration material_iteration(double delta, bool line_search) override
@@ -228,39 +210,11 @@ namespace clearjoint::fe::detail
     RollingSolve solve_rolling_state(double delta) override;
     /// [N m] the contact's torque on the journal about its axis, full body (collective).
     double journal_torque() const override;
-    void refine_adaptively();
-    /// The quasi-static study's adaptive cycles before its curve, and the sequence closed
-    /// after it (solve/quasi_static_stepping.cc).
-    bool run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
-                             bool &last_mesh_marked);
-    void close_adaptive_sequence(RunResult &result, bool last_mesh_marked);
-    /// One increment to `delta` from the current state; throws StepFailure.
-    IncrementRecord solve_increment(double delta) override;
-    // the parts of one active-set iteration (solve/contact_iteration.cc calls them in order)
-    void build_contact_constraints(double delta);
-    void assemble_system(double delta, double c);
-    void record_forces(double delta, IncrementRecord &rec);
-    void record_coulomb_check(IncrementRecord &rec) const;
-    /// The boundary whose nodes carry the contact constraints: the bore (or the block's top),
-    /// or the journal's surface when it is the mortar slave.
-    types::boundary_id slave_surface_id() const { return slave_surface(plan_); }
-    /// +1 when the slave is the bore (or the block), −1 when it is the journal: the force on
-    /// the bearing is this times the force on the slave's nodes.
-    double slave_sign() const { return slave_surface_id() == bid_journal_surface ? -1.0 : 1.0; }
-    /// The rigid obstacle's gap at a reference point (deal.II types around RigidObstacle::gap).
-    bool obstacle_gap(const Point<dim> &X, double delta, double &g0, Tensor<1, dim> &n) const
+    /// One increment to `delta` from the current state (ContactSolve); throws StepFailure.
+    IncrementRecord solve_increment(double delta) override
     {
-      Vec3 normal;
-      if (!obstacle_.gap({X[0], X[1], X[2]}, delta, g0, normal))
-        return false;
-      n = Tensor<1, dim>({normal[0], normal[1], normal[2]});
-      return true;
+      return contact_solve_.solve_increment(delta);
     }
-    void evaluate_contact(double delta);
-    bool friction_cell_matrix(unsigned int k, FullMatrix<double> &M,
-                              std::vector<types::global_dof_index> &ext) const;
-    void friction_node_matrix(const ContactNode &cn, double c, double delta, FullMatrix<double> &M,
-                              Vector<double> &rhs, std::vector<types::global_dof_index> &ext) const;
     /// Every study's start: zero displacement, no contact, every node sticking with no slip
     /// history and the obstacle's surface points unmoved.
     void start_from_rest() override;
@@ -271,13 +225,12 @@ namespace clearjoint::fe::detail
     }
     void restore_state(const Snapshot &s) override;
     /// [s] since the model was made (the runs' setup and wall times).
-    double elapsed() const
+    double elapsed() const override
     {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
-    /// Each contact node's share of the step's known load b (system_.load(): the traction is
-    /// K u − b in the dynamic and elastoplastic solves), for the friction rows (collective).
-    void set_contact_load_offsets() override;
+    /// Each contact node's share of the step's known load b (ContactSolve).
+    void set_contact_load_offsets() override { contact_solve_.set_contact_load_offsets(); }
 
     const FeScene &scene_;
     const StudyPlan plan_;  // what the scene's study sets up (study/*.cc)
@@ -300,28 +253,15 @@ namespace clearjoint::fe::detail
     /// linear elastic); material_->elastic() is the law of the static operator.
     std::unique_ptr<MaterialLaw> material_;
 
-    bool journal_driven_ = true;             // false: a deformable journal is free
-    AffineConstraints<double> constraints_;  // + contact lines of the active set
+    bool journal_driven_ = true;  // false: a deformable journal is free
     /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
     /// cells' matrices, the elastic cache and each iteration's condensed system.
     Assembler system_;
-    bool rolling_deformable_journal() const { return frame_.turning && plan_.deformable_partner; }
+    bool rolling_deformable_journal() const { return contact_solve_.rolling_deformable_journal(); }
     bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
     void pair_turned_journal(const TrilinosWrappers::MPI::Vector &u_start) override
     {
       follow_sliding(u_start);
-    }
-    /// Σ_p w_p Q u_p: the partners' displacement as the slave node sees it (ghosted v; Q the
-    /// partners' turn now unless given).
-    Tensor<1, dim> partner_displacement(const ContactNode &cn,
-                                        const TrilinosWrappers::MPI::Vector &v,
-                                        const Tensor<2, dim> *Q = nullptr) const
-    {
-      Tensor<1, dim> s;
-      for (const auto &p : cn.partners)
-        for (unsigned int c = 0; c < dim; ++c)
-          s[c] += p.weight * v[p.dofs[c]];
-      return (Q ? *Q : frame_.partner_rotation) * s;
     }
     /// The partner combinations' sparsity: per candidate node (by its x-DoF) the component of
     /// its normal line and its partners' x-DoFs, as make_matrices built the pattern for them
@@ -339,10 +279,11 @@ namespace clearjoint::fe::detail
     /// tangent it leaves assembled.
     MaterialNewton newton_;
 
+    /// The increment's contact solve: the active-set iteration, its constraints and times.
+    ContactSolve contact_solve_;
     /// The fields for ParaView, their PVD records and the yield check.
     FieldOutput fields_;
     std::chrono::steady_clock::time_point start_;
-    double t_assemble_ = 0, t_solve_ = 0, t_evaluate_ = 0;
   };
 
 }  // namespace clearjoint::fe::detail

@@ -24,6 +24,8 @@ namespace clearjoint::fe
       , material_(make_material(scene, scene.material.model == Material::Model::elastoplastic))
       , system_(scene, bodies_, dofs_, options.comm)
       , newton_(*this, {scene_, dofs_, system_, state_, contact_, options.comm})
+      , contact_solve_({scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, system_, state_,
+                        solver_, options.comm})
       , fields_({scene_, plan_, bodies_, dofs_, state_, contact_, *material_, options.comm},
                 options.output_dir, options.write_fields)
       , start_(std::chrono::steady_clock::now())

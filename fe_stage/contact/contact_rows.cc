@@ -1,13 +1,19 @@
-// What the active set adds to the system: the rigid obstacle's gaps at δ, nodal areas, the
+// What the active set adds to the system (ContactSolve, solve/contact_solve.h): the rigid obstacle's gaps at δ, nodal areas, the
 // constraint lines of active nodes (normal, or all free components when sticking) and the
 // friction rows of slipping nodes.
-#include "fe_stage/contact_model.h"
+#include "fe_stage/solve/contact_solve.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <algorithm>
+#include <set>
 
 namespace clearjoint::fe::detail
 {
   /// Nodal areas w_i = ∫ φ_i dA over the contact surface: the contact pressure of node i is
   /// λ_i / w_i (exact for a uniform pressure; Q2 face weights are all positive).
-  void ContactModel::compute_nodal_weights()
+  void ContactSolve::compute_nodal_weights()
   {
     const QGauss<dim - 1> fq(dofs_.fe().degree + 1);
     FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq, update_values | update_JxW_values);
@@ -51,7 +57,7 @@ namespace clearjoint::fe::detail
   /// frame moves it by obstacle_u = (Σ w) c + Q (P − (Σ w) a) − P, and the gap along the
   /// journal's radius through the node's current position (as for the rigid journal: no
   /// moment from the normal force) is ĝ = n·(X + u − P − obstacle_u − Σ w Q u_p).
-  void ContactModel::set_obstacle_position(const double delta)
+  void ContactSolve::set_obstacle_position(const double delta)
   {
     if (frame_.turning)
       obstacle_.frame_angle = frame_.phi;
@@ -101,22 +107,9 @@ namespace clearjoint::fe::detail
         }
   }
 
-  void ContactModel::start_from_rest()
-  {
-    state_.set_zero();
-    newton_.forget_tangent();
-    for (auto &cn : contact_.nodes())
-      {
-        cn.active = false;
-        cn.stick = true;
-        cn.relative = cn.relative_converged = Tensor<1, dim>();
-        cn.obstacle_u = cn.obstacle_u_converged = Tensor<1, dim>();
-      }
-  }
-
   /// The load at each contact node, with the shares of the hanging nodes beside it (as the
   /// traction K u − b is read in evaluate_contact): the friction rows' constant part (below).
-  void ContactModel::set_contact_load_offsets()
+  void ContactSolve::set_contact_load_offsets()
   {
     TrilinosWrappers::MPI::Vector load = system_.load();
     dofs_.condense_hanging(load);
@@ -142,7 +135,7 @@ namespace clearjoint::fe::detail
   /// partners' rows and condensed as a whole (so the constraints' inhomogeneities reach the
   /// right-hand side too). This makes the system non-symmetric (GMRES). Returns false if the cell
   /// holds no slipping node.
-  bool ContactModel::friction_cell_matrix(const unsigned int k, FullMatrix<double> &M,
+  bool ContactSolve::friction_cell_matrix(const unsigned int k, FullMatrix<double> &M,
                                           std::vector<types::global_dof_index> &ext) const
   {
     const auto &dofs = system_.contact_cell_dofs(k);
@@ -248,7 +241,7 @@ namespace clearjoint::fe::detail
   /// −w_p R_pᵀ κ c Q M (D u + b), with D u = u − Σ w_p R_p u_p (R_p = frame_.partner_rotation, the
   /// identity unless the rolling study's journal turns); the constant part goes to the
   /// right-hand side. Added once per node (by the rank that owns it).
-  void ContactModel::friction_node_matrix(const ContactNode &cn, const double c,
+  void ContactSolve::friction_node_matrix(const ContactNode &cn, const double c,
                                           const double /*delta*/, FullMatrix<double> &M,
                                           Vector<double> &rhs,
                                           std::vector<types::global_dof_index> &ext) const
@@ -310,7 +303,7 @@ namespace clearjoint::fe::detail
   /// The constraints of this iteration: the active nodes' lines (a sticking node: no new
   /// tangential slip, all its free components; otherwise its normal gap on the constrained
   /// component), then the fixed constraints at δ.
-  void ContactModel::build_contact_constraints(
+  void ContactSolve::build_contact_constraints(
     const double /*delta: in each node's g0, obstacle_u*/)
   {
     constraints_.clear();

@@ -117,7 +117,7 @@ namespace clearjoint::fe::detail
       turning ? JournalFrame::rotation_z(frame_.psi_converged) : frame_.partner_rotation;
     if (turning)
       {
-        set_obstacle_position(0.0);
+        contact_solve_.set_obstacle_position(0.0);
         for (auto &cn : contact_.nodes())
           cn.obstacle_u_converged =
             frame_.partner_motion(cn, frame_.centre_previous, frame_.psi_converged);
@@ -129,9 +129,10 @@ namespace clearjoint::fe::detail
         for (unsigned int c = 0; c < dim; ++c)
           cn.relative_converged[c] = start[cn.dofs[c]];
         cn.relative_converged -=
-          partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
+          contact_solve_.partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
       }
-    evaluate_contact(0.0);  // relative displacements and gaps at u with the new couplings
+    // relative displacements and gaps at u with the new couplings
+    contact_solve_.evaluate_contact(0.0);
     return change;
   }
 }  // namespace clearjoint::fe::detail

@@ -17,7 +17,7 @@ namespace clearjoint::fe::detail
 
   /// Trial → committed at every quadrature point (after a converged step), and the step's
   /// energies from the committed states.
-  ContactModel::PlasticEnergies ContactModel::commit_plasticity()
+  PlasticEnergies ContactModel::commit_plasticity()
   {
     newton_.forget_tangent();  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
@@ -167,7 +167,7 @@ namespace clearjoint::fe::detail
   {
     unsigned int n_plastic_points = 0;
     {
-      ScopedTimer timer(t_assemble_);
+      const ScopedTimer timer = contact_solve_.assembly_timer();
       n_plastic_points = scene_.material.kinematics == Material::Kinematics::finite ?
                            system_.assemble_finite_tangent(*material_, state_.u()) :
                            system_.assemble_tangent(*material_, state_.u());

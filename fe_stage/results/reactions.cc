@@ -1,12 +1,24 @@
 // Nodal reactions K u (hanging shares moved to their masters), the contact state of every node,
 // and the increment's forces and checks.
-#include "fe_stage/contact_model.h"
+#include "fe_stage/solve/contact_solve.h"
+
+#include "fe_stage/core/step_failure.h"
+
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 
 namespace clearjoint::fe::detail
 {
   /// λ_i = (K u)_i · n_i and ĝ_i = g0_i + n_i · u_i for every candidate node (ghosted values,
   /// so every rank evaluates the same numbers for the nodes it shares).
-  void ContactModel::evaluate_contact(const double /*delta: in each node's g0, obstacle_u*/)
+  void ContactSolve::evaluate_contact(const double /*delta: in each node's g0, obstacle_u*/)
   {
     system_.operator_matrix().vmult(state_.forces(), state_.u_owned());
     // the constraint forces: dynamic (c_m M + c_k K) u − b; elastoplastic K_t u − b
@@ -34,7 +46,7 @@ namespace clearjoint::fe::detail
 
   /// The increment's forces (contact, supports, loaded set; full body), active and slipping
   /// nodes, penetration and pressure range, and the checks that make a wrong answer a failure.
-  void ContactModel::record_forces(const double delta, IncrementRecord &rec)
+  void ContactSolve::record_forces(const double delta, IncrementRecord &rec)
   {
     // Forces and checks.
     double f_contact = 0.0, max_pen = 0.0;
@@ -115,7 +127,7 @@ namespace clearjoint::fe::detail
   /// How well the converged state satisfies Coulomb's law at every node (IncrementRecord's
   /// contact_.friction()* fields): computed from K u and the displacements, independently of the
   /// stick/slip decisions that produced them.
-  void ContactModel::record_coulomb_check(IncrementRecord &rec) const
+  void ContactSolve::record_coulomb_check(IncrementRecord &rec) const
   {
     const double mu = scene_.contact.mu;
     double lambda_max = 0.0, cone = -std::numeric_limits<double>::max(), slip_law = 0.0,

@@ -1,13 +1,41 @@
-// One load increment: active-set iterations (contact lines, assembly, solve, evaluation,
-// normal and Coulomb decisions) until the sets and the slip directions settle.
-#include "fe_stage/contact_model.h"
+// One load increment (ContactSolve, solve/contact_solve.h): active-set iterations (contact
+// lines, assembly, solve, evaluation, normal and Coulomb decisions) until the sets and the slip
+// directions settle.
+#include "fe_stage/solve/contact_solve.h"
+
+#include "fe_stage/core/step_failure.h"
+
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 
 namespace clearjoint::fe::detail
 {
+  ContactSolve::ContactSolve(const Parts &parts)
+    : scene_(parts.scene)
+    , plan_(parts.plan)
+    , bodies_(parts.bodies)
+    , dofs_(parts.dofs)
+    , contact_(parts.contact)
+    , obstacle_(parts.obstacle)
+    , frame_(parts.frame)
+    , system_(parts.system)
+    , state_(parts.state)
+    , solver_(parts.solver)
+    , comm_(parts.comm)
+    , rank_(Utilities::MPI::this_mpi_process(parts.comm))
+  {}
+
   /// The condensed system of this iteration: the static part, plus the contact cells condensed
   /// with this iteration's constraints (with the friction rows of slipping nodes), plus the
   /// slip terms of the slipping nodes (c: the complementarity constant [N/m]).
-  void ContactModel::assemble_system(const double delta, const double c)
+  void ContactSolve::assemble_system(const double delta, const double c)
   {
     ScopedTimer timer(t_assemble_);
     system_.begin_system();
@@ -38,7 +66,7 @@ namespace clearjoint::fe::detail
     system_.finish_system(delta, constraints_);
   }
 
-  IncrementRecord ContactModel::solve_increment(const double delta)
+  IncrementRecord ContactSolve::solve_increment(const double delta)
   {
     IncrementRecord rec;
     rec.delta = delta;

@@ -2,7 +2,7 @@
 // journal's one unknown δ found by the root finder (solve/root_finder.h), with Δt from the step
 // controller (solve/step_controller.h). It owns the dynamic state — u, v, a and the contact
 // forces λ of the meshed bodies, the journal's δ, δ̇, δ̈ and force F, the energy ledger — and
-// the operator c_m M + (1+α)K of the current Δt; the study (solve/impact_stepping.cc) starts
+// the operator c_m M + (1+α)K of the current Δt; the study's run (ImpactRun, solve/impact_run.h) starts
 // it, steps it and records what it reports.
 //
 // One step n → n+1: Newmark's predictor û and the known load b = c_m M û + α(K u_n − λ_n);

@@ -11,7 +11,7 @@
 //   (SpinProblem::solve_rolling_state). It owns the
 // spin's state (t, γ, γ̇), what carries from step to step — the balance's scale and slope
 // dM/dγ̇, the state before the last step (the predictor in time), Δt (solve/step_controller.h)
-// — and the journal's search counters; the study (solve/rolling_stepping.cc) records each step
+// — and the journal's search counters; the study's run (RollingRun, solve/rolling_run.h) records each step
 // and commits the material before accept().
 #pragma once
 

@@ -32,7 +32,7 @@ namespace clearjoint::fe::detail
   };
 
   /// One converged state of the rolling bearing for a given journal spin (the torque
-  /// balance's evaluation, solve/rolling_stepping.cc).
+  /// balance's evaluation, ContactModel::solve_rolling_state).
   struct RollingSolve
   {
     double torque_journal = 0.0;  // [N m] full body, on the journal about +z

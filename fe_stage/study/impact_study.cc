@@ -1,6 +1,6 @@
 // The impact study (paper §3.2): the rigid journal launched into the bearing ring held as in the
 // radial study. The same bodies, supports and first-touch placement as the thickness study; what
-// differs is the time integration (solve/impact_stepping.cc): the journal's position is an
+// differs is the time integration (solve/impact_run.cc): the journal's position is an
 // unknown of each time step, found from its equation of motion, not a prescribed push.
 #include "fe_stage/study/study.h"
 

@@ -1,7 +1,7 @@
 // The rolling study (paper §3.4): the elastoplastic bearing ring, turning at ω_B, computed in its
 // co-rotating frame; the rigid journal pushed radially from first touch and turned by friction
 // alone. The whole ring is meshed (the contact zone travels round the bore as the bearing turns),
-// the axial mid-plane is a symmetry plane. solve/rolling_stepping.cc runs it.
+// the axial mid-plane is a symmetry plane. solve/rolling_run.cc runs it.
 #include "fe_stage/study/study.h"
 
 namespace clearjoint::fe

@@ -2,50 +2,24 @@
 // Each step: the bearing turned to φ = ω_B t (its co-rotating frame: the mesh stays, the rigid
 // journal's axis turns round it), the journal pushed to δ(t), and the journal's spin rate γ̇
 // found from its torque balance (SpinStepper, solve/spin_stepper.h). Every evaluation of the
-// journal's torque is a state of the elastoplastic bodies (solve_rolling_state below: material
-// Newton iterations, each an active-set contact solve with Coulomb friction). What this file
-// keeps: the study's set-up, what each converged step records (forces, torques, energies, the
-// paper's Eqs. 4–8), and the end state (strain profile, slip stages).
-#include "fe_stage/contact_model.h"
-#include "fe_stage/solve/spin_stepper.h"
+// journal's torque is a state of the elastoplastic bodies (ContactModel::solve_rolling_state:
+// material Newton iterations, each an active-set contact solve with Coulomb friction). What
+// this file keeps (RollingRun, solve/rolling_run.h): the study's set-up, what each converged
+// step records (forces, torques, energies, the paper's Eqs. 4–8), and the end state (strain
+// profile, slip stages).
+#include "fe_stage/solve/rolling_run.h"
 
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace clearjoint::fe::detail
 {
-  RollingSolve ContactModel::solve_rolling_state(const double delta)
-  {
-    RollingSolve rs;
-    const MaterialSolve m = newton_.solve(delta, scene_.rolling.max_newton_iterations);
-    rs.record = m.record;
-    rs.newton_iterations = m.newton_iterations;
-    rs.line_search_steps = m.line_search_steps;
-    rs.contact_iterations = m.contact_iterations;
-    rs.linear_iterations = m.linear_iterations;
-    rs.torque_journal = journal_torque();
-    return rs;
-  }
-
-  double ContactModel::journal_torque() const
-  {
-    // the contact's torque on the journal about its axis: the force on the journal is −t at
-    // its surface point c' + R_J n (z-moments are the same in every frame turned about z)
-    // (only the friction force has a moment: the normal n passes through the journal's axis)
-    // (the deformable journal: the arm from its axis to the bore node where it is now)
-    double torque = 0.0;
-    for (const auto &cn : contact_.nodes())
-      if (contact_.friction() && cn.owned && cn.active)
-        {
-          const Tensor<1, dim> t = tangential(contact_.traction(cn), cn.n);
-          Tensor<1, dim> arm = scene_.geometry.R_J() * cn.n;
-          if (rolling_deformable_journal())
-            for (unsigned int c = 0; c + 1 < dim; ++c)
-              arm[c] = cn.X[c] + state_.u()[cn.dofs[c]] - frame_.centre[c];
-          torque -= arm[0] * t[1] - arm[1] * t[0];
-        }
-    return bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
-  }
-
   namespace
   {
     /// The paper's tracked points (Fig. 9) by their DoFs: N_B the bore node at the bottom of
@@ -347,48 +321,53 @@ namespace clearjoint::fe::detail
     }
   }  // namespace
 
-  RunResult ContactModel::run_rolling()
+  RollingRun::RollingRun(StudyModel &model, const Parts &parts)
+    : model_(model)
+    , parts_(parts)
+    , rank_(Utilities::MPI::this_mpi_process(parts.comm))
+    , n_ranks_(Utilities::MPI::n_mpi_processes(parts.comm))
+  {}
+
+  RunResult RollingRun::run()
   {
     RunResult result;
-    begin_rolling(result);
-    const auto &R = scene_.rolling;
-    const auto &L = scene_.loading;
-    const auto &G = scene_.geometry;
+    begin(result);
+    const auto &R = parts_.scene.rolling;
+    const auto &L = parts_.scene.loading;
+    const auto &G = parts_.scene.geometry;
 
     const rolling::Motion motion{R.omega_B, R.ramp_time, L.delta_max, G.c_r, G.R_B, G.R_J()};
-    const double t_end = rolling_end_time(scene_);
+    const double t_end = rolling_end_time(parts_.scene);
     const double dt_nominal = t_end / R.n_steps;
-    const double inertia = rolling_journal_inertia(scene_);
+    const double inertia = rolling_journal_inertia(parts_.scene);
     auto &S = result.rolling;
     S.journal_inertia = inertia;
     S.rolling_rate = motion.rolling_rate(t_end);
     S.time_step = dt_nominal;
     if (rank_ == 0)
-      log_rolling_start(scene_, result, contact_, t_end, inertia);
+      log_rolling_start(parts_.scene, result, parts_.contact, t_end, inertia);
 
-    start_from_rest();
-    const PaperNodes paper =
-      find_paper_nodes(scene_, dofs_, contact_, rolling_deformable_journal(), comm_);
+    model_.start_from_rest();
+    const PaperNodes paper = find_paper_nodes(parts_.scene, parts_.dofs, parts_.contact,
+                                              model_.journal_turns_deformable(), parts_.comm);
 
     unsigned int field_counter = 0;
-    fields_.create_directory();
-    if (fields_.enabled())
+    parts_.fields.create_directory();
+    if (parts_.fields.enabled())
       {
-        frame_.phi = 0.0;
-        frame_.centre_previous = frame_.centre = motion.centre_frame(0.0);
-        frame_.delta_psi = 0.0;
-        set_obstacle_position(0.0);
-        evaluate_contact(0.0);
-        fields_.write(field_counter++, 0.0);
+        parts_.frame.phi = 0.0;
+        parts_.frame.centre_previous = parts_.frame.centre = motion.centre_frame(0.0);
+        parts_.frame.delta_psi = 0.0;
+        model_.evaluate_contact_at(0.0);
+        parts_.fields.write(field_counter++, 0.0);
       }
 
     FrameWork frame_work;
     RollingBalance ledger;
     std::vector<double> times, slips;
-    const double wall_steps_start = elapsed();
+    const double wall_steps_start = model_.elapsed();
     unsigned int step = 0;
-    SpinStepper stepper(*this, scene_, state_, frame_, comm_, motion, t_end, R.n_steps, L.max_cuts,
-                        inertia);
+    SpinStepper stepper = model_.spin_stepper(motion, t_end, R.n_steps, L.max_cuts, inertia);
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
     for (; stepper.time() < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
       {
@@ -403,32 +382,35 @@ namespace clearjoint::fe::detail
         // torques; then commit the material and the contact's reference state
         const double t1 = t + dt;
         const ContactStep cs =
-          close_contact_step(contact_, state_.u(), bodies_.symmetry_factor(), frame_work, comm_);
+          close_contact_step(parts_.contact, parts_.state.u(), parts_.bodies.symmetry_factor(),
+                             frame_work, parts_.comm);
         const auto on_journal =
           rolling::rotate_z({-cs.force_frame[0], -cs.force_frame[1], 0.0}, motion.phi(t1));
-        const Vec3 u_tracked = tracked_displacement(paper.bore, paper.bore_dofs, state_.u(), comm_);
+        const Vec3 u_tracked =
+          tracked_displacement(paper.bore, paper.bore_dofs, parts_.state.u(), parts_.comm);
         // in the journal's frame (0: rigid)
         const Vec3 u_journal =
-          tracked_displacement(paper.journal, paper.journal_dofs, state_.u(), comm_);
-        frame_.psi_converged += frame_.delta_psi;
-        frame_.delta_psi = 0.0;
-        const PlasticEnergies pe = commit_plasticity();
+          tracked_displacement(paper.journal, paper.journal_dofs, parts_.state.u(), parts_.comm);
+        parts_.frame.psi_converged += parts_.frame.delta_psi;
+        parts_.frame.delta_psi = 0.0;
+        const PlasticEnergies pe = model_.commit_plasticity();
 
         RollingStepRecord rec;
         rec.step = step + 1;
         rec.time = t1;
         rec.delta = motion.delta(t1);
         // (+ 0.0: a step without contact sums no force, and −0 would be written "-0")
-        rec.force_normal = bodies_.symmetry_factor() * on_journal[1] + 0.0;
-        rec.force_tangential = bodies_.symmetry_factor() * on_journal[0] + 0.0;
+        rec.force_normal = parts_.bodies.symmetry_factor() * on_journal[1] + 0.0;
+        rec.force_tangential = parts_.bodies.symmetry_factor() * on_journal[0] + 0.0;
         rec.phi = motion.phi(t1);
         rec.phi_rate = R.omega_B;
         rec.gamma_rate = rate_new;
         rec.gamma = gamma + rate_new * dt;
         rec.slip_speed = motion.slip_speed(t1, rate_new);
         double r_bearing = 0.0, r_journal = 0.0;  // ω_B r_B − γ̇ r_J where both give way
-        if (rolling_deformable_journal() &&
-            contact_radii(contact_, state_.u(), frame_.centre, r_bearing, r_journal, comm_))
+        if (model_.journal_turns_deformable() &&
+            contact_radii(parts_.contact, parts_.state.u(), parts_.frame.centre, r_bearing,
+                          r_journal, parts_.comm))
           rec.slip_speed = R.omega_B * r_bearing - rate_new * r_journal;
         rec.torque_journal = rs.torque_journal;
         rec.torque_drive = -cs.torque_bearing;
@@ -439,8 +421,8 @@ namespace clearjoint::fe::detail
         rec.max_plastic_strain = pe.max_plastic_strain;
         rec.max_strain = pe.max_strain;
         rec.plastic_volume = pe.plastic_volume;
-        rec.n_active = Utilities::MPI::sum(cs.n_active, comm_);
-        rec.n_slip = Utilities::MPI::sum(cs.n_slip, comm_);
+        rec.n_active = Utilities::MPI::sum(cs.n_active, parts_.comm);
+        rec.n_slip = Utilities::MPI::sum(cs.n_slip, parts_.comm);
         rec.spin_iterations = solved.spin_evaluations;
         rec.newton_iterations = solved.newton_iterations;
         rec.line_search_steps = solved.line_search_steps;
@@ -450,7 +432,7 @@ namespace clearjoint::fe::detail
         rec.cuts = solved.cuts;
         set_paper_angles(rec, G, motion, u_tracked, u_journal,
                          result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
-        rec.wall_time = elapsed();
+        rec.wall_time = model_.elapsed();
         stepper.accept(solved);
         times.push_back(t1);
         slips.push_back(rec.slip_speed);
@@ -459,56 +441,55 @@ namespace clearjoint::fe::detail
         const IncrementRecord inc = increment_of(rec, rs.record);
         result.increments.push_back(inc);
         if (rank_ == 0)
-          log_step(rec, (elapsed() - wall_steps_start) / t1 * (t_end - t1));
-        if (options_.on_increment)
-          options_.on_increment(inc);
-        if (options_.on_rolling_step)
-          options_.on_rolling_step(rec);
+          log_step(rec, (model_.elapsed() - wall_steps_start) / t1 * (t_end - t1));
+        if (parts_.options.on_increment)
+          parts_.options.on_increment(inc);
+        if (parts_.options.on_rolling_step)
+          parts_.options.on_rolling_step(rec);
         const bool last = t1 >= t_end * (1.0 - 1e-12);
-        if (fields_.enabled() && (rec.step % R.field_stride == 0 || last))
-          fields_.write(field_counter++, t1);
+        if (parts_.fields.enabled() && (rec.step % R.field_stride == 0 || last))
+          parts_.fields.write(field_counter++, t1);
       }
     if (result.message.empty() && stepper.time() < t_end * (1.0 - 1e-12))
       result.message = "the step limit (" + std::to_string(max_steps) +
                        ") was reached at t = " + format_value(stepper.time()) + " s";
-    finish_rolling(result, stepper, motion, times, slips);
+    finish(result, stepper, motion, times, slips);
     return result;
   }
 
   /// The turning frame at rest, the mesh, DoFs and material history; the run's sizes.
-  void ContactModel::begin_rolling(RunResult &result)
+  void RollingRun::begin(RunResult &result)
   {
-    const auto &G = scene_.geometry;
+    const auto &G = parts_.scene.geometry;
     result.n_ranks = n_ranks_;
-    frame_.turning = true;
+    parts_.frame.turning = true;
     // a deformable journal: its frame at the start (as meshed; the mortar search places it)
-    frame_.centre_previous = frame_.centre = {0.0, -G.c_r, 0.0};
-    frame_.axis_mesh = Tensor<1, dim>({0.0, -G.c_r, 0.0});
-    frame_.psi_converged = frame_.delta_psi = 0.0;
-    bodies_.build();
-    prepare_mesh();
-    init_plasticity();
-    record_mesh(result);
+    parts_.frame.centre_previous = parts_.frame.centre = {0.0, -G.c_r, 0.0};
+    parts_.frame.axis_mesh = Tensor<1, dim>({0.0, -G.c_r, 0.0});
+    parts_.frame.psi_converged = parts_.frame.delta_psi = 0.0;
+    model_.build_mesh();
+    model_.init_plasticity();
+    model_.record_mesh(result);
   }
 
   /// The end state (the strains across the contact zone), the slip stages, the solver's
   /// summary; the result closed.
-  void ContactModel::finish_rolling(RunResult &result, const SpinStepper &stepper,
-                                    const rolling::Motion &motion, const std::vector<double> &times,
-                                    const std::vector<double> &slips)
+  void RollingRun::finish(RunResult &result, const SpinStepper &stepper,
+                          const rolling::Motion &motion, const std::vector<double> &times,
+                          const std::vector<double> &slips)
   {
     const double t = stepper.time();
-    result.strain_profile = strain_profile(0, motion.phi(t), 30.0 * units::deg);
-    if (rolling_deformable_journal())
-      for (const auto &p : strain_profile(1, stepper.gamma(), 30.0 * units::deg))
+    result.strain_profile = model_.strain_profile(0, motion.phi(t), 30.0 * units::deg);
+    if (model_.journal_turns_deformable())
+      for (const auto &p : model_.strain_profile(1, stepper.gamma(), 30.0 * units::deg))
         result.strain_profile.push_back(p);
     summarise(result.rolling, times, slips, result.rolling_steps);
-    result.sliding_rebuilds = n_sliding_rebuilds_;
+    result.sliding_rebuilds = model_.sliding_rebuilds();
     if (rank_ == 0)
-      log_solver_summary(scene_, result, stepper, rolling_deformable_journal(),
-                         n_sliding_rebuilds_);
-    result.field_files = fields_.files(false);
+      log_solver_summary(parts_.scene, result, stepper, model_.journal_turns_deformable(),
+                         model_.sliding_rebuilds());
+    result.field_files = parts_.fields.files(false);
     result.complete = result.message.empty();
-    result.wall_time = elapsed();
+    result.wall_time = model_.elapsed();
   }
 }  // namespace clearjoint::fe::detail

@@ -1,66 +1,22 @@
-// The quasi-static studies: the push from 0 to δ_max in increments (QuasiStaticStepper,
-// solve/quasi_static_stepper.h), one log line per increment (as an Abaqus .sta file) with an
-// ETA, and the yield check of the last converged state; before it, the adaptive cycles (mesh.adaptive_cycles:
-// curve, Kelly indicator, refinement) and the error estimate from their sequence.
-#include "fe_stage/contact_model.h"
-#include "fe_stage/solve/quasi_static_stepper.h"
+// The quasi-static studies' run (QuasiStaticRun, solve/quasi_static_run.h): the push from 0 to
+// δ_max in increments (QuasiStaticStepper, solve/quasi_static_stepper.h), one log line per
+// increment (as an Abaqus .sta file) with an ETA, and the yield check of the last converged
+// state; before it, the adaptive cycles (mesh.adaptive_cycles: curve, Kelly indicator,
+// refinement) and the error estimate from their sequence.
+#include "fe_stage/solve/quasi_static_run.h"
+
+#include "fe_stage/solve/adaptive_estimate.h"
+
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cstdio>
 
 namespace clearjoint::fe::detail
 {
-  QuasiStaticStepper ContactModel::quasi_static_stepper()
-  {
-    return QuasiStaticStepper(*this,
-                              {scene_, dofs_, state_, contact_, newton_, comm_, finite_sliding()});
-  }
-
-  void ContactModel::restore_state(const Snapshot &s)
-  {
-    newton_.forget_tangent();
-    state_.u_owned() = s.u;
-    state_.publish();
-    contact_.nodes() = s.nodes;
-    // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
-    // restored state again so that the pattern holds its partners (the rolling study's turning
-    // journal, not finite sliding, searches again at its next evaluation anyway)
-    if (finite_sliding() && n_sliding_rebuilds_ != s.sliding_rebuilds)
-      follow_sliding(s.u, true);
-  }
-
-  /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
-  void ContactModel::record_mesh(RunResult &result) const
-  {
-    result.n_dofs = dofs_.handler().n_dofs();
-    result.n_cells = bodies_.triangulation().n_global_active_cells();
-    result.symmetry_factor = bodies_.symmetry_factor();
-    result.h_min = bodies_.h_min();
-    result.setup_time = elapsed();
-  }
-
-  /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
-  void ContactModel::prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement)
-  {
-    solver_.invalidate();  // its AMG was built for the previous mesh's matrix
-    dofs_.distribute(journal_driven_);
-    find_contact_nodes(search_displacement);
-    make_matrices();
-    system_.assemble_static(material_->elastic(), massless_dofs(system_.kind()));
-    compute_nodal_weights();
-  }
-
-  /// One adaptive cycle's refinement: Kelly's estimator (jumps of the stress across interior
-  /// faces) on the converged solution at δ_max marks the fraction mesh.adaptive_fraction of
-  /// the cells with the largest indicators in both bodies; p4est refines them (2:1 balance).
-  void ContactModel::refine_adaptively()
-  {
-    Vector<float> indicator(bodies_.triangulation().n_active_cells());
-    KellyErrorEstimator<dim>::estimate(bodies_.mapping(), dofs_.handler(),
-                                       QGauss<dim - 1>(dofs_.fe().degree + 1), {}, state_.u(),
-                                       indicator, ComponentMask(), nullptr,
-                                       numbers::invalid_unsigned_int,
-                                       bodies_.triangulation().locally_owned_subdomain());
-    bodies_.refine_largest(indicator, scene_.mesh.adaptive_fraction);
-  }
-
   namespace
   {
     /// The push to δ_max in n equal increments (the last exactly δ_max).
@@ -73,13 +29,15 @@ namespace clearjoint::fe::detail
     }
   }  // namespace
 
-  /// Adaptive cycles (mesh.adaptive_cycles; none: the mesh prepared once): marking pushes,
-  /// Kelly refinement, and the sequence F_k(N_k) in result.adaptive_cycles; the model is left
-  /// on the mesh the curve is computed on. False (result.message set) when a marking push
-  /// failed. last_mesh_marked: a target error stopped the cycles on a mesh that has its marking
-  /// run in the sequence.
-  bool ContactModel::run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
-                                         bool &last_mesh_marked)
+  QuasiStaticRun::QuasiStaticRun(StudyModel &model, const Parts &parts)
+    : model_(model)
+    , parts_(parts)
+    , rank_(Utilities::MPI::this_mpi_process(parts.comm))
+    , n_ranks_(Utilities::MPI::n_mpi_processes(parts.comm))
+  {}
+
+  bool QuasiStaticRun::run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
+                                           bool &last_mesh_marked)
   {
     // Adaptive cycles (mesh.adaptive_cycles): the push is computed on the current mesh (not
     // recorded), F(δ_max) kept, and the cells where Kelly's indicator is largest refined; the
@@ -88,22 +46,23 @@ namespace clearjoint::fe::detail
     // hardly depends on the path (μ = 0.1: 1 to 20 increments within 5e-6 of F, docs/fe.md),
     // so the sequence F_k(N_k) that gives the error estimate stays comparable with friction.
     const std::vector<double> marking_targets =
-      equal_steps(scene_.loading.delta_max, scene_.mesh.adaptive_increments);
+      equal_steps(parts_.scene.loading.delta_max, parts_.scene.mesh.adaptive_increments);
     // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
     // estimate, extrapolated from three or more, meets it — the curve is then computed on
     // that mesh — or at adaptive_cycles, the most allowed.
-    const double target = scene_.mesh.adaptive_target_error;
-    for (unsigned int cycle = 0; cycle <= scene_.mesh.adaptive_cycles; ++cycle)
+    const double target = parts_.scene.mesh.adaptive_target_error;
+    for (unsigned int cycle = 0; cycle <= parts_.scene.mesh.adaptive_cycles; ++cycle)
       {
-        if (cycle > 0)
-          refine_adaptively();
-        prepare_mesh();
-        if (cycle == scene_.mesh.adaptive_cycles)
+        if (cycle == 0)
+          model_.build_mesh();
+        else
+          model_.refine_mesh();
+        if (cycle == parts_.scene.mesh.adaptive_cycles)
           break;
-        const double t0 = elapsed();
+        const double t0 = model_.elapsed();
         AdaptiveCycle c;
-        c.n_dofs = dofs_.handler().n_dofs();
-        c.n_cells = bodies_.triangulation().n_global_active_cells();
+        c.n_dofs = parts_.dofs.handler().n_dofs();
+        c.n_cells = parts_.bodies.triangulation().n_global_active_cells();
         if (!stepper.push_through(marking_targets, result.message,
                                   [&](unsigned int, IncrementRecord &r) {
                                     c.force = r.force;
@@ -111,10 +70,10 @@ namespace clearjoint::fe::detail
                                   }))
           {
             result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
-            result.wall_time = elapsed();
+            result.wall_time = model_.elapsed();
             return false;
           }
-        c.wall_time = elapsed() - t0;
+        c.wall_time = model_.elapsed() - t0;
         result.adaptive_cycles.push_back(c);
         if (rank_ == 0)
           {
@@ -122,14 +81,14 @@ namespace clearjoint::fe::detail
             std::snprintf(buf, sizeof(buf),
                           "fe_stage: adaptive cycle %u/%u  %lu cells  %lu DoFs  F(delta_max) "
                           "%.8g N  contact its %u  %s",
-                          cycle + 1, scene_.mesh.adaptive_cycles, c.n_cells, c.n_dofs, c.force,
-                          c.contact_iterations, log::format_duration(c.wall_time).c_str());
+                          cycle + 1, parts_.scene.mesh.adaptive_cycles, c.n_cells, c.n_dofs,
+                          c.force, c.contact_iterations, log::format_duration(c.wall_time).c_str());
             log::info(buf);
           }
         if (target > 0.0)
           {
             const AdaptiveEstimate e =
-              estimate_adaptive_error(result.adaptive_cycles, dofs_.fe().degree);
+              estimate_adaptive_error(result.adaptive_cycles, parts_.dofs.fe().degree);
             if (rank_ == 0 && e.error >= 0.0)
               log::info("fe_stage: estimated error of F(delta_max) " +
                         format_value(100.0 * e.error) + " % (" + e.method + "), target " +
@@ -144,11 +103,9 @@ namespace clearjoint::fe::detail
     return true;
   }
 
-  /// The curve's F(δ_max) on the final mesh closes the adaptive sequence, and the error
-  /// estimate of the sequence goes into the result.
-  void ContactModel::close_adaptive_sequence(RunResult &result, const bool last_mesh_marked)
+  void QuasiStaticRun::close_adaptive_sequence(RunResult &result, const bool last_mesh_marked)
   {
-    const double target = scene_.mesh.adaptive_target_error;
+    const double target = parts_.scene.mesh.adaptive_target_error;
     // the curve's F(δ_max) on the final mesh closes the sequence (in place of that mesh's
     // marking run when the target stopped the cycles there: the same mesh)
     AdaptiveCycle last;
@@ -162,7 +119,8 @@ namespace clearjoint::fe::detail
       result.adaptive_cycles.back() = last;
     else
       result.adaptive_cycles.push_back(last);
-    const AdaptiveEstimate e = estimate_adaptive_error(result.adaptive_cycles, dofs_.fe().degree);
+    const AdaptiveEstimate e =
+      estimate_adaptive_error(result.adaptive_cycles, parts_.dofs.fe().degree);
     result.adaptive_error = e.error;
     result.adaptive_error_method = e.method;
     result.adaptive_order = e.order;
@@ -175,50 +133,43 @@ namespace clearjoint::fe::detail
     if (rank_ == 0 && target > 0.0 && !result.adaptive_target_reached)
       log::warning("fe_stage: the target error " + format_value(100.0 * target) +
                    " % (mesh.adaptive_target_error) was not reached in " +
-                   std::to_string(scene_.mesh.adaptive_cycles) +
+                   std::to_string(parts_.scene.mesh.adaptive_cycles) +
                    " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
                    "last mesh, with the estimate above");
   }
 
-  RunResult ContactModel::run()
+  RunResult QuasiStaticRun::run()
   {
-    // the study chosen once (its plan): impact and rolling have their own steppers
-    if (plan_.dynamic)
-      return run_impact();
-    if (plan_.rolling)
-      return run_rolling();
     RunResult result;
     result.n_ranks = n_ranks_;
-    const auto &L = scene_.loading;
+    const auto &L = parts_.scene.loading;
     const std::vector<double> targets = equal_steps(L.delta_max, L.n_increments);
-    bodies_.build();
     bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
-    QuasiStaticStepper stepper = quasi_static_stepper();
+    QuasiStaticStepper stepper = model_.quasi_static_stepper();
     if (!run_adaptive_cycles(result, stepper, last_mesh_marked))
       return result;
     // the elastoplastic patch test (scene.cc admits no adaptive cycles with it): the mesh is
     // the curve's, so the points' history is sized for it here
-    if (scene_.material.model == Material::Model::elastoplastic)
-      init_plasticity();
-    record_mesh(result);
-    fields_.create_directory();
+    if (parts_.scene.material.model == Material::Model::elastoplastic)
+      model_.init_plasticity();
+    model_.record_mesh(result);
+    parts_.fields.create_directory();
     const unsigned int n_candidates = Utilities::MPI::sum(
-      (unsigned int)std::count_if(contact_.nodes().begin(), contact_.nodes().end(),
+      (unsigned int)std::count_if(parts_.contact.nodes().begin(), parts_.contact.nodes().end(),
                                   [](const ContactNode &c) { return c.owned && c.candidate; }),
-      comm_);  // collective: outside the rank-0 branch
+      parts_.comm);  // collective: outside the rank-0 branch
     if (rank_ == 0)
       log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
-                " contact candidate nodes, " + std::to_string(system_.n_contact_cells()) +
-                " contact cells (rank 0), " + (solver_.direct() ? "direct" : "CG+AMG") +
+                " contact candidate nodes, " + std::to_string(parts_.system.n_contact_cells()) +
+                " contact cells (rank 0), " + (parts_.solver.direct() ? "direct" : "CG+AMG") +
                 " solver, setup " + log::format_duration(result.setup_time));
 
-    if (fields_.enabled())
+    if (parts_.fields.enabled())
       {
-        state_.set_zero();
-        set_obstacle_position(0.0);
-        evaluate_contact(0.0);
-        fields_.write(0, 0.0);
+        parts_.state.set_zero();
+        model_.evaluate_contact_at(0.0);
+        parts_.fields.write(0, 0.0);
       }
     // One line per converged increment: what an Abaqus user reads in the .sta file. The ETA
     // prices the remaining push at the cost per metre of the increments after the first: the
@@ -251,51 +202,52 @@ namespace clearjoint::fe::detail
       log::info(buf);
     };
     const auto record_increment = [&](const unsigned int inc, IncrementRecord &rec) {
-      rec.wall_time = elapsed();
+      rec.wall_time = model_.elapsed();
       result.increments.push_back(rec);
-      if (options_.on_increment)
-        options_.on_increment(rec);
-      if (fields_.enabled())
-        fields_.write(inc, targets[inc - 1]);
+      if (parts_.options.on_increment)
+        parts_.options.on_increment(rec);
+      if (parts_.fields.enabled())
+        parts_.fields.write(inc, targets[inc - 1]);
       log_increment(inc, rec);
     };
     const bool complete = stepper.push_through(targets, result.message, record_increment);
     if (!complete)
       {
-        result.wall_time = elapsed();
-        result.field_files = fields_.files(false);
-        if (!result.increments.empty() && !elastoplastic())
+        result.wall_time = model_.elapsed();
+        result.field_files = parts_.fields.files(false);
+        if (!result.increments.empty() && !model_.elastoplastic())
           {
-            result.yield_check = fields_.check_yield(nullptr);
-            fields_.log_yield_check(result.yield_check);
+            result.yield_check = parts_.fields.check_yield(nullptr);
+            parts_.fields.log_yield_check(result.yield_check);
           }
         return result;
       }
     result.complete = true;
     if (!result.adaptive_cycles.empty())
       close_adaptive_sequence(result, last_mesh_marked);
-    result.sliding_rebuilds = n_sliding_rebuilds_;
+    result.sliding_rebuilds = model_.sliding_rebuilds();
     result.sliding_resolves = stepper.sliding_resolves();
-    if (rank_ == 0 && finite_sliding())
+    if (rank_ == 0 && parts_.scene.contact.sliding == Contact::Sliding::finite)
       log::info("fe_stage: finite sliding: the mortar search was redone after every converged "
                 "increment; " +
-                std::to_string(n_sliding_rebuilds_) +
+                std::to_string(model_.sliding_rebuilds()) +
                 " times its partners needed a new sparsity pattern, " +
                 std::to_string(stepper.sliding_resolves()) +
                 " increments solved again with the new "
                 "coupling");
-    if (!elastoplastic())  // (an elastoplastic body yields where it must)
+    if (!model_.elastoplastic())  // (an elastoplastic body yields where it must)
       {
-        result.yield_check = fields_.check_yield(nullptr);
-        fields_.log_yield_check(result.yield_check);
+        result.yield_check = parts_.fields.check_yield(nullptr);
+        parts_.fields.log_yield_check(result.yield_check);
       }
-    result.wall_time = elapsed();
+    result.wall_time = model_.elapsed();
     if (rank_ == 0)
-      log::info("fe_stage: time in contact assembly " + log::format_duration(t_assemble_) +
-                ", linear solves " + log::format_duration(t_solve_) + " (of which AMG setup " +
-                log::format_duration(solver_.amg_setup_time()) + "), contact evaluation " +
-                log::format_duration(t_evaluate_));
-    result.field_files = fields_.files(true);
+      log::info("fe_stage: time in contact assembly " +
+                log::format_duration(parts_.contact_solve.assembly_time()) + ", linear solves " +
+                log::format_duration(parts_.contact_solve.solve_time()) + " (of which AMG setup " +
+                log::format_duration(parts_.solver.amg_setup_time()) + "), contact evaluation " +
+                log::format_duration(parts_.contact_solve.evaluation_time()));
+    result.field_files = parts_.fields.files(true);
     return result;
   }
 }  // namespace clearjoint::fe::detail

@@ -23,9 +23,19 @@
 //   3. what each step records, the peak and the separation: the run stops when the journal
 //      has left the bearing (out of contact for T_c/10 after contact, moving away) or at the
 //      end time.
-#include "fe_stage/contact_model.h"
-#include "fe_stage/solve/hht_stepper.h"
+#include "fe_stage/solve/impact_run.h"
+
 #include "fe_stage/solve/quasi_static_stepper.h"
+
+#include "common/error.h"
+#include "common/log.h"
+#include "common/units.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace clearjoint::fe::detail
 {
@@ -167,97 +177,83 @@ namespace clearjoint::fe::detail
     }
   }  // namespace
 
-  std::set<types::global_dof_index> ContactModel::massless_dofs(
-    const Assembler::Operator kind) const
-  {
-    // the contact surface's DoFs (every node, candidate or watched)
-    std::set<types::global_dof_index> surface;
-    if (kind == Assembler::Operator::dynamic && scene_.impact.mass == Impact::Mass::redistributed)
-      for (const auto &cn : contact_.nodes())
-        surface.insert(cn.dofs.begin(), cn.dofs.end());
-    return surface;
-  }
+  ImpactRun::ImpactRun(StudyModel &model, const Parts &parts)
+    : model_(model)
+    , parts_(parts)
+    , rank_(Utilities::MPI::this_mpi_process(parts.comm))
+    , n_ranks_(Utilities::MPI::n_mpi_processes(parts.comm))
+  {}
 
-  void ContactModel::set_dynamic_operator(const MatrixCoefficients &c)
-  {
-    system_.set_dynamic_operator(c.mass, c.stiffness, material_->elastic(),
-                                 massless_dofs(Assembler::Operator::dynamic));
-    solver_.invalidate();  // its AMG was built for the previous operator
-  }
-
-  RunResult ContactModel::run_impact()
+  RunResult ImpactRun::run()
   {
     RunResult result;
-    const HhtAlpha hht = begin_impact(result);
-    if (!compute_impact_reference(result))
+    const HhtAlpha hht = begin(result);
+    if (!compute_reference(result))
       return result;
     // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
     // loaded set (the static curve pushed it at its end faces or axis, as the thickness study).
-    const bool deformable = plan_.deformable_partner;
+    const bool deformable = parts_.plan.deformable_partner;
     if (deformable)
-      {
-        journal_driven_ = false;
-        prepare_mesh();
-      }
+      model_.free_journal();
     auto &S = result.impact;
-    const auto &I = scene_.impact;
+    const auto &I = parts_.scene.impact;
     const double m_J = S.journal_mass;
-    HhtStepper stepper(*this, {scene_, bodies_, dofs_, system_, state_, contact_, comm_}, hht,
-                       S.time_step, scene_.loading.max_cuts, m_J, I.velocity, deformable);
+    HhtStepper stepper = model_.hht_stepper(hht, S.time_step, parts_.scene.loading.max_cuts, m_J,
+                                            I.velocity, deformable);
     S.journal_mass = stepper.journal_mass();
     if (deformable && rank_ == 0)
       log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +
                 " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
-    TrilinosWrappers::MPI::Vector u_peak(dofs_.owned(), comm_);
+    TrilinosWrappers::MPI::Vector u_peak(parts_.dofs.owned(), parts_.comm);
     bool have_peak = false;
-    if (!march_impact(result, stepper, u_peak, have_peak))
+    if (!march(result, stepper, u_peak, have_peak))
       return result;
     // 3. The summary and the yield check where the force peaked.
-    finish_impact(result, stepper, have_peak ? &u_peak : nullptr);
+    finish(result, stepper, have_peak ? &u_peak : nullptr);
     return result;
   }
 
-  HhtAlpha ContactModel::begin_impact(RunResult &result)
+  HhtAlpha ImpactRun::begin(RunResult &result)
   {
     result.n_ranks = n_ranks_;
-    const auto &I = scene_.impact;
+    const auto &I = parts_.scene.impact;
     auto &S = result.impact;
-    bodies_.build();
-    prepare_mesh();
-    record_mesh(result);
+    model_.build_mesh();
+    model_.record_mesh(result);
     S.velocity_in = I.velocity;
-    S.journal_mass = rigid_journal_mass(scene_);  // a deformable journal's: its FE mass, later
+    S.journal_mass =
+      rigid_journal_mass(parts_.scene);  // a deformable journal's: its FE mass, later
     // the application's operator and α, β, γ (an explicit α checked here, before the static
     // curve's cost)
     const HhtAlpha hht =
-      HhtAlpha::for_application(I.application, I.alpha, "impact.alpha", scene_.source_file);
+      HhtAlpha::for_application(I.application, I.alpha, "impact.alpha", parts_.scene.source_file);
     S.alpha = hht.alpha();
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
     if (rank_ == 0)
       log::info("fe_stage: impact: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs; " +
-                (plan_.deformable_partner ? "deformable" : "rigid") + " journal " +
+                (parts_.plan.deformable_partner ? "deformable" : "rigid") + " journal " +
                 format_value(S.journal_mass) + " kg at " + format_value(I.velocity) +
                 " m/s, setup " + log::format_duration(result.setup_time));
     return hht;
   }
 
-  bool ContactModel::compute_impact_reference(RunResult &result)
+  bool ImpactRun::compute_reference(RunResult &result)
   {
-    const auto &I = scene_.impact;
-    const auto &L = scene_.loading;
+    const auto &I = parts_.scene.impact;
+    const auto &L = parts_.scene.loading;
     auto &S = result.impact;
     const double m_J = S.journal_mass;
     const auto failed = [&](const std::string &message) {
       result.message = message;
-      result.wall_time = elapsed();
+      result.wall_time = model_.elapsed();
       return false;
     };
     // 1. The static probe and the quasi-static reference curve on this mesh.
     const double delta_probe = 0.02 * L.delta_max;
     double f_probe = 0.0;
-    QuasiStaticStepper stepper = quasi_static_stepper();
+    QuasiStaticStepper stepper = model_.quasi_static_stepper();
     if (!stepper.push_through({delta_probe}, result.message,
                               [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
       return failed("static probe of the contact stiffness: " + result.message);
@@ -267,7 +263,7 @@ namespace clearjoint::fe::detail
     const double delta_estimate = I.velocity * std::sqrt(m_J * delta_probe / f_probe);
     const double delta_curve = 1.5 * delta_estimate;
     if (delta_curve > L.delta_max)
-      throw InputError(scene_.source_file, "loading.delta_max", format_value(L.delta_max),
+      throw InputError(parts_.scene.source_file, "loading.delta_max", format_value(L.delta_max),
                        ">= " + format_value(delta_curve) + " m for this impact",
                        "study impact: the contact candidates and the quasi-static reference "
                        "curve cover penetrations up to loading.delta_max; this impact is "
@@ -278,10 +274,10 @@ namespace clearjoint::fe::detail
       targets.push_back(delta_curve * k / L.n_increments);
     const bool curve_ok =
       stepper.push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
-        r.wall_time = elapsed();
+        r.wall_time = model_.elapsed();
         result.increments.push_back(r);
-        if (options_.on_increment)
-          options_.on_increment(r);
+        if (parts_.options.on_increment)
+          parts_.options.on_increment(r);
       });
     if (!curve_ok)
       return failed("quasi-static reference curve: " + result.message);
@@ -295,35 +291,34 @@ namespace clearjoint::fe::detail
                 " m), period T_c = " + format_value(S.contact_period) +
                 " s, dt = " + format_value(S.time_step) + " s (T_c/" +
                 format_value(S.contact_period / S.time_step) + "), end time " +
-                format_value(impact_end_time(S.contact_period)) + " s");
+                format_value(end_time(S.contact_period)) + " s");
     return true;
   }
 
-  double ContactModel::impact_end_time(const double contact_period) const
+  double ImpactRun::end_time(const double contact_period) const
   {
-    return scene_.impact.end_time > 0.0 ? scene_.impact.end_time : 4.0 * contact_period;
+    return parts_.scene.impact.end_time > 0.0 ? parts_.scene.impact.end_time : 4.0 * contact_period;
   }
 
-  bool ContactModel::march_impact(RunResult &result, HhtStepper &stepper,
-                                  TrilinosWrappers::MPI::Vector &u_peak, bool &have_peak)
+  bool ImpactRun::march(RunResult &result, HhtStepper &stepper,
+                        TrilinosWrappers::MPI::Vector &u_peak, bool &have_peak)
   {
-    const auto &I = scene_.impact;
+    const auto &I = parts_.scene.impact;
     auto &S = result.impact;
-    const double t_end = impact_end_time(S.contact_period);
+    const double t_end = end_time(S.contact_period);
     const auto failed = [&]() {
-      result.wall_time = elapsed();
-      result.field_files = fields_.files(false);
+      result.wall_time = model_.elapsed();
+      result.field_files = parts_.fields.files(false);
       return false;
     };
     SeparationWatch watch;
-    fields_.create_directory();
-    if (fields_.enabled())
+    parts_.fields.create_directory();
+    if (parts_.fields.enabled())
       {
-        set_obstacle_position(0.0);
-        evaluate_contact(0.0);
-        fields_.write(0, 0.0);
+        model_.evaluate_contact_at(0.0);
+        parts_.fields.write(0, 0.0);
       }
-    const double wall_dynamic_start = elapsed();
+    const double wall_dynamic_start = model_.elapsed();
     unsigned int step = 0;
     for (; step < I.max_steps && stepper.time() < t_end * (1.0 - 1e-12); ++step)
       {
@@ -337,7 +332,7 @@ namespace clearjoint::fe::detail
           }
         const double t = stepper.time(), dt_step = rec.time_step, dt = stepper.next_dt();
         const double d = rec.delta, d_rate = rec.delta_rate, F = rec.force;
-        rec.wall_time = elapsed();
+        rec.wall_time = model_.elapsed();
         result.dynamic_steps.push_back(rec);
         if (F > S.peak_force)
           {
@@ -348,14 +343,14 @@ namespace clearjoint::fe::detail
             have_peak = true;
           }
         S.delta_max = std::max(S.delta_max, d);
-        if (options_.on_dynamic_step)
-          options_.on_dynamic_step(rec);
+        if (parts_.options.on_dynamic_step)
+          parts_.options.on_dynamic_step(rec);
         if (rank_ == 0)
           log_step(rec, t, dt, I.end_time, t_end, S.contact_period, wall_dynamic_start);
         const bool last =
           watch.update(result.dynamic_steps, t, dt_step, dt, S.contact_period, S.separated);
-        if (fields_.enabled() && (rec.step % I.field_stride == 0 || last))
-          fields_.write(rec.step, t);
+        if (parts_.fields.enabled() && (rec.step % I.field_stride == 0 || last))
+          parts_.fields.write(rec.step, t);
         if (last && !S.separated)
           {
             S.separated = true;
@@ -375,23 +370,23 @@ namespace clearjoint::fe::detail
     return true;
   }
 
-  void ContactModel::finish_impact(RunResult &result, const HhtStepper &stepper,
-                                   const TrilinosWrappers::MPI::Vector *u_peak)
+  void ImpactRun::finish(RunResult &result, const HhtStepper &stepper,
+                         const TrilinosWrappers::MPI::Vector *u_peak)
   {
     auto &S = result.impact;
-    summarise(S, result.dynamic_steps, result.increments, scene_.impact.velocity,
+    summarise(S, result.dynamic_steps, result.increments, parts_.scene.impact.velocity,
               stepper.numerical_dissipation(), stepper.work_contact());
     if (rank_ == 0)
       log_summary(S);
     if (u_peak)
       {
-        state_.u_owned() = *u_peak;
-        state_.publish();
-        result.yield_check = fields_.check_yield(nullptr);
-        fields_.log_yield_check(result.yield_check);
+        parts_.state.u_owned() = *u_peak;
+        parts_.state.publish();
+        result.yield_check = parts_.fields.check_yield(nullptr);
+        parts_.fields.log_yield_check(result.yield_check);
       }
     result.complete = true;
-    result.wall_time = elapsed();
-    result.field_files = fields_.files(true);
+    result.wall_time = model_.elapsed();
+    result.field_files = parts_.fields.files(true);
   }
 }  // namespace clearjoint::fe::detail

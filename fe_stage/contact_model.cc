@@ -1,0 +1,174 @@
+// ContactModel's own functions (contact_model.h): the study's run chosen in one place, the mesh
+// and all that depends on it, the steppers over the model's parts, the start from rest and the
+// rollback of a failed attempt.
+#include "fe_stage/contact_model.h"
+
+#include "fe_stage/solve/impact_run.h"
+#include "fe_stage/solve/quasi_static_run.h"
+#include "fe_stage/solve/rolling_run.h"
+
+namespace clearjoint::fe::detail
+{
+  RunResult ContactModel::run()
+  {
+    // the study chosen once (its plan)
+    if (plan_.dynamic)
+      return ImpactRun(*this, {scene_, plan_, options_, dofs_, state_, fields_, comm_}).run();
+    if (plan_.rolling)
+      return RollingRun(*this, {scene_, plan_, options_, bodies_, dofs_, contact_, state_, frame_,
+                                fields_, comm_})
+        .run();
+    return QuasiStaticRun(*this, {scene_, options_, bodies_, dofs_, contact_, system_, solver_,
+                                  contact_solve_, state_, fields_, comm_})
+      .run();
+  }
+
+  void ContactModel::build_mesh()
+  {
+    bodies_.build();
+    prepare_mesh();
+  }
+
+  /// Kelly's estimator: the jumps of the stress across interior faces, in both bodies; p4est
+  /// keeps the 2:1 balance.
+  void ContactModel::refine_mesh()
+  {
+    Vector<float> indicator(bodies_.triangulation().n_active_cells());
+    KellyErrorEstimator<dim>::estimate(bodies_.mapping(), dofs_.handler(),
+                                       QGauss<dim - 1>(dofs_.fe().degree + 1), {}, state_.u(),
+                                       indicator, ComponentMask(), nullptr,
+                                       numbers::invalid_unsigned_int,
+                                       bodies_.triangulation().locally_owned_subdomain());
+    bodies_.refine_largest(indicator, scene_.mesh.adaptive_fraction);
+    prepare_mesh();
+  }
+
+  void ContactModel::free_journal()
+  {
+    journal_driven_ = false;
+    prepare_mesh();
+  }
+
+  SpinStepper ContactModel::spin_stepper(const rolling::Motion &motion, const double t_end,
+                                         const unsigned int n_steps, const unsigned int max_cuts,
+                                         const double inertia)
+  {
+    return SpinStepper(*this, scene_, state_, frame_, comm_, motion, t_end, n_steps, max_cuts,
+                       inertia);
+  }
+
+  /// One state of the rolling bearing for the journal's spin now (SpinProblem): the material
+  /// Newton iteration, then the journal's torque.
+  RollingSolve ContactModel::solve_rolling_state(const double delta)
+  {
+    RollingSolve rs;
+    const MaterialSolve m = newton_.solve(delta, scene_.rolling.max_newton_iterations);
+    rs.record = m.record;
+    rs.newton_iterations = m.newton_iterations;
+    rs.line_search_steps = m.line_search_steps;
+    rs.contact_iterations = m.contact_iterations;
+    rs.linear_iterations = m.linear_iterations;
+    rs.torque_journal = journal_torque();
+    return rs;
+  }
+
+  double ContactModel::journal_torque() const
+  {
+    // the contact's torque on the journal about its axis: the force on the journal is −t at
+    // its surface point c' + R_J n (z-moments are the same in every frame turned about z)
+    // (only the friction force has a moment: the normal n passes through the journal's axis)
+    // (the deformable journal: the arm from its axis to the bore node where it is now)
+    double torque = 0.0;
+    for (const auto &cn : contact_.nodes())
+      if (contact_.friction() && cn.owned && cn.active)
+        {
+          const Tensor<1, dim> t = tangential(contact_.traction(cn), cn.n);
+          Tensor<1, dim> arm = scene_.geometry.R_J() * cn.n;
+          if (rolling_deformable_journal())
+            for (unsigned int c = 0; c + 1 < dim; ++c)
+              arm[c] = cn.X[c] + state_.u()[cn.dofs[c]] - frame_.centre[c];
+          torque -= arm[0] * t[1] - arm[1] * t[0];
+        }
+    return bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
+  }
+
+  HhtStepper ContactModel::hht_stepper(const HhtAlpha &hht, const double dt_nominal,
+                                       const unsigned int max_cuts, const double m_J,
+                                       const double velocity, const bool deformable_journal)
+  {
+    return HhtStepper(*this, {scene_, bodies_, dofs_, system_, state_, contact_, comm_}, hht,
+                      dt_nominal, max_cuts, m_J, velocity, deformable_journal);
+  }
+
+  QuasiStaticStepper ContactModel::quasi_static_stepper()
+  {
+    return QuasiStaticStepper(*this,
+                              {scene_, dofs_, state_, contact_, newton_, comm_, finite_sliding()});
+  }
+
+  void ContactModel::start_from_rest()
+  {
+    state_.set_zero();
+    newton_.forget_tangent();
+    for (auto &cn : contact_.nodes())
+      {
+        cn.active = false;
+        cn.stick = true;
+        cn.relative = cn.relative_converged = Tensor<1, dim>();
+        cn.obstacle_u = cn.obstacle_u_converged = Tensor<1, dim>();
+      }
+  }
+
+  void ContactModel::restore_state(const Snapshot &s)
+  {
+    newton_.forget_tangent();
+    state_.u_owned() = s.u;
+    state_.publish();
+    contact_.nodes() = s.nodes;
+    // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
+    // restored state again so that the pattern holds its partners (the rolling study's turning
+    // journal, not finite sliding, searches again at its next evaluation anyway)
+    if (finite_sliding() && n_sliding_rebuilds_ != s.sliding_rebuilds)
+      follow_sliding(s.u, true);
+  }
+
+  /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
+  void ContactModel::record_mesh(RunResult &result) const
+  {
+    result.n_dofs = dofs_.handler().n_dofs();
+    result.n_cells = bodies_.triangulation().n_global_active_cells();
+    result.symmetry_factor = bodies_.symmetry_factor();
+    result.h_min = bodies_.h_min();
+    result.setup_time = elapsed();
+  }
+
+  /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
+  void ContactModel::prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement)
+  {
+    solver_.invalidate();  // its AMG was built for the previous mesh's matrix
+    dofs_.distribute(journal_driven_);
+    find_contact_nodes(search_displacement);
+    make_matrices();
+    system_.assemble_static(material_->elastic(), massless_dofs(system_.kind()));
+    contact_solve_.compute_nodal_weights();
+  }
+
+  std::set<types::global_dof_index> ContactModel::massless_dofs(
+    const Assembler::Operator kind) const
+  {
+    // the contact surface's DoFs (every node, candidate or watched)
+    std::set<types::global_dof_index> surface;
+    if (kind == Assembler::Operator::dynamic && scene_.impact.mass == Impact::Mass::redistributed)
+      for (const auto &cn : contact_.nodes())
+        surface.insert(cn.dofs.begin(), cn.dofs.end());
+    return surface;
+  }
+
+  void ContactModel::set_dynamic_operator(const MatrixCoefficients &c)
+  {
+    system_.set_dynamic_operator(c.mass, c.stiffness, material_->elastic(),
+                                 massless_dofs(Assembler::Operator::dynamic));
+    solver_.invalidate();  // its AMG was built for the previous operator
+  }
+
+}  // namespace clearjoint::fe::detail
