@@ -1,8 +1,8 @@
 // The FE contact model's façade (fe_model.h): run one scene, start MPI, report library versions.
-// The model itself is fe_stage/contact_model.h and the files it names (fe_stage/README.md).
+// The model itself is fe_stage/model.h and the files it names (fe_stage/README.md).
 #include "fe_stage/fe_model.h"
 
-#include "fe_stage/contact_model.h"
+#include "fe_stage/model.h"
 #include "fe_stage/study/study.h"
 
 #include <deal.II/base/revision.h>
@@ -11,7 +11,7 @@ namespace clearjoint::fe
 {
   namespace detail
   {
-    ContactModel::ContactModel(const FeScene &scene, const RunOptions &options)
+    Model::Model(const FeScene &scene, const RunOptions &options)
       : scene_(scene)
       , plan_(plan_study(scene))
       , options_(options)
@@ -38,7 +38,7 @@ namespace clearjoint::fe
 
   RunResult run_scene(const FeScene &scene, const RunOptions &options)
   {
-    detail::ContactModel model(scene, options);
+    detail::Model model(scene, options);
     return model.run();
   }
 

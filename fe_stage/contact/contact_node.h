@@ -59,7 +59,7 @@ namespace clearjoint::fe::detail
     /// start (radial: (0, −δ, 0); rolling: accumulated step by step), now and at the last
     /// converged step. relative = u − obstacle_u. Two deformable bodies: the rigid motion of
     /// the partner combination's frame (the rolling study's turning journal; else 0), so that
-    /// relative = u − Σ w R u_p − obstacle_u (R: partner_rotation in contact_model.h).
+    /// relative = u − Σ w R u_p − obstacle_u (R: partner_rotation in model.h).
     Tensor<1, dim> obstacle_u, obstacle_u_converged;
     /// [N] elastoplastic: the linearisation's load b at the node's DoFs (traction = K u − b)
     Tensor<1, dim> load_offset;

@@ -2,7 +2,7 @@
 // contact_pairing.h), their partners' ghosts and the cells whose condensed matrices change with
 // the active set; then the sparsity pattern that every active set condenses into, matrices,
 // vectors and the solver choice.
-#include "fe_stage/contact_model.h"
+#include "fe_stage/model.h"
 
 namespace clearjoint::fe::detail
 {
@@ -83,7 +83,7 @@ namespace clearjoint::fe::detail
   /// The pairing's contact nodes, searched between the reference surfaces or those displaced
   /// by `search_displacement` (ghosted; finite sliding's rebuild), then their partners' ghosts
   /// and the contact cells.
-  void ContactModel::find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement)
+  void Model::find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement)
   {
     std::map<types::global_dof_index, Point<dim>> support;
     DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
@@ -102,7 +102,7 @@ namespace clearjoint::fe::detail
 
   /// Matrices and vectors. The sparsity pattern is built with every candidate's contact line
   /// present, so any active set condenses into it (the two-body lines couple journal DoFs).
-  void ContactModel::make_matrices()
+  void Model::make_matrices()
   {
     newton_.forget_tangent();  // the matrices are made again
     AffineConstraints<double> worst(dofs_.relevant());

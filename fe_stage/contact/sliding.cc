@@ -2,7 +2,7 @@
 // done again between the surfaces as they are now, x = X + u, so a node is coupled to the
 // partners that face it after the surfaces have slid past each other, not to those that faced
 // it in the reference configuration.
-#include "fe_stage/contact_model.h"
+#include "fe_stage/model.h"
 
 namespace clearjoint::fe::detail
 {
@@ -14,8 +14,7 @@ namespace clearjoint::fe::detail
   /// increment's start) with the new partners. Returns how far the coupling moved (the
   /// largest over the candidate nodes of Σ_m |ΔC_sm| and |Δgap|/δ_max). `rebuild` forces the
   /// rebuild: after a failed attempt restored contact_.nodes() whose partners the pattern no longer has.
-  double ContactModel::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start,
-                                      const bool rebuild)
+  double Model::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, const bool rebuild)
   {
     // How much the coupling moved: per node the sum of |C_new − C_old| over its partners
     // [1] and the change of its linearised gap at u [m] (against δ_max).

@@ -1,12 +1,12 @@
 // The elastoplastic bodies' quadrature-point history seen from the model (study rolling):
 // the tangent assembled from it, committing a converged step with its energies, and the per-cell and mid-plane fields that
 // the output and the rolling study's strain profiles read from it.
-#include "fe_stage/contact_model.h"
 #include "fe_stage/material/strain_measure.h"
+#include "fe_stage/model.h"
 
 namespace clearjoint::fe::detail
 {
-  void ContactModel::init_plasticity()
+  void Model::init_plasticity()
   {
     if (!material_->has_history())
       throw NumericalError("fe_stage: the elastoplastic assembly needs a material law with "
@@ -17,7 +17,7 @@ namespace clearjoint::fe::detail
 
   /// Trial → committed at every quadrature point (after a converged step), and the step's
   /// energies from the committed states.
-  PlasticEnergies ContactModel::commit_plasticity()
+  PlasticEnergies Model::commit_plasticity()
   {
     newton_.forget_tangent();  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
@@ -82,9 +82,8 @@ namespace clearjoint::fe::detail
   /// γ for the deformable journal, angles about the body's own axis): the face quadrature
   /// points of the contact-surface faces that touch z = 0, nearest row to the plane.
   /// Collective; every rank gets the sorted profile.
-  std::vector<StrainProfilePoint> ContactModel::strain_profile(const unsigned int body,
-                                                               const double turn,
-                                                               const double half_angle) const
+  std::vector<StrainProfilePoint> Model::strain_profile(const unsigned int body, const double turn,
+                                                        const double half_angle) const
   {
     const QGauss<dim - 1> fq(dofs_.fe().degree + 2);
     FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq,
@@ -163,7 +162,7 @@ namespace clearjoint::fe::detail
 
   /// The tangent and its load at the current displacement (small or finite kinematics),
   /// then the contact nodes' share of the load (MaterialProblem).
-  unsigned int ContactModel::assemble_plastic()
+  unsigned int Model::assemble_plastic()
   {
     unsigned int n_plastic_points = 0;
     {
@@ -178,7 +177,7 @@ namespace clearjoint::fe::detail
 
   /// The last assembly left trial states at the last Newton iterate, not at the converged
   /// displacement: evaluate every point there again, then make it the point's history.
-  void ContactModel::commit_material()
+  void Model::commit_material()
   {
     newton_.forget_tangent();  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);

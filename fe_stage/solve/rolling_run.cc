@@ -2,7 +2,7 @@
 // Each step: the bearing turned to φ = ω_B t (its co-rotating frame: the mesh stays, the rigid
 // journal's axis turns round it), the journal pushed to δ(t), and the journal's spin rate γ̇
 // found from its torque balance (SpinStepper, solve/spin_stepper.h). Every evaluation of the
-// journal's torque is a state of the elastoplastic bodies (ContactModel::solve_rolling_state:
+// journal's torque is a state of the elastoplastic bodies (Model::solve_rolling_state:
 // material Newton iterations, each an active-set contact solve with Coulomb friction). What
 // this file keeps (RollingRun, solve/rolling_run.h): the study's set-up, what each converged
 // step records (forces, torques, energies, the paper's Eqs. 4–8), and the end state (strain

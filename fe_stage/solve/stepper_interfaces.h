@@ -2,7 +2,7 @@
 // A stepper owns its loop and its state; it is given the parts it works on — the scene, the DoF
 // space, the assembler, the state u, the contact nodes, the journal frame — and, for what only
 // the whole model can do (a contact solve, a material Newton iteration, the rollback of a failed
-// attempt), one of the interfaces below, which ContactModel implements:
+// attempt), one of the interfaces below, which Model implements:
 //   - QuasiStaticProblem: the quasi-static push (solve/quasi_static_stepper.h);
 //   - DynamicProblem:     the impact study's HHT-α stepper (solve/hht_stepper.h);
 //   - SpinProblem:        the rolling study's spin stepper (solve/spin_stepper.h).
@@ -32,7 +32,7 @@ namespace clearjoint::fe::detail
   };
 
   /// One converged state of the rolling bearing for a given journal spin (the torque
-  /// balance's evaluation, ContactModel::solve_rolling_state).
+  /// balance's evaluation, Model::solve_rolling_state).
   struct RollingSolve
   {
     double torque_journal = 0.0;  // [N m] full body, on the journal about +z

@@ -3,7 +3,7 @@
 // scene, its plan, the run's options, the DoF space, the state u, the fields — and asks the
 // model, through StudyModel, for what only the whole model can do: build the mesh and all that
 // depends on it, free a deformable journal, make a stepper over the model's parts, place the
-// contact at a push, commit the material. ContactModel implements it; run() chooses the
+// contact at a push, commit the material. Model implements it; run() chooses the
 // study's run in one place.
 #pragma once
 

@@ -1,7 +1,7 @@
-// ContactModel's own functions (contact_model.h): the study's run chosen in one place, the mesh
+// Model's own functions (model.h): the study's run chosen in one place, the mesh
 // and all that depends on it, the steppers over the model's parts, the start from rest and the
 // rollback of a failed attempt.
-#include "fe_stage/contact_model.h"
+#include "fe_stage/model.h"
 
 #include "fe_stage/solve/impact_run.h"
 #include "fe_stage/solve/quasi_static_run.h"
@@ -9,7 +9,7 @@
 
 namespace clearjoint::fe::detail
 {
-  RunResult ContactModel::run()
+  RunResult Model::run()
   {
     // the study chosen once (its plan)
     if (plan_.dynamic)
@@ -23,7 +23,7 @@ namespace clearjoint::fe::detail
       .run();
   }
 
-  void ContactModel::build_mesh()
+  void Model::build_mesh()
   {
     bodies_.build();
     prepare_mesh();
@@ -31,7 +31,7 @@ namespace clearjoint::fe::detail
 
   /// Kelly's estimator: the jumps of the stress across interior faces, in both bodies; p4est
   /// keeps the 2:1 balance.
-  void ContactModel::refine_mesh()
+  void Model::refine_mesh()
   {
     Vector<float> indicator(bodies_.triangulation().n_active_cells());
     KellyErrorEstimator<dim>::estimate(bodies_.mapping(), dofs_.handler(),
@@ -43,15 +43,15 @@ namespace clearjoint::fe::detail
     prepare_mesh();
   }
 
-  void ContactModel::free_journal()
+  void Model::free_journal()
   {
     journal_driven_ = false;
     prepare_mesh();
   }
 
-  SpinStepper ContactModel::spin_stepper(const rolling::Motion &motion, const double t_end,
-                                         const unsigned int n_steps, const unsigned int max_cuts,
-                                         const double inertia)
+  SpinStepper Model::spin_stepper(const rolling::Motion &motion, const double t_end,
+                                  const unsigned int n_steps, const unsigned int max_cuts,
+                                  const double inertia)
   {
     return SpinStepper(*this, scene_, state_, frame_, comm_, motion, t_end, n_steps, max_cuts,
                        inertia);
@@ -59,7 +59,7 @@ namespace clearjoint::fe::detail
 
   /// One state of the rolling bearing for the journal's spin now (SpinProblem): the material
   /// Newton iteration, then the journal's torque.
-  RollingSolve ContactModel::solve_rolling_state(const double delta)
+  RollingSolve Model::solve_rolling_state(const double delta)
   {
     RollingSolve rs;
     const MaterialSolve m = newton_.solve(delta, scene_.rolling.max_newton_iterations);
@@ -72,7 +72,7 @@ namespace clearjoint::fe::detail
     return rs;
   }
 
-  double ContactModel::journal_torque() const
+  double Model::journal_torque() const
   {
     // the contact's torque on the journal about its axis: the force on the journal is −t at
     // its surface point c' + R_J n (z-moments are the same in every frame turned about z)
@@ -92,21 +92,21 @@ namespace clearjoint::fe::detail
     return bodies_.symmetry_factor() * Utilities::MPI::sum(torque, comm_);
   }
 
-  HhtStepper ContactModel::hht_stepper(const HhtAlpha &hht, const double dt_nominal,
-                                       const unsigned int max_cuts, const double m_J,
-                                       const double velocity, const bool deformable_journal)
+  HhtStepper Model::hht_stepper(const HhtAlpha &hht, const double dt_nominal,
+                                const unsigned int max_cuts, const double m_J,
+                                const double velocity, const bool deformable_journal)
   {
     return HhtStepper(*this, {scene_, bodies_, dofs_, system_, state_, contact_, comm_}, hht,
                       dt_nominal, max_cuts, m_J, velocity, deformable_journal);
   }
 
-  QuasiStaticStepper ContactModel::quasi_static_stepper()
+  QuasiStaticStepper Model::quasi_static_stepper()
   {
     return QuasiStaticStepper(*this,
                               {scene_, dofs_, state_, contact_, newton_, comm_, finite_sliding()});
   }
 
-  void ContactModel::start_from_rest()
+  void Model::start_from_rest()
   {
     state_.set_zero();
     newton_.forget_tangent();
@@ -119,7 +119,7 @@ namespace clearjoint::fe::detail
       }
   }
 
-  void ContactModel::restore_state(const Snapshot &s)
+  void Model::restore_state(const Snapshot &s)
   {
     newton_.forget_tangent();
     state_.u_owned() = s.u;
@@ -133,7 +133,7 @@ namespace clearjoint::fe::detail
   }
 
   /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
-  void ContactModel::record_mesh(RunResult &result) const
+  void Model::record_mesh(RunResult &result) const
   {
     result.n_dofs = dofs_.handler().n_dofs();
     result.n_cells = bodies_.triangulation().n_global_active_cells();
@@ -143,7 +143,7 @@ namespace clearjoint::fe::detail
   }
 
   /// Everything that depends on the mesh: DoFs, constraints, contact pairing, matrices.
-  void ContactModel::prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement)
+  void Model::prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement)
   {
     solver_.invalidate();  // its AMG was built for the previous mesh's matrix
     dofs_.distribute(journal_driven_);
@@ -153,8 +153,7 @@ namespace clearjoint::fe::detail
     contact_solve_.compute_nodal_weights();
   }
 
-  std::set<types::global_dof_index> ContactModel::massless_dofs(
-    const Assembler::Operator kind) const
+  std::set<types::global_dof_index> Model::massless_dofs(const Assembler::Operator kind) const
   {
     // the contact surface's DoFs (every node, candidate or watched)
     std::set<types::global_dof_index> surface;
@@ -164,7 +163,7 @@ namespace clearjoint::fe::detail
     return surface;
   }
 
-  void ContactModel::set_dynamic_operator(const MatrixCoefficients &c)
+  void Model::set_dynamic_operator(const MatrixCoefficients &c)
   {
     system_.set_dynamic_operator(c.mass, c.stiffness, material_->elastic(),
                                  massless_dofs(Assembler::Operator::dynamic));

@@ -1,5 +1,5 @@
-// The FE contact model as the composition root of fe_stage (deal.II, dim = 3): it owns one of
-// each part and runs no study itself. run() chooses the study's run once from the scene's plan
+// The FE contact model (Model), the composition root of fe_stage (deal.II, dim = 3): it owns
+// one of each part and runs no study itself. run() chooses the study's run once from the scene's plan
 // — QuasiStaticRun (radial, misalignment, Hertz, patch), ImpactRun or RollingRun, each its own
 // object in solve/*_run.{h,cc} — and the runs, the steppers and the material Newton iteration
 // see the model only through the interfaces it implements for what needs several parts at
@@ -8,7 +8,7 @@
 // QuasiStaticProblem, DynamicProblem, SpinProblem (solve/stepper_interfaces.h) and
 // MaterialProblem (solve/material_newton.h). Internal: only fe_stage's own .cc files include
 // this; everything else sees the deal.II-free façade fe_model.h. Its own functions are in
-// contact_model.cc, contact/{contact_pattern,sliding}.cc and material/plastic_history.cc
+// model.cc, contact/{contact_pattern,sliding}.cc and material/plastic_history.cc
 // (fe_stage/README.md maps every file). It includes solve/; core/ includes nothing from solve/.
 //
 // The parts, each the one owner of its state (issue 29, FE_DESIGN §4.1): the meshed bodies
@@ -133,25 +133,42 @@ namespace clearjoint::fe::detail
   /// SpinProblem (solve/stepper_interfaces.h), the material Newton iteration through
   /// MaterialProblem (solve/material_newton.h), and the studies' runs through StudyModel
   /// (solve/study_model.h), besides the parts they are given.
-  class ContactModel : private QuasiStaticProblem,
-                       private DynamicProblem,
-                       private SpinProblem,
-                       private MaterialProblem,
-                       private StudyModel
+  class Model : private QuasiStaticProblem,
+                private DynamicProblem,
+                private SpinProblem,
+                private MaterialProblem,
+                private StudyModel
   {
   public:
-    ContactModel(const FeScene &scene, const RunOptions &options);
+    Model(const FeScene &scene, const RunOptions &options);
     /// The scene's study, chosen once from its plan: QuasiStaticRun, ImpactRun or
     /// RollingRun.
     RunResult run();
 
   private:
-    /// The pairing's contact nodes, their partners' ghosts and the contact cells
-    /// (contact/contact_pattern.cc); searched between the surfaces displaced by
-    /// `search_displacement` when given (ghosted; finite sliding's rebuild).
+    // ---- the mesh and all that depends on it (model.cc, contact/contact_pattern.cc)
+    void build_mesh() override;
+    void refine_mesh() override;
+    void free_journal() override;
+    /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
+    /// find_contact_nodes), matrices.
+    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
+    /// The pairing's contact nodes, their partners' ghosts and the contact cells; searched
+    /// between the surfaces displaced by `search_displacement` when given (ghosted; finite
+    /// sliding's rebuild).
     void find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
-    /// contact.sliding finite: the mortar search again at the converged deformed surfaces
-    /// (contact/sliding.cc); slip then counts from u_start. Returns how far the coupling moved.
+    /// The sparsity pattern with every candidate's contact line, the matrices, u, the solver.
+    void make_matrices();
+    /// The contact surface's DoFs, massless in an operator of this kind (the impact study's
+    /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
+    /// otherwise.
+    std::set<types::global_dof_index> massless_dofs(Assembler::Operator kind) const;
+    /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
+    void record_mesh(RunResult &result) const override;
+
+    // ---- the contact pairing as the surfaces move (contact/sliding.cc)
+    /// contact.sliding finite: the mortar search again at the converged deformed surfaces;
+    /// slip then counts from u_start. Returns how far the coupling moved.
     double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, bool rebuild = false);
     /// contact.sliding finite (scene.cc admits it only for two bodies paired by mortar)
     bool finite_sliding() const { return scene_.contact.sliding == Contact::Sliding::finite; }
@@ -159,62 +176,20 @@ namespace clearjoint::fe::detail
     {
       return follow_sliding(u_start);
     }
-    unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
-    void make_matrices();
-    /// The contact surface's DoFs, massless in an operator of this kind (the impact study's
-    /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
-    /// otherwise.
-    std::set<types::global_dof_index> massless_dofs(Assembler::Operator kind) const;
-    void evaluate_contact_at(double delta) override
+    void pair_turned_journal(const TrilinosWrappers::MPI::Vector &u_start) override
     {
-      contact_solve_.set_obstacle_position(delta);
-      contact_solve_.evaluate_contact(delta);
+      follow_sliding(u_start);
     }
-    /// The steppers over the model's parts (contact_model.cc).
+    bool rolling_deformable_journal() const { return contact_solve_.rolling_deformable_journal(); }
+    bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
+    unsigned int sliding_rebuilds() const override { return n_sliding_rebuilds_; }
+
+    // ---- the steppers over the model's parts, the start and the rollback (model.cc)
     QuasiStaticStepper quasi_static_stepper() override;
     HhtStepper hht_stepper(const HhtAlpha &hht, double dt_nominal, unsigned int max_cuts,
                            double m_J, double velocity, bool deformable_journal) override;
     SpinStepper spin_stepper(const rolling::Motion &motion, double t_end, unsigned int n_steps,
                              unsigned int max_cuts, double inertia) override;
-    unsigned int sliding_rebuilds() const override { return n_sliding_rebuilds_; }
-    void build_mesh() override;
-    void refine_mesh() override;
-    void free_journal() override;
-    /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
-    /// find_contact_nodes), matrices.
-    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
-    /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
-    void record_mesh(RunResult &result) const override;
-    /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
-    /// built again).
-    void set_dynamic_operator(const MatrixCoefficients &c) override;
-    void init_plasticity() override;
-    /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
-    /// then the contact nodes' share of the load. Returns the number of yielding points.
-    unsigned int assemble_plastic() override;
-    bool elastoplastic() const override { return system_.kind() == Assembler::Operator::tangent; }
-    PlasticEnergies commit_plasticity() override;
-    std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
-                                                   double half_angle) const override;
-    /// One material Newton iteration (SpinProblem: the coupled spin iteration's), and its
-    /// tolerance: the iteration's own (MaterialNewton).
-    MaterialIteration material_iteration(double delta, bool line_search) override
-    {
-      return newton_.iterate(delta, line_search);
-    }
-    double material_tolerance() const override { return newton_.tolerance(); }
-    /// A converged state's trial states made the points' history.
-    void commit_material() override;
-    /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
-    /// Newton on the material around the active-set contact solve. Throws StepFailure.
-    RollingSolve solve_rolling_state(double delta) override;
-    /// [N m] the contact's torque on the journal about its axis, full body (collective).
-    double journal_torque() const override;
-    /// One increment to `delta` from the current state (ContactSolve); throws StepFailure.
-    IncrementRecord solve_increment(double delta) override
-    {
-      return contact_solve_.solve_increment(delta);
-    }
     /// Every study's start: zero displacement, no contact, every node sticking with no slip
     /// history and the obstacle's surface points unmoved.
     void start_from_rest() override;
@@ -224,14 +199,55 @@ namespace clearjoint::fe::detail
       return {state_.u_owned(), contact_.nodes(), n_sliding_rebuilds_};
     }
     void restore_state(const Snapshot &s) override;
-    /// [s] since the model was made (the runs' setup and wall times).
+    /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
+    /// built again).
+    void set_dynamic_operator(const MatrixCoefficients &c) override;
+
+    // ---- the contact (ContactSolve)
+    /// One increment to `delta` from the current state; throws StepFailure.
+    IncrementRecord solve_increment(double delta) override
+    {
+      return contact_solve_.solve_increment(delta);
+    }
+    void evaluate_contact_at(double delta) override
+    {
+      contact_solve_.set_obstacle_position(delta);
+      contact_solve_.evaluate_contact(delta);
+    }
+    /// Each contact node's share of the step's known load b.
+    void set_contact_load_offsets() override { contact_solve_.set_contact_load_offsets(); }
+    /// [N m] the contact's torque on the journal about its axis, full body (collective).
+    double journal_torque() const override;
+
+    // ---- the material (material/plastic_history.cc, model.cc)
+    void init_plasticity() override;
+    bool elastoplastic() const override { return system_.kind() == Assembler::Operator::tangent; }
+    /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
+    /// then the contact nodes' share of the load. Returns the number of yielding points.
+    unsigned int assemble_plastic() override;
+    /// One material Newton iteration (SpinProblem: the coupled spin iteration's), and its
+    /// tolerance: the iteration's own (MaterialNewton).
+    MaterialIteration material_iteration(double delta, bool line_search) override
+    {
+      return newton_.iterate(delta, line_search);
+    }
+    double material_tolerance() const override { return newton_.tolerance(); }
+    /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
+    /// Newton on the material around the active-set contact solve. Throws StepFailure.
+    RollingSolve solve_rolling_state(double delta) override;
+    /// A converged state's trial states made the points' history.
+    void commit_material() override;
+    PlasticEnergies commit_plasticity() override;
+    std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
+                                                   double half_angle) const override;
+
+    /// [s] since the model was made (the runs' set-up and wall times).
     double elapsed() const override
     {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
-    /// Each contact node's share of the step's known load b (ContactSolve).
-    void set_contact_load_offsets() override { contact_solve_.set_contact_load_offsets(); }
 
+    // ---- the parts (in the order they are made)
     const FeScene &scene_;
     const StudyPlan plan_;  // what the scene's study sets up (study/*.cc)
     RunOptions options_;
@@ -257,12 +273,6 @@ namespace clearjoint::fe::detail
     /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
     /// cells' matrices, the elastic cache and each iteration's condensed system.
     Assembler system_;
-    bool rolling_deformable_journal() const { return contact_solve_.rolling_deformable_journal(); }
-    bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
-    void pair_turned_journal(const TrilinosWrappers::MPI::Vector &u_start) override
-    {
-      follow_sliding(u_start);
-    }
     /// The partner combinations' sparsity: per candidate node (by its x-DoF) the component of
     /// its normal line and its partners' x-DoFs, as make_matrices built the pattern for them
     /// (follow_sliding: whether new couplings fit it).
@@ -272,13 +282,13 @@ namespace clearjoint::fe::detail
       std::set<types::global_dof_index> partners;
     };
     std::map<types::global_dof_index, PatternEntry> pattern_partners_;
-    State state_;  // u (owned and ghosted) and the nodal forces it leaves
+    unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
+    State state_;                          // u (owned and ghosted) and the nodal forces it leaves
 
     SystemSolver solver_;  // KLU or CG/GMRES with the AMG it owns
     /// The material Newton iteration of an elastoplastic state, with its line search and the
     /// tangent it leaves assembled.
     MaterialNewton newton_;
-
     /// The increment's contact solve: the active-set iteration, its constraints and times.
     ContactSolve contact_solve_;
     /// The fields for ParaView, their PVD records and the yield check.
