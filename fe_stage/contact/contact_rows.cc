@@ -3,6 +3,10 @@
 // friction rows of slipping nodes.
 #include "fe_stage/solve/contact_solve.h"
 
+#include "fe_stage/solve/rolling_kinematics.h"
+
+#include "common/error.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
