@@ -488,8 +488,9 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log_solver_summary(parts_.scene, result, stepper, model_.journal_turns_deformable(),
                          model_.sliding_rebuilds());
-    result.field_files = parts_.fields.files(false);
     result.complete = result.message.empty();
+    // the PVD that indexes the fields with them, as the other studies list it
+    result.field_files = parts_.fields.files(result.complete);
     result.wall_time = model_.elapsed();
   }
 }  // namespace clearjoint::fe::detail

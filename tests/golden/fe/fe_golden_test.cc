@@ -26,6 +26,19 @@ namespace
     exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return dir;
   }
+
+  /// Whether the manifest's outputs list a path ending in `suffix`.
+  bool lists_output(const nlohmann::json &manifest, const std::string &suffix)
+  {
+    for (const auto &o : manifest.at("outputs"))
+      {
+        const std::string path = o.at("path");
+        if (path.size() >= suffix.size() &&
+            path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0)
+          return true;
+      }
+    return false;
+  }
 } // namespace
 
 // The coarse two-body end_faces curve. Golden values from this code on 2026-11-24 (quarter model,
@@ -69,6 +82,30 @@ TEST(FeGolden, CoarseEndFacesCurveAndOutputContract)
   EXPECT_EQ(manifest.at("extra").at("friction").at("mu").get<double>(), 0.0);
   EXPECT_TRUE(fs::exists(out / "fields" / "solution.pvd"));
   EXPECT_TRUE(fs::exists(out / "fields" / "solution_0003.pvtu"));
+  EXPECT_TRUE(lists_output(manifest, "fields/solution.pvd"));
+  fs::remove_all(dir);
+}
+
+// The rolling study's manifest lists the fields' PVD (the file ParaView opens) beside the
+// PVTU of each written step, as the quasi-static and impact studies' do (it was missing until
+// 2026-11-29). A reduced scene: the coarse ring, 10 µm in 4 steps.
+TEST(FeGolden, RollingManifestListsTheFieldsIndex)
+{
+  int code = -1;
+  const fs::path dir = run_fe_stage(
+    "rolling_fields",
+    "study: rolling\n"
+    "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
+    "loading: {delta_max: 1.0e-5, journal: rigid}\n"
+    "rolling: {n_steps: 4, ramp_time: 0.02, end_time: 0.02, field_stride: 2}\n",
+    code);
+  ASSERT_EQ(code, 0);
+  const fs::path out = dir / "out";
+  const auto manifest = read_json_file((out / "manifest.json").string());
+  EXPECT_EQ(manifest.at("status"), "complete");
+  EXPECT_TRUE(fs::exists(out / "fields" / "solution.pvd"));
+  EXPECT_TRUE(lists_output(manifest, "fields/solution.pvd"));
+  EXPECT_TRUE(lists_output(manifest, "fields/solution_0000.pvtu"));
   fs::remove_all(dir);
 }
 
