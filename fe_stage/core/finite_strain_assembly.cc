@@ -7,13 +7,19 @@
 //     f_int,a = ∫ P(F) : ∇N_a dV,   K_t,ab = ∫ ∇N_a : A : ∇N_b dV,   A = dP/dF,
 // F = I + ∇u, so that the active-set contact solve runs unchanged on the linearised problem.
 // A carries the geometric stiffness (δ_ik S_JL) beside the material part. The vector-valued
-// shape function of DoF a is e_c ⊗ φ_a (one component c), so ∇N_a : A : ∇N_b is
-// ∇φ_a · A_{c_a · c_b ·} ∇φ_b: nine products per pair instead of 81.
+// shape function of DoF a is e_c ⊗ φ_s (one component c of the scalar shape function s), so
+// ∇N_a : A : ∇N_b is ∇φ_s · A_{c · c' ·} ∇φ_s'. The 3 × 3 block of every pair of scalar shape
+// functions (s, s') is computed at once: first T_s'[i][J][k] = A_iJkL ∂_L φ_s' for each s', then
+// the block ∂_J φ_s T_s'[i][J][k]. For FE_Q(2)^3 (27 scalar functions) that is ~26 k products a
+// quadrature point where the pair-by-pair sum of DoFs took ~59 k, with the fourth-order
+// tensor read 27 times instead of 6 561.
 #include "fe_stage/core/assembler.h"
 #include "fe_stage/core/step_failure.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
+
+#include <array>
 
 namespace clearjoint::fe::detail
 {
@@ -27,14 +33,21 @@ namespace clearjoint::fe::detail
                      update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector u(0);
     const unsigned int n = dofs_.fe().n_dofs_per_cell();
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<unsigned int> component(n);
+    // the cell DoF of each (scalar shape function, component): FESystem of dim equal scalar
+    // elements
+    const unsigned int n_scalar = n / dim;
+    std::vector<std::array<unsigned int, dim>> dof_of(n_scalar);
     for (unsigned int i = 0; i < n; ++i)
-      component[i] = dofs_.fe().system_to_component_index(i).first;
+      {
+        const auto [c, s] = dofs_.fe().system_to_component_index(i);
+        dof_of[s][c] = i;
+      }
+    std::vector<types::global_dof_index> dofs(n);
     Vector<double> u_cell(n), f_cell(n), b_cell(n);
     FullMatrix<double> D(n, n);
     std::vector<Tensor<2, dim>> grad_u(n_q);
-    std::vector<Tensor<1, dim>> grad_phi(n);
+    std::vector<Tensor<1, dim>> grad_phi(n_scalar);  // ∇φ_s at the point
+    std::vector<Tensor<3, dim>> T(n_scalar);         // T_s[i][J][k] = A_iJkL ∂_L φ_s
 
     K_ = 0.0;
     A_static_ = 0.0;
@@ -57,24 +70,32 @@ namespace clearjoint::fe::detail
                                   r.reason};
               n_plastic_points += r.yielding ? 1 : 0;
               const double JxW = fv.JxW(q);
-              for (unsigned int i = 0; i < n; ++i)
-                grad_phi[i] = fv.shape_grad_component(i, q, component[i]);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const unsigned int ci = component[i];
-                  double f = 0.0;
+              for (unsigned int s = 0; s < n_scalar; ++s)
+                grad_phi[s] = fv.shape_grad_component(dof_of[s][0], q, 0);
+              for (unsigned int s = 0; s < n_scalar; ++s)
+                for (unsigned int i = 0; i < dim; ++i)
                   for (unsigned int J = 0; J < dim; ++J)
-                    f += r.stress[ci][J] * grad_phi[i][J];
-                  f_cell(i) += f * JxW;
-                  for (unsigned int j = 0; j < n; ++j)
-                    {
-                      const unsigned int cj = component[j];
-                      double k = 0.0;
-                      for (unsigned int J = 0; J < dim; ++J)
+                    for (unsigned int k = 0; k < dim; ++k)
+                      {
+                        double t = 0.0;
                         for (unsigned int L = 0; L < dim; ++L)
-                          k += grad_phi[i][J] * r.tangent[ci][J][cj][L] * grad_phi[j][L];
-                      D(i, j) += k * JxW;
-                    }
+                          t += r.tangent[i][J][k][L] * grad_phi[s][L];
+                        T[s][i][J][k] = t * JxW;
+                      }
+              for (unsigned int s = 0; s < n_scalar; ++s)
+                {
+                  const Tensor<1, dim> &g = grad_phi[s];
+                  for (unsigned int i = 0; i < dim; ++i)
+                    f_cell(dof_of[s][i]) += (r.stress[i] * g) * JxW;
+                  for (unsigned int s2 = 0; s2 < n_scalar; ++s2)
+                    for (unsigned int i = 0; i < dim; ++i)
+                      for (unsigned int k = 0; k < dim; ++k)
+                        {
+                          double d = 0.0;
+                          for (unsigned int J = 0; J < dim; ++J)
+                            d += g[J] * T[s2][i][J][k];
+                          D(dof_of[s][i], dof_of[s2][k]) += d;
+                        }
                 }
             }
           D.vmult(b_cell, u_cell);  // b = K_t u − f_int
