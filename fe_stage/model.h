@@ -285,7 +285,7 @@ namespace clearjoint::fe::detail
     unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
     State state_;                          // u (owned and ghosted) and the nodal forces it leaves
 
-    SystemSolver solver_;  // KLU or CG/GMRES with the AMG it owns
+    SystemSolver solver_;  // MUMPS or CG/GMRES with the AMG it owns
     /// The material Newton iteration of an elastoplastic state, with its line search and the
     /// tangent it leaves assembled.
     MaterialNewton newton_;

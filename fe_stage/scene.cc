@@ -1106,7 +1106,7 @@ namespace clearjoint::fe
         << "  tolerance: " << d.solver.tolerance << "   # relative residual of the linear solves\n"
         << "  max_linear_iterations: " << d.solver.max_linear_iterations << "\n"
         << "  direct_below_dofs: " << d.solver.direct_below_dofs
-        << "  # automatic: Amesos KLU below this many DoFs, else CG + ML AMG\n"
+        << "  # automatic: MUMPS below this many DoFs, else CG + ML AMG\n"
         << "  max_newton_iterations: " << d.solver.max_newton_iterations
         << "  # [1, 1000] material Newton iterations per increment (elastoplastic)\n"
         << "  line_search: " << (d.solver.line_search ? "true" : "false")

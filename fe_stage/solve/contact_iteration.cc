@@ -93,7 +93,7 @@ namespace clearjoint::fe::detail
     // solution, so cheaply), and so is every Newton step on the slip law once the sets have
     // settled. The converged state is therefore the one of exact solves (docs/fe.md).
     const double loose_tolerance = std::max(scene_.solver.tolerance, 1e-6);
-    bool loose = !solver_.direct() && scene_.contact.max_iterations > 1;  // (KLU: exact anyway)
+    bool loose = !solver_.direct() && scene_.contact.max_iterations > 1;  // (MUMPS: exact anyway)
 
     unsigned int it = 0;
     for (; it < scene_.contact.max_iterations; ++it)

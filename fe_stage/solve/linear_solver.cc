@@ -1,4 +1,4 @@
-// Linear solves: KLU below a size, else CG (GMRES when friction makes A non-symmetric) with ML AMG
+// Linear solves: MUMPS below a size, else CG (GMRES when friction makes A non-symmetric) with ML AMG
 // on the six rigid-body modes, reused while it stays effective.
 #include "fe_stage/solve/linear_solver.h"
 
@@ -13,7 +13,6 @@
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/trilinos_solver.h>
 
 #include <Epetra_Map.h>
 #include <Teuchos_ParameterList.hpp>
@@ -107,7 +106,7 @@ namespace clearjoint::fe::detail
       throw StepFailure{"non-finite right-hand side"};
     if (direct_)
       {
-        solve_direct(A, x, b);
+        direct_solver_.solve(A, x, b);
         return 1;
       }
     if (b_norm == 0.0)
@@ -144,15 +143,15 @@ namespace clearjoint::fe::detail
                                         ")";
             // A system the AMG cannot precondition (the rolling study's elastoplastic
             // tangent with friction rows at large plastic strain, measured at 7 k DoFs) is
-            // still a small one for KLU: solved exactly instead of cutting the step.
+            // still a small one for MUMPS: solved exactly instead of cutting the step.
             if (A.m() > direct_fallback_below_)
               throw StepFailure{failure};
             if (n_direct_fallbacks_++ == 0 &&
                 Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
               log::warning("fe_stage: " + failure +
-                           ": solved by the direct solver (Amesos KLU) "
+                           ": solved by the direct solver (MUMPS) "
                            "instead, here and wherever the iterative solver fails again");
-            solve_direct(A, x, b);
+            direct_solver_.solve(A, x, b);
             return e.last_step;  // (the Krylov iterations spent)
           }
         const unsigned int its = control.last_step();
@@ -170,20 +169,4 @@ namespace clearjoint::fe::detail
     throw StepFailure{"linear solver failed"};
   }
 
-  void SystemSolver::solve_direct(const TrilinosWrappers::SparseMatrix &A,
-                                  TrilinosWrappers::MPI::Vector &x,
-                                  const TrilinosWrappers::MPI::Vector &b)
-  {
-    SolverControl control(1, 0);
-    TrilinosWrappers::SolverDirect::AdditionalData ad(false, "Amesos_Klu");
-    TrilinosWrappers::SolverDirect direct(control, ad);
-    try
-      {
-        direct.solve(A, x, b);
-      }
-    catch (const std::exception &e)
-      {
-        throw StepFailure{std::string("direct solver (Amesos KLU) failed: ") + e.what()};
-      }
-  }
 }  // namespace clearjoint::fe::detail

@@ -1,13 +1,15 @@
-// The linear solver (SystemSolver) of the contact model's systems: KLU below a size, else CG
+// The linear solver (SystemSolver) of the contact model's systems: MUMPS below a size
+// (DirectSolver, solve/direct_solver.h: it keeps its factorization while the matrix repeats), else CG
 // (GMRES where friction makes the operator non-symmetric) preconditioned by ML's AMG on the six
 // rigid-body modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
 // (invalidate()), again when a solve fails with the reused one, and when a solve to the full
 // tolerance takes more than twice the first one's iterations (+10) — reuse only while it stays
-// effective. A Krylov solve that fails even with a fresh AMG is solved by KLU where the system
-// is small enough.
+// effective. A Krylov solve that fails even with a fresh AMG is solved by MUMPS where the
+// system is small enough.
 #pragma once
 
 #include "fe_stage/core/dim.h"
+#include "fe_stage/solve/direct_solver.h"
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
@@ -26,7 +28,7 @@ namespace clearjoint::fe::detail
   class SystemSolver
   {
   public:
-    /// What it solves with: KLU (`direct`), else the Krylov method to `tolerance` × |b| at
+    /// What it solves with: MUMPS (`direct`), else the Krylov method to `tolerance` × |b| at
     /// most (the scene's solver.tolerance: the AMG's effectiveness is judged on such solves)
     /// within `max_iterations`.
     void configure(bool direct, double tolerance, unsigned int max_iterations);
@@ -34,10 +36,14 @@ namespace clearjoint::fe::detail
 
     /// The operator changed its pattern or the mesh changed: the AMG is built again at the
     /// next solve.
-    void invalidate() { amg_.reset(); }
+    void invalidate()
+    {
+      amg_.reset();
+      direct_solver_.invalidate();
+    }
 
     /// Solves A x = b to `relative_tolerance` × |b| (x: the start, then the solution); returns
-    /// the Krylov iterations (1 for KLU). `dofs` and `mapping` give the rigid-body modes when
+    /// the Krylov iterations (1 for the direct solver). `dofs` and `mapping` give the rigid-body modes when
     /// the AMG is (re)built. Throws StepFailure with the reason.
     unsigned int solve(const TrilinosWrappers::SparseMatrix &A, bool nonsymmetric,
                        const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
@@ -46,25 +52,26 @@ namespace clearjoint::fe::detail
 
     /// [s] spent building the AMG so far.
     double amg_setup_time() const { return t_amg_; }
-    /// Krylov solves that failed after the AMG was rebuilt and were solved by KLU instead.
+    /// Krylov solves that failed after the AMG was rebuilt and were solved by MUMPS instead.
     unsigned int n_direct_fallbacks() const { return n_direct_fallbacks_; }
+    /// The direct solver's numeric factorizations, and its solves that reused the last one.
+    unsigned int n_factorizations() const { return direct_solver_.n_factorizations(); }
+    unsigned int n_factorization_reuses() const { return direct_solver_.n_reuses(); }
 
   private:
-    /// KLU (Amesos): x = A⁻¹ b. Throws StepFailure.
-    void solve_direct(const TrilinosWrappers::SparseMatrix &A, TrilinosWrappers::MPI::Vector &x,
-                      const TrilinosWrappers::MPI::Vector &b);
     void build_amg(const TrilinosWrappers::SparseMatrix &A, const DoFHandler<dim> &dofs,
                    const Mapping<dim> &mapping);
 
     bool direct_ = false;
     double tolerance_ = 1e-10;
     unsigned int max_iterations_ = 1000;
+    DirectSolver direct_solver_;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
     std::unique_ptr<Epetra_MultiVector> null_space_;  // the AMG reads it: kept alive with it
     unsigned int amg_reference_iterations_ = 0;
     double t_amg_ = 0.0;
     unsigned int n_direct_fallbacks_ = 0;
-    /// A failed Krylov solve of a system up to this size is solved by KLU instead (its fill
+    /// A failed Krylov solve of a system up to this size is solved by MUMPS instead (its fill
     /// stays in the hundreds of MB for FE_Q(2)^3 meshes of this size); larger ones fail the
     /// step, which is then cut.
     static constexpr types::global_dof_index direct_fallback_below_ = 60000;

@@ -162,8 +162,9 @@ namespace clearjoint::fe::detail
       log::info("fe_stage: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs, " + std::to_string(n_candidates) +
                 " contact candidate nodes, " + std::to_string(parts_.system.n_contact_cells()) +
-                " contact cells (rank 0), " + (parts_.solver.direct() ? "direct" : "CG+AMG") +
-                " solver, setup " + log::format_duration(result.setup_time));
+                " contact cells (rank 0), " +
+                (parts_.solver.direct() ? "direct (MUMPS)" : "CG+AMG") + " solver, setup " +
+                log::format_duration(result.setup_time));
 
     if (parts_.fields.enabled())
       {

@@ -479,7 +479,7 @@ TEST(FeRadial, ActiveSetConstantDoesNotChangeTheForce)
 }
 
 // A Krylov solve that fails even with a fresh AMG (here forced: one iteration allowed) is solved
-// by KLU instead of failing the increment: the run completes with the direct solver's result.
+// by MUMPS instead of failing the increment: the run completes with the direct solver's result.
 TEST(FeRadial, AFailedKrylovSolveIsSolvedByTheDirectSolver)
 {
   FeScene direct = scene(coarse_radial);

@@ -1,0 +1,107 @@
+// MUMPS through Amesos, keeping the factorization while the matrix keeps its values.
+#include "fe_stage/solve/direct_solver.h"
+
+#include "fe_stage/core/step_failure.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
+
+#include <algorithm>
+#include <string>
+
+namespace clearjoint::fe::detail
+{
+  DirectSolver::DirectSolver() = default;
+  DirectSolver::~DirectSolver() = default;
+
+  void DirectSolver::invalidate()
+  {
+    solver_.reset();
+    problem_.reset();
+    analysed_ = nullptr;
+    factored_ = false;
+    factored_values_.clear();
+  }
+
+  bool DirectSolver::same_values(const Epetra_CrsMatrix &A, const MPI_Comm comm) const
+  {
+    bool same = factored_ && std::size_t(A.NumMyNonzeros()) == factored_values_.size();
+    std::size_t k = 0;
+    for (int row = 0; same && row < A.NumMyRows(); ++row)
+      {
+        int n = 0;
+        double *values = nullptr;
+        A.ExtractMyRowView(row, n, values);
+        same = std::equal(values, values + n, factored_values_.begin() + k);
+        k += n;
+      }
+    // one rank's change refactors on all (MUMPS factors collectively)
+    return dealii::Utilities::MPI::min(same ? 1 : 0, comm) == 1;
+  }
+
+  void DirectSolver::keep_values(const Epetra_CrsMatrix &A)
+  {
+    factored_values_.resize(A.NumMyNonzeros());
+    std::size_t k = 0;
+    for (int row = 0; row < A.NumMyRows(); ++row)
+      {
+        int n = 0;
+        double *values = nullptr;
+        A.ExtractMyRowView(row, n, values);
+        std::copy(values, values + n, factored_values_.begin() + k);
+        k += n;
+      }
+  }
+
+  void DirectSolver::solve(const dealii::TrilinosWrappers::SparseMatrix &A,
+                           dealii::TrilinosWrappers::MPI::Vector &x,
+                           const dealii::TrilinosWrappers::MPI::Vector &b)
+  {
+    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
+    const MPI_Comm comm = A.get_mpi_communicator();
+    const auto check = [](const int status, const char *what) {
+      if (status != 0)
+        throw StepFailure{std::string("direct solver (MUMPS through Amesos): ") + what +
+                          " failed, status " + std::to_string(status) +
+                          " (a singular system, or too little memory)"};
+    };
+    // the analysis belongs to one matrix object and its pattern: a reallocated or re-patterned
+    // matrix is analysed again (every rank holds the same matrix object's part, so the test
+    // agrees across ranks except for the pattern's size, hence the collective minimum)
+    const bool same_matrix = dealii::Utilities::MPI::min(&matrix == analysed_ && factored_ &&
+                                                             std::size_t(matrix.NumMyNonzeros()) ==
+                                                               factored_values_.size() ?
+                                                           1 :
+                                                           0,
+                                                         comm) == 1;
+    if (!same_matrix)
+      {
+        invalidate();
+        problem_ = std::make_unique<Epetra_LinearProblem>();
+        problem_->SetOperator(const_cast<Epetra_CrsMatrix *>(&matrix));
+        Amesos factory;
+        solver_.reset(factory.Create("Amesos_Mumps", *problem_));
+        if (!solver_)
+          throw StepFailure{"direct solver: Trilinos' Amesos has no MUMPS"};
+        check(solver_->SymbolicFactorization(), "the symbolic analysis");
+        analysed_ = &matrix;
+      }
+    if (same_matrix && same_values(matrix, comm))
+      ++n_reuses_;
+    else
+      {
+        check(solver_->NumericFactorization(), "the factorization");
+        keep_values(matrix);
+        factored_ = true;
+        ++n_factorizations_;
+      }
+    problem_->SetLHS(&x.trilinos_vector());
+    problem_->SetRHS(const_cast<Epetra_MultiVector *>(
+      static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+    check(solver_->Solve(), "the solve");
+  }
+}  // namespace clearjoint::fe::detail
