@@ -9,6 +9,25 @@
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// The linear solver's choice for a system of `n_dofs` DoFs: solver.linear, and with
+    /// automatic a direct solve below solver.direct_below_dofs.
+    bool direct_solve(const Solver &solver, const types::global_dof_index n_dofs)
+    {
+      switch (solver.linear)
+        {
+          case LinearSolver::direct:
+            return true;
+          case LinearSolver::cg_amg:
+            return false;
+          case LinearSolver::automatic:
+            return n_dofs < solver.direct_below_dofs;
+        }
+      return false;
+    }
+  }  // namespace
+
   RunResult Model::run()
   {
     // the study chosen once (its plan)
@@ -102,8 +121,8 @@ namespace clearjoint::fe::detail
 
   QuasiStaticStepper Model::quasi_static_stepper()
   {
-    return QuasiStaticStepper(*this,
-                              {scene_, dofs_, state_, contact_, newton_, comm_, finite_sliding()});
+    return QuasiStaticStepper(*this, {scene_, dofs_, state_, contact_, newton_, comm_,
+                                      pattern_.finite_sliding()});
   }
 
   void Model::start_from_rest()
@@ -125,11 +144,7 @@ namespace clearjoint::fe::detail
     state_.u_owned() = s.u;
     state_.publish();
     contact_.nodes() = s.nodes;
-    // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
-    // restored state again so that the pattern holds its partners (the rolling study's turning
-    // journal, not finite sliding, searches again at its next evaluation anyway)
-    if (finite_sliding() && n_sliding_rebuilds_ != s.sliding_rebuilds)
-      follow_sliding(s.u, true);
+    pattern_.pair_restored(s.u, s.sliding_rebuilds);
   }
 
   /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
@@ -147,8 +162,12 @@ namespace clearjoint::fe::detail
   {
     solver_.invalidate();  // its AMG was built for the previous mesh's matrix
     dofs_.distribute(journal_driven_);
-    find_contact_nodes(search_displacement);
-    make_matrices();
+    pattern_.find_contact_nodes(search_displacement);
+    newton_.forget_tangent();  // the matrices are made again
+    pattern_.make_matrices();
+    state_.reinit(dofs_, comm_);
+    solver_.configure(direct_solve(scene_.solver, dofs_.handler().n_dofs()),
+                      scene_.solver.tolerance, scene_.solver.max_linear_iterations);
     system_.assemble_static(material_->elastic(), massless_dofs(system_.kind()));
     contact_solve_.compute_nodal_weights();
   }

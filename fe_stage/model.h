@@ -6,10 +6,12 @@
 // once (the mesh and all that depends on it, a stepper over the parts, the rollback of a failed
 // attempt, a rolling state, the material's commit): StudyModel (solve/study_model.h),
 // QuasiStaticProblem, DynamicProblem, SpinProblem (solve/stepper_interfaces.h) and
-// MaterialProblem (solve/material_newton.h). Internal: only fe_stage's own .cc files include
-// this; everything else sees the deal.II-free façade fe_model.h. Its own functions are in
-// model.cc, contact/{contact_pattern,sliding}.cc and material/plastic_history.cc
-// (fe_stage/README.md maps every file). It includes solve/; core/ includes nothing from solve/.
+// MaterialProblem (solve/material_newton.h); the contact pattern asks it, through
+// MeshPreparation (contact/contact_pattern.h), to make everything that depends on the mesh
+// again. Internal: only fe_stage's own .cc files include this; everything else sees the
+// deal.II-free façade fe_model.h. Its own functions are in model.cc and
+// material/plastic_history.cc (fe_stage/README.md maps every file). It includes solve/; core/
+// includes nothing from solve/.
 //
 // The parts, each the one owner of its state (issue 29, FE_DESIGN §4.1): the meshed bodies
 // (Bodies, mesh/bodies.h), the DoF space and its fixed constraints (DofSpace,
@@ -17,7 +19,9 @@
 // system (Assembler, core/assembler.h), the iterate u and its nodal forces (State,
 // core/state.h), the contact nodes and their active set (ContactProblem,
 // contact/contact_problem.h), how they find their partners (ContactPairing,
-// contact/contact_pairing.h), one increment's contact solve with its constraints (ContactSolve,
+// contact/contact_pairing.h), the sparsity pattern they condense into with the couplings it
+// was built for and finite sliding's rebuilds of it (ContactPattern, contact/contact_pattern.h),
+// one increment's contact solve with its constraints (ContactSolve,
 // solve/contact_solve.h), the linear solver and its AMG (SystemSolver, solve/linear_solver.h),
 // the material law with its quadrature-point history (MaterialLaw, material/material_law.h) and
 // its Newton iteration (MaterialNewton, solve/material_newton.h), the fields with their PVD
@@ -47,6 +51,7 @@
 
 #include "fe_stage/contact/contact_node.h"
 #include "fe_stage/contact/contact_pairing.h"
+#include "fe_stage/contact/contact_pattern.h"
 #include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
@@ -137,7 +142,8 @@ namespace clearjoint::fe::detail
                 private DynamicProblem,
                 private SpinProblem,
                 private MaterialProblem,
-                private StudyModel
+                private StudyModel,
+                private MeshPreparation
   {
   public:
     Model(const FeScene &scene, const RunOptions &options);
@@ -146,19 +152,14 @@ namespace clearjoint::fe::detail
     RunResult run();
 
   private:
-    // ---- the mesh and all that depends on it (model.cc, contact/contact_pattern.cc)
+    // ---- the mesh and all that depends on it (model.cc)
     void build_mesh() override;
     void refine_mesh() override;
     void free_journal() override;
-    /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
-    /// find_contact_nodes), matrices.
-    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
-    /// The pairing's contact nodes, their partners' ghosts and the contact cells; searched
-    /// between the surfaces displaced by `search_displacement` when given (ghosted; finite
-    /// sliding's rebuild).
-    void find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
-    /// The sparsity pattern with every candidate's contact line, the matrices, u, the solver.
-    void make_matrices();
+    /// Everything that depends on the mesh: DoFs, constraints, contact nodes and the pattern
+    /// (ContactPattern, searched between the surfaces displaced by `search_displacement` when
+    /// given), matrices, u, the solver's choice.
+    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr) override;
     /// The contact surface's DoFs, massless in an operator of this kind (the impact study's
     /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
     /// otherwise.
@@ -166,23 +167,18 @@ namespace clearjoint::fe::detail
     /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
     void record_mesh(RunResult &result) const override;
 
-    // ---- the contact pairing as the surfaces move (contact/sliding.cc)
-    /// contact.sliding finite: the mortar search again at the converged deformed surfaces;
-    /// slip then counts from u_start. Returns how far the coupling moved.
-    double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, bool rebuild = false);
-    /// contact.sliding finite (scene.cc admits it only for two bodies paired by mortar)
-    bool finite_sliding() const { return scene_.contact.sliding == Contact::Sliding::finite; }
+    // ---- the contact pairing as the surfaces move (ContactPattern)
     double pair_deformed_surfaces(const TrilinosWrappers::MPI::Vector &u_start) override
     {
-      return follow_sliding(u_start);
+      return pattern_.follow_sliding(u_start);
     }
     void pair_turned_journal(const TrilinosWrappers::MPI::Vector &u_start) override
     {
-      follow_sliding(u_start);
+      pattern_.follow_sliding(u_start);
     }
     bool rolling_deformable_journal() const { return contact_solve_.rolling_deformable_journal(); }
     bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
-    unsigned int sliding_rebuilds() const override { return n_sliding_rebuilds_; }
+    unsigned int sliding_rebuilds() const override { return pattern_.rebuilds(); }
 
     // ---- the steppers over the model's parts, the start and the rollback (model.cc)
     QuasiStaticStepper quasi_static_stepper() override;
@@ -196,7 +192,7 @@ namespace clearjoint::fe::detail
     /// What a failed attempt goes back to (Snapshot, solve/stepper_interfaces.h).
     Snapshot save_state() const override
     {
-      return {state_.u_owned(), contact_.nodes(), n_sliding_rebuilds_};
+      return {state_.u_owned(), contact_.nodes(), pattern_.rebuilds()};
     }
     void restore_state(const Snapshot &s) override;
     /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
@@ -273,17 +269,7 @@ namespace clearjoint::fe::detail
     /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
     /// cells' matrices, the elastic cache and each iteration's condensed system.
     Assembler system_;
-    /// The partner combinations' sparsity: per candidate node (by its x-DoF) the component of
-    /// its normal line and its partners' x-DoFs, as make_matrices built the pattern for them
-    /// (follow_sliding: whether new couplings fit it).
-    struct PatternEntry
-    {
-      unsigned int component = 0;
-      std::set<types::global_dof_index> partners;
-    };
-    std::map<types::global_dof_index, PatternEntry> pattern_partners_;
-    unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
-    State state_;                          // u (owned and ghosted) and the nodal forces it leaves
+    State state_;  // u (owned and ghosted) and the nodal forces it leaves
 
     SystemSolver solver_;  // KLU or CG/GMRES with the AMG it owns
     /// The material Newton iteration of an elastoplastic state, with its line search and the
@@ -291,6 +277,9 @@ namespace clearjoint::fe::detail
     MaterialNewton newton_;
     /// The increment's contact solve: the active-set iteration, its constraints and times.
     ContactSolve contact_solve_;
+    /// The contact nodes on the DoF space and the sparsity pattern every active set condenses
+    /// into, with the couplings it was built for; finite sliding and its rebuilds.
+    ContactPattern pattern_;
     /// The fields for ParaView, their PVD records and the yield check.
     FieldOutput fields_;
     std::chrono::steady_clock::time_point start_;
