@@ -23,14 +23,14 @@ namespace clearjoint::fe
       , contact_(scene, dofs_, options.comm)
       , pairing_(make_contact_pairing(
           {scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, options.comm}))
-      , material_(make_material(scene, scene.material.model == Material::Model::elastoplastic))
+      , material_({scene_, bodies_, dofs_, state_, options.comm})
       , system_(scene, bodies_, dofs_, options.comm)
       , newton_(*this, {scene_, dofs_, system_, state_, contact_, options.comm})
       , contact_solve_({scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, system_, state_,
                         solver_, options.comm})
       , pattern_(*this, {scene_, plan_, bodies_, dofs_, contact_, *pairing_, frame_, system_,
                          state_, contact_solve_, options.comm})
-      , fields_({scene_, plan_, bodies_, dofs_, state_, contact_, *material_, options.comm},
+      , fields_({scene_, plan_, bodies_, dofs_, state_, contact_, material_.law(), options.comm},
                 options.output_dir, options.write_fields)
       , start_(std::chrono::steady_clock::now())
     {

@@ -168,7 +168,7 @@ namespace clearjoint::fe::detail
     state_.reinit(dofs_, comm_);
     solver_.configure(direct_solve(scene_.solver, dofs_.handler().n_dofs()),
                       scene_.solver.tolerance, scene_.solver.max_linear_iterations);
-    system_.assemble_static(material_->elastic(), massless_dofs(system_.kind()));
+    system_.assemble_static(material_.law().elastic(), massless_dofs(system_.kind()));
     contact_solve_.compute_nodal_weights();
   }
 
@@ -182,9 +182,30 @@ namespace clearjoint::fe::detail
     return surface;
   }
 
+  void Model::init_plasticity()
+  {
+    material_.init_history(system_.n_q_points());
+    system_.use_tangent();
+  }
+
+  /// The tangent and its load at the current displacement (small or finite kinematics),
+  /// then the contact nodes' share of the load (MaterialProblem).
+  unsigned int Model::assemble_plastic()
+  {
+    unsigned int n_plastic_points = 0;
+    {
+      const ScopedTimer timer = contact_solve_.assembly_timer();
+      n_plastic_points = scene_.material.kinematics == Material::Kinematics::finite ?
+                           system_.assemble_finite_tangent(material_.law(), state_.u()) :
+                           system_.assemble_tangent(material_.law(), state_.u());
+    }
+    set_contact_load_offsets();
+    return n_plastic_points;
+  }
+
   void Model::set_dynamic_operator(const MatrixCoefficients &c)
   {
-    system_.set_dynamic_operator(c.mass, c.stiffness, material_->elastic(),
+    system_.set_dynamic_operator(c.mass, c.stiffness, material_.law().elastic(),
                                  massless_dofs(Assembler::Operator::dynamic));
     solver_.invalidate();  // its AMG was built for the previous operator
   }

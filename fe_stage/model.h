@@ -1,6 +1,6 @@
 // The FE contact model (Model), the composition root of fe_stage (deal.II, dim = 3): it owns
-// one of each part and runs no study itself. run() chooses the study's run once from the scene's plan
-// — QuasiStaticRun (radial, misalignment, Hertz, patch), ImpactRun or RollingRun, each its own
+// one of each part and runs no study itself. run() chooses the study's run once from the
+// scene's plan — QuasiStaticRun (radial, misalignment, Hertz, patch), ImpactRun or RollingRun, each its own
 // object in solve/*_run.{h,cc} — and the runs, the steppers and the material Newton iteration
 // see the model only through the interfaces it implements for what needs several parts at
 // once (the mesh and all that depends on it, a stepper over the parts, the rollback of a failed
@@ -9,9 +9,8 @@
 // MaterialProblem (solve/material_newton.h); the contact pattern asks it, through
 // MeshPreparation (contact/contact_pattern.h), to make everything that depends on the mesh
 // again. Internal: only fe_stage's own .cc files include this; everything else sees the
-// deal.II-free façade fe_model.h. Its own functions are in model.cc and
-// material/plastic_history.cc (fe_stage/README.md maps every file). It includes solve/; core/
-// includes nothing from solve/.
+// deal.II-free façade fe_model.h. Its own functions are in model.cc (fe_stage/README.md maps
+// every file). It includes solve/; core/ includes nothing from solve/.
 //
 // The parts, each the one owner of its state (issue 29, FE_DESIGN §4.1): the meshed bodies
 // (Bodies, mesh/bodies.h), the DoF space and its fixed constraints (DofSpace,
@@ -21,15 +20,16 @@
 // contact/contact_problem.h), how they find their partners (ContactPairing,
 // contact/contact_pairing.h), the sparsity pattern they condense into with the couplings it
 // was built for and finite sliding's rebuilds of it (ContactPattern, contact/contact_pattern.h),
-// one increment's contact solve with its constraints (ContactSolve,
-// solve/contact_solve.h), the linear solver and its AMG (SystemSolver, solve/linear_solver.h),
-// the material law with its quadrature-point history (MaterialLaw, material/material_law.h) and
-// its Newton iteration (MaterialNewton, solve/material_newton.h), the fields with their PVD
-// records and the yield check (FieldOutput, results/field_output.h). The steppers own their
-// loops and state (QuasiStaticStepper, HhtStepper, SpinStepper), with one step-size policy
-// (StepController, solve/step_controller.h), one root finder (solve/root_finder.h), HHT-α's
-// coefficients and predictor (HhtAlpha, solve/hht.h) and the per-node Coulomb law
-// (contact/coulomb_ssn.h).
+// one increment's contact solve with its constraints (ContactSolve, solve/contact_solve.h), the
+// linear solver and its AMG (SystemSolver, solve/linear_solver.h), the material law with its
+// quadrature-point history on the mesh — its commits, energies and strain profile
+// (MaterialState, material/material_state.h; the point law MaterialLaw,
+// material/material_law.h) — and its Newton iteration (MaterialNewton,
+// solve/material_newton.h), the fields with their PVD records and the yield check
+// (FieldOutput, results/field_output.h). The steppers own their loops and state
+// (QuasiStaticStepper, HhtStepper, SpinStepper), with one step-size policy (StepController,
+// solve/step_controller.h), one root finder (solve/root_finder.h), HHT-α's coefficients and
+// predictor (HhtAlpha, solve/hht.h) and the per-node Coulomb law (contact/coulomb_ssn.h).
 //
 // Method (docs/fe.md has the equations):
 //   - small strain, or finite strain (material.kinematics: total Lagrangian, the J2 law in the
@@ -61,7 +61,7 @@
 #include "fe_stage/core/state.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
-#include "fe_stage/material/material_law.h"
+#include "fe_stage/material/material_state.h"
 #include "fe_stage/mesh/bodies.h"
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/results/field_output.h"
@@ -215,7 +215,8 @@ namespace clearjoint::fe::detail
     /// [N m] the contact's torque on the journal about its axis, full body (collective).
     double journal_torque() const override;
 
-    // ---- the material (material/plastic_history.cc, model.cc)
+    // ---- the material (MaterialState, model.cc)
+    /// The points' history sized for the mesh, then the operator the tangent.
     void init_plasticity() override;
     bool elastoplastic() const override { return system_.kind() == Assembler::Operator::tangent; }
     /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
@@ -231,11 +232,23 @@ namespace clearjoint::fe::detail
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.
     RollingSolve solve_rolling_state(double delta) override;
-    /// A converged state's trial states made the points' history.
-    void commit_material() override;
-    PlasticEnergies commit_plasticity() override;
+    /// A converged state's trial states made the points' history (with the step's energies:
+    /// commit_plasticity); the tangent assembled before no longer belongs to it.
+    void commit_material() override
+    {
+      newton_.forget_tangent();
+      material_.commit();
+    }
+    PlasticEnergies commit_plasticity() override
+    {
+      newton_.forget_tangent();
+      return material_.commit_with_energies();
+    }
     std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
-                                                   double half_angle) const override;
+                                                   double half_angle) const override
+    {
+      return material_.strain_profile(body, turn, half_angle);
+    }
 
     /// [s] since the model was made (the runs' set-up and wall times).
     double elapsed() const override
@@ -261,9 +274,10 @@ namespace clearjoint::fe::detail
     /// How the contact nodes find their partners (obstacle, common rays or mortar): reads
     /// the bodies, DoFs, contact problem, obstacle and frame above.
     std::unique_ptr<ContactPairing> pairing_;
-    /// The bodies' law (make_material: J2 with its history for the rolling study, else
-    /// linear elastic); material_->elastic() is the law of the static operator.
-    std::unique_ptr<MaterialLaw> material_;
+    /// The bodies' law with its quadrature-point history (make_material: J2 with its history
+    /// for material.model elastoplastic, else linear elastic): its commits, energies and strain
+    /// profile; material_.law().elastic() is the law of the static operator.
+    MaterialState material_;
 
     bool journal_driven_ = true;  // false: a deformable journal is free
     /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
