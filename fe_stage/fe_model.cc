@@ -5,7 +5,14 @@
 #include "fe_stage/model.h"
 #include "fe_stage/study/study.h"
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/revision.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace clearjoint::fe
 {
@@ -16,8 +23,6 @@ namespace clearjoint::fe
       , plan_(plan_study(scene))
       , options_(options)
       , comm_(options.comm)
-      , rank_(Utilities::MPI::this_mpi_process(options.comm))
-      , n_ranks_(Utilities::MPI::n_mpi_processes(options.comm))
       , bodies_(scene, plan_, options.comm)
       , dofs_(scene, plan_, bodies_, options.comm)
       , contact_(scene, dofs_, options.comm)

@@ -1,11 +1,25 @@
-// Model's own functions (model.h): the study's run chosen in one place, the mesh
-// and all that depends on it, the steppers over the model's parts, the start from rest and the
-// rollback of a failed attempt.
+// Model's own functions (model.h): the study's run chosen in one place, the mesh and all that
+// depends on it (with the linear solver's choice), the steppers over the model's parts, the
+// start from rest and the rollback of a failed attempt, the elastoplastic bodies' start and
+// their tangent with the contact nodes' share of its load.
 #include "fe_stage/model.h"
 
+#include "fe_stage/contact/contact_node.h"
+#include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/solve/impact_run.h"
 #include "fe_stage/solve/quasi_static_run.h"
 #include "fe_stage/solve/rolling_run.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/error_estimator.h>
+
+#include <chrono>
+#include <set>
 
 namespace clearjoint::fe::detail
 {

@@ -49,85 +49,39 @@
 //     steps with the journal's spin from its torque balance (rolling).
 #pragma once
 
-#include "fe_stage/contact/contact_node.h"
 #include "fe_stage/contact/contact_pairing.h"
 #include "fe_stage/contact/contact_pattern.h"
 #include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
 #include "fe_stage/core/assembler.h"
+#include "fe_stage/core/dim.h"
 #include "fe_stage/core/dof_space.h"
-#include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/state.h"
-#include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/material_state.h"
 #include "fe_stage/mesh/bodies.h"
-#include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/results/field_output.h"
-#include "fe_stage/solve/adaptive_estimate.h"
+#include "fe_stage/scene.h"
 #include "fe_stage/solve/contact_solve.h"
 #include "fe_stage/solve/hht.h"
+#include "fe_stage/solve/hht_stepper.h"
 #include "fe_stage/solve/linear_solver.h"
+#include "fe_stage/solve/material_newton.h"
+#include "fe_stage/solve/quasi_static_stepper.h"
 #include "fe_stage/solve/rolling_kinematics.h"
+#include "fe_stage/solve/spin_stepper.h"
 #include "fe_stage/solve/stepper_interfaces.h"
 #include "fe_stage/solve/study_model.h"
 #include "fe_stage/study_plan.h"
 
-#include "common/error.h"
-#include "common/log.h"
-#include "common/units.h"
-
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/base/symmetric_tensor.h>
-#include <deal.II/base/utilities.h>
-#include <deal.II/distributed/grid_refinement.h>
-#include <deal.II/distributed/tria.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q.h>
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/grid/manifold_lib.h>
-#include <deal.II/grid/tria.h>
-#include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/base/types.h>
 #include <deal.II/lac/trilinos_vector.h>
-#include <deal.II/lac/vector.h>
-#include <deal.II/numerics/error_estimator.h>
-#include <deal.II/numerics/vector_tools.h>
 
-#include <Epetra_Map.h>
-#include <Epetra_MultiVector.h>
-#include <Teuchos_ParameterList.hpp>
-
-#include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <iostream>
-#include <limits>
-#include <map>
 #include <memory>
 #include <set>
-#include <string>
 #include <vector>
 
 namespace clearjoint::fe::detail
@@ -261,7 +215,6 @@ namespace clearjoint::fe::detail
     const StudyPlan plan_;  // what the scene's study sets up (study/*.cc)
     RunOptions options_;
     MPI_Comm comm_;
-    const unsigned int rank_, n_ranks_;
 
     Bodies bodies_;           // the mesh, its mapping, symmetry factor and h_min
     DofSpace dofs_;           // FE, DoFs, index sets, fixed constraints, loaded and support DoFs

@@ -7,6 +7,7 @@
 
 #include "fe_stage/solve/adaptive_estimate.h"
 
+#include "common/error.h"
 #include "common/log.h"
 #include "common/units.h"
 
