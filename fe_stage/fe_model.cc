@@ -5,7 +5,14 @@
 #include "fe_stage/model.h"
 #include "fe_stage/study/study.h"
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/revision.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace clearjoint::fe
 {
@@ -16,23 +23,23 @@ namespace clearjoint::fe
       , plan_(plan_study(scene))
       , options_(options)
       , comm_(options.comm)
-      , rank_(Utilities::MPI::this_mpi_process(options.comm))
-      , n_ranks_(Utilities::MPI::n_mpi_processes(options.comm))
       , bodies_(scene, plan_, options.comm)
       , dofs_(scene, plan_, bodies_, options.comm)
       , contact_(scene, dofs_, options.comm)
-      , material_(make_material(scene, scene.material.model == Material::Model::elastoplastic))
+      , pairing_(make_contact_pairing(
+          {scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, options.comm}))
+      , material_({scene_, bodies_, dofs_, state_, options.comm})
       , system_(scene, bodies_, dofs_, options.comm)
       , newton_(*this, {scene_, dofs_, system_, state_, contact_, options.comm})
       , contact_solve_({scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, system_, state_,
                         solver_, options.comm})
-      , fields_({scene_, plan_, bodies_, dofs_, state_, contact_, *material_, options.comm},
+      , pattern_(*this, {scene_, plan_, bodies_, dofs_, contact_, *pairing_, frame_, system_,
+                         state_, contact_solve_, options.comm})
+      , fields_({scene_, plan_, bodies_, dofs_, state_, contact_, material_.law(), options.comm},
                 options.output_dir, options.write_fields)
       , start_(std::chrono::steady_clock::now())
     {
-      obstacle_ = plan_.obstacle;
-      pairing_ = make_contact_pairing(
-        {scene_, plan_, bodies_, dofs_, contact_, obstacle_, frame_, options.comm});
+      obstacle_ = plan_.obstacle;  // (the pairing and the contact solve read it by reference)
     }
   }  // namespace detail
 

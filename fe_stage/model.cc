@@ -1,14 +1,47 @@
-// Model's own functions (model.h): the study's run chosen in one place, the mesh
-// and all that depends on it, the steppers over the model's parts, the start from rest and the
-// rollback of a failed attempt.
+// Model's own functions (model.h): the study's run chosen in one place, the mesh and all that
+// depends on it (with the linear solver's choice), the steppers over the model's parts, the
+// start from rest and the rollback of a failed attempt, the elastoplastic bodies' start and
+// their tangent with the contact nodes' share of its load.
 #include "fe_stage/model.h"
 
+#include "fe_stage/contact/contact_node.h"
+#include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/solve/impact_run.h"
 #include "fe_stage/solve/quasi_static_run.h"
 #include "fe_stage/solve/rolling_run.h"
 
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/error_estimator.h>
+
+#include <chrono>
+#include <set>
+
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// The linear solver's choice for a system of `n_dofs` DoFs: solver.linear, and with
+    /// automatic a direct solve below solver.direct_below_dofs.
+    bool direct_solve(const Solver &solver, const types::global_dof_index n_dofs)
+    {
+      switch (solver.linear)
+        {
+          case LinearSolver::direct:
+            return true;
+          case LinearSolver::cg_amg:
+            return false;
+          case LinearSolver::automatic:
+            return n_dofs < solver.direct_below_dofs;
+        }
+      return false;
+    }
+  }  // namespace
+
   RunResult Model::run()
   {
     // the study chosen once (its plan)
@@ -102,8 +135,8 @@ namespace clearjoint::fe::detail
 
   QuasiStaticStepper Model::quasi_static_stepper()
   {
-    return QuasiStaticStepper(*this,
-                              {scene_, dofs_, state_, contact_, newton_, comm_, finite_sliding()});
+    return QuasiStaticStepper(*this, {scene_, dofs_, state_, contact_, newton_, comm_,
+                                      pattern_.finite_sliding()});
   }
 
   void Model::start_from_rest()
@@ -125,11 +158,7 @@ namespace clearjoint::fe::detail
     state_.u_owned() = s.u;
     state_.publish();
     contact_.nodes() = s.nodes;
-    // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
-    // restored state again so that the pattern holds its partners (the rolling study's turning
-    // journal, not finite sliding, searches again at its next evaluation anyway)
-    if (finite_sliding() && n_sliding_rebuilds_ != s.sliding_rebuilds)
-      follow_sliding(s.u, true);
+    pattern_.pair_restored(s.u, s.sliding_rebuilds);
   }
 
   /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.
@@ -147,9 +176,13 @@ namespace clearjoint::fe::detail
   {
     solver_.invalidate();  // its AMG was built for the previous mesh's matrix
     dofs_.distribute(journal_driven_);
-    find_contact_nodes(search_displacement);
-    make_matrices();
-    system_.assemble_static(material_->elastic(), massless_dofs(system_.kind()));
+    pattern_.find_contact_nodes(search_displacement);
+    newton_.forget_tangent();  // the matrices are made again
+    pattern_.make_matrices();
+    state_.reinit(dofs_, comm_);
+    solver_.configure(direct_solve(scene_.solver, dofs_.handler().n_dofs()),
+                      scene_.solver.tolerance, scene_.solver.max_linear_iterations);
+    system_.assemble_static(material_.law().elastic(), massless_dofs(system_.kind()));
     contact_solve_.compute_nodal_weights();
   }
 
@@ -163,9 +196,30 @@ namespace clearjoint::fe::detail
     return surface;
   }
 
+  void Model::init_plasticity()
+  {
+    material_.init_history(system_.n_q_points());
+    system_.use_tangent();
+  }
+
+  /// The tangent and its load at the current displacement (small or finite kinematics),
+  /// then the contact nodes' share of the load (MaterialProblem).
+  unsigned int Model::assemble_plastic()
+  {
+    unsigned int n_plastic_points = 0;
+    {
+      const ScopedTimer timer = contact_solve_.assembly_timer();
+      n_plastic_points = scene_.material.kinematics == Material::Kinematics::finite ?
+                           system_.assemble_finite_tangent(material_.law(), state_.u()) :
+                           system_.assemble_tangent(material_.law(), state_.u());
+    }
+    set_contact_load_offsets();
+    return n_plastic_points;
+  }
+
   void Model::set_dynamic_operator(const MatrixCoefficients &c)
   {
-    system_.set_dynamic_operator(c.mass, c.stiffness, material_->elastic(),
+    system_.set_dynamic_operator(c.mass, c.stiffness, material_.law().elastic(),
                                  massless_dofs(Assembler::Operator::dynamic));
     solver_.invalidate();  // its AMG was built for the previous operator
   }

@@ -1,15 +1,16 @@
 // The FE contact model (Model), the composition root of fe_stage (deal.II, dim = 3): it owns
-// one of each part and runs no study itself. run() chooses the study's run once from the scene's plan
-// — QuasiStaticRun (radial, misalignment, Hertz, patch), ImpactRun or RollingRun, each its own
+// one of each part and runs no study itself. run() chooses the study's run once from the
+// scene's plan — QuasiStaticRun (radial, misalignment, Hertz, patch), ImpactRun or RollingRun, each its own
 // object in solve/*_run.{h,cc} — and the runs, the steppers and the material Newton iteration
 // see the model only through the interfaces it implements for what needs several parts at
 // once (the mesh and all that depends on it, a stepper over the parts, the rollback of a failed
 // attempt, a rolling state, the material's commit): StudyModel (solve/study_model.h),
 // QuasiStaticProblem, DynamicProblem, SpinProblem (solve/stepper_interfaces.h) and
-// MaterialProblem (solve/material_newton.h). Internal: only fe_stage's own .cc files include
-// this; everything else sees the deal.II-free façade fe_model.h. Its own functions are in
-// model.cc, contact/{contact_pattern,sliding}.cc and material/plastic_history.cc
-// (fe_stage/README.md maps every file). It includes solve/; core/ includes nothing from solve/.
+// MaterialProblem (solve/material_newton.h); the contact pattern asks it, through
+// MeshPreparation (contact/contact_pattern.h), to make everything that depends on the mesh
+// again. Internal: only fe_stage's own .cc files include this; everything else sees the
+// deal.II-free façade fe_model.h. Its own functions are in model.cc (fe_stage/README.md maps
+// every file). It includes solve/; core/ includes nothing from solve/.
 //
 // The parts, each the one owner of its state (issue 29, FE_DESIGN §4.1): the meshed bodies
 // (Bodies, mesh/bodies.h), the DoF space and its fixed constraints (DofSpace,
@@ -17,15 +18,18 @@
 // system (Assembler, core/assembler.h), the iterate u and its nodal forces (State,
 // core/state.h), the contact nodes and their active set (ContactProblem,
 // contact/contact_problem.h), how they find their partners (ContactPairing,
-// contact/contact_pairing.h), one increment's contact solve with its constraints (ContactSolve,
-// solve/contact_solve.h), the linear solver and its AMG (SystemSolver, solve/linear_solver.h),
-// the material law with its quadrature-point history (MaterialLaw, material/material_law.h) and
-// its Newton iteration (MaterialNewton, solve/material_newton.h), the fields with their PVD
-// records and the yield check (FieldOutput, results/field_output.h). The steppers own their
-// loops and state (QuasiStaticStepper, HhtStepper, SpinStepper), with one step-size policy
-// (StepController, solve/step_controller.h), one root finder (solve/root_finder.h), HHT-α's
-// coefficients and predictor (HhtAlpha, solve/hht.h) and the per-node Coulomb law
-// (contact/coulomb_ssn.h).
+// contact/contact_pairing.h), the sparsity pattern they condense into with the couplings it
+// was built for and finite sliding's rebuilds of it (ContactPattern, contact/contact_pattern.h),
+// one increment's contact solve with its constraints (ContactSolve, solve/contact_solve.h), the
+// linear solver and its AMG (SystemSolver, solve/linear_solver.h), the material law with its
+// quadrature-point history on the mesh — its commits, energies and strain profile
+// (MaterialState, material/material_state.h; the point law MaterialLaw,
+// material/material_law.h) — and its Newton iteration (MaterialNewton,
+// solve/material_newton.h), the fields with their PVD records and the yield check
+// (FieldOutput, results/field_output.h). The steppers own their loops and state
+// (QuasiStaticStepper, HhtStepper, SpinStepper), with one step-size policy (StepController,
+// solve/step_controller.h), one root finder (solve/root_finder.h), HHT-α's coefficients and
+// predictor (HhtAlpha, solve/hht.h) and the per-node Coulomb law (contact/coulomb_ssn.h).
 //
 // Method (docs/fe.md has the equations):
 //   - small strain, or finite strain (material.kinematics: total Lagrangian, the J2 law in the
@@ -45,84 +49,39 @@
 //     steps with the journal's spin from its torque balance (rolling).
 #pragma once
 
-#include "fe_stage/contact/contact_node.h"
 #include "fe_stage/contact/contact_pairing.h"
+#include "fe_stage/contact/contact_pattern.h"
 #include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
 #include "fe_stage/core/assembler.h"
+#include "fe_stage/core/dim.h"
 #include "fe_stage/core/dof_space.h"
-#include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/state.h"
-#include "fe_stage/core/step_failure.h"
 #include "fe_stage/fe_model.h"
-#include "fe_stage/material/material_law.h"
+#include "fe_stage/material/material_state.h"
 #include "fe_stage/mesh/bodies.h"
-#include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/results/field_output.h"
-#include "fe_stage/solve/adaptive_estimate.h"
+#include "fe_stage/scene.h"
 #include "fe_stage/solve/contact_solve.h"
 #include "fe_stage/solve/hht.h"
+#include "fe_stage/solve/hht_stepper.h"
 #include "fe_stage/solve/linear_solver.h"
+#include "fe_stage/solve/material_newton.h"
+#include "fe_stage/solve/quasi_static_stepper.h"
 #include "fe_stage/solve/rolling_kinematics.h"
+#include "fe_stage/solve/spin_stepper.h"
 #include "fe_stage/solve/stepper_interfaces.h"
 #include "fe_stage/solve/study_model.h"
 #include "fe_stage/study_plan.h"
 
-#include "common/error.h"
-#include "common/log.h"
-#include "common/units.h"
-
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/base/symmetric_tensor.h>
-#include <deal.II/base/utilities.h>
-#include <deal.II/distributed/grid_refinement.h>
-#include <deal.II/distributed/tria.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q.h>
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/grid/manifold_lib.h>
-#include <deal.II/grid/tria.h>
-#include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/base/types.h>
 #include <deal.II/lac/trilinos_vector.h>
-#include <deal.II/lac/vector.h>
-#include <deal.II/numerics/error_estimator.h>
-#include <deal.II/numerics/vector_tools.h>
 
-#include <Epetra_Map.h>
-#include <Epetra_MultiVector.h>
-#include <Teuchos_ParameterList.hpp>
-
-#include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <iostream>
-#include <limits>
-#include <map>
 #include <memory>
 #include <set>
-#include <string>
 #include <vector>
 
 namespace clearjoint::fe::detail
@@ -137,7 +96,8 @@ namespace clearjoint::fe::detail
                 private DynamicProblem,
                 private SpinProblem,
                 private MaterialProblem,
-                private StudyModel
+                private StudyModel,
+                private MeshPreparation
   {
   public:
     Model(const FeScene &scene, const RunOptions &options);
@@ -146,19 +106,14 @@ namespace clearjoint::fe::detail
     RunResult run();
 
   private:
-    // ---- the mesh and all that depends on it (model.cc, contact/contact_pattern.cc)
+    // ---- the mesh and all that depends on it (model.cc)
     void build_mesh() override;
     void refine_mesh() override;
     void free_journal() override;
-    /// Everything that depends on the mesh: DoFs, constraints, contact nodes (searched as
-    /// find_contact_nodes), matrices.
-    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
-    /// The pairing's contact nodes, their partners' ghosts and the contact cells; searched
-    /// between the surfaces displaced by `search_displacement` when given (ghosted; finite
-    /// sliding's rebuild).
-    void find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr);
-    /// The sparsity pattern with every candidate's contact line, the matrices, u, the solver.
-    void make_matrices();
+    /// Everything that depends on the mesh: DoFs, constraints, contact nodes and the pattern
+    /// (ContactPattern, searched between the surfaces displaced by `search_displacement` when
+    /// given), matrices, u, the solver's choice.
+    void prepare_mesh(const TrilinosWrappers::MPI::Vector *search_displacement = nullptr) override;
     /// The contact surface's DoFs, massless in an operator of this kind (the impact study's
     /// dynamic one with impact.mass = redistributed: Assembler::lump_and_redistribute); empty
     /// otherwise.
@@ -166,23 +121,18 @@ namespace clearjoint::fe::detail
     /// The run's mesh sizes and set-up time into `result` (every study, once its mesh is final).
     void record_mesh(RunResult &result) const override;
 
-    // ---- the contact pairing as the surfaces move (contact/sliding.cc)
-    /// contact.sliding finite: the mortar search again at the converged deformed surfaces;
-    /// slip then counts from u_start. Returns how far the coupling moved.
-    double follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, bool rebuild = false);
-    /// contact.sliding finite (scene.cc admits it only for two bodies paired by mortar)
-    bool finite_sliding() const { return scene_.contact.sliding == Contact::Sliding::finite; }
+    // ---- the contact pairing as the surfaces move (ContactPattern)
     double pair_deformed_surfaces(const TrilinosWrappers::MPI::Vector &u_start) override
     {
-      return follow_sliding(u_start);
+      return pattern_.follow_sliding(u_start);
     }
     void pair_turned_journal(const TrilinosWrappers::MPI::Vector &u_start) override
     {
-      follow_sliding(u_start);
+      pattern_.follow_sliding(u_start);
     }
     bool rolling_deformable_journal() const { return contact_solve_.rolling_deformable_journal(); }
     bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
-    unsigned int sliding_rebuilds() const override { return n_sliding_rebuilds_; }
+    unsigned int sliding_rebuilds() const override { return pattern_.rebuilds(); }
 
     // ---- the steppers over the model's parts, the start and the rollback (model.cc)
     QuasiStaticStepper quasi_static_stepper() override;
@@ -196,7 +146,7 @@ namespace clearjoint::fe::detail
     /// What a failed attempt goes back to (Snapshot, solve/stepper_interfaces.h).
     Snapshot save_state() const override
     {
-      return {state_.u_owned(), contact_.nodes(), n_sliding_rebuilds_};
+      return {state_.u_owned(), contact_.nodes(), pattern_.rebuilds()};
     }
     void restore_state(const Snapshot &s) override;
     /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
@@ -219,7 +169,8 @@ namespace clearjoint::fe::detail
     /// [N m] the contact's torque on the journal about its axis, full body (collective).
     double journal_torque() const override;
 
-    // ---- the material (material/plastic_history.cc, model.cc)
+    // ---- the material (MaterialState, model.cc)
+    /// The points' history sized for the mesh, then the operator the tangent.
     void init_plasticity() override;
     bool elastoplastic() const override { return system_.kind() == Assembler::Operator::tangent; }
     /// The tangent and its load at the current displacement (Assembler::assemble_tangent),
@@ -235,11 +186,23 @@ namespace clearjoint::fe::detail
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.
     RollingSolve solve_rolling_state(double delta) override;
-    /// A converged state's trial states made the points' history.
-    void commit_material() override;
-    PlasticEnergies commit_plasticity() override;
+    /// A converged state's trial states made the points' history (with the step's energies:
+    /// commit_plasticity); the tangent assembled before no longer belongs to it.
+    void commit_material() override
+    {
+      newton_.forget_tangent();
+      material_.commit();
+    }
+    PlasticEnergies commit_plasticity() override
+    {
+      newton_.forget_tangent();
+      return material_.commit_with_energies();
+    }
     std::vector<StrainProfilePoint> strain_profile(unsigned int body, double turn,
-                                                   double half_angle) const override;
+                                                   double half_angle) const override
+    {
+      return material_.strain_profile(body, turn, half_angle);
+    }
 
     /// [s] since the model was made (the runs' set-up and wall times).
     double elapsed() const override
@@ -252,7 +215,6 @@ namespace clearjoint::fe::detail
     const StudyPlan plan_;  // what the scene's study sets up (study/*.cc)
     RunOptions options_;
     MPI_Comm comm_;
-    const unsigned int rank_, n_ranks_;
 
     Bodies bodies_;           // the mesh, its mapping, symmetry factor and h_min
     DofSpace dofs_;           // FE, DoFs, index sets, fixed constraints, loaded and support DoFs
@@ -265,25 +227,16 @@ namespace clearjoint::fe::detail
     /// How the contact nodes find their partners (obstacle, common rays or mortar): reads
     /// the bodies, DoFs, contact problem, obstacle and frame above.
     std::unique_ptr<ContactPairing> pairing_;
-    /// The bodies' law (make_material: J2 with its history for the rolling study, else
-    /// linear elastic); material_->elastic() is the law of the static operator.
-    std::unique_ptr<MaterialLaw> material_;
+    /// The bodies' law with its quadrature-point history (make_material: J2 with its history
+    /// for material.model elastoplastic, else linear elastic): its commits, energies and strain
+    /// profile; material_.law().elastic() is the law of the static operator.
+    MaterialState material_;
 
     bool journal_driven_ = true;  // false: a deformable journal is free
     /// The operator (stiffness, dynamic or elastoplastic tangent), its load, the contact
     /// cells' matrices, the elastic cache and each iteration's condensed system.
     Assembler system_;
-    /// The partner combinations' sparsity: per candidate node (by its x-DoF) the component of
-    /// its normal line and its partners' x-DoFs, as make_matrices built the pattern for them
-    /// (follow_sliding: whether new couplings fit it).
-    struct PatternEntry
-    {
-      unsigned int component = 0;
-      std::set<types::global_dof_index> partners;
-    };
-    std::map<types::global_dof_index, PatternEntry> pattern_partners_;
-    unsigned int n_sliding_rebuilds_ = 0;  // follow_sliding: new sparsity patterns
-    State state_;                          // u (owned and ghosted) and the nodal forces it leaves
+    State state_;  // u (owned and ghosted) and the nodal forces it leaves
 
     SystemSolver solver_;  // MUMPS or CG/GMRES with the AMG it owns
     /// The material Newton iteration of an elastoplastic state, with its line search and the
@@ -291,6 +244,9 @@ namespace clearjoint::fe::detail
     MaterialNewton newton_;
     /// The increment's contact solve: the active-set iteration, its constraints and times.
     ContactSolve contact_solve_;
+    /// The contact nodes on the DoF space and the sparsity pattern every active set condenses
+    /// into, with the couplings it was built for; finite sliding and its rebuilds.
+    ContactPattern pattern_;
     /// The fields for ParaView, their PVD records and the yield check.
     FieldOutput fields_;
     std::chrono::steady_clock::time_point start_;

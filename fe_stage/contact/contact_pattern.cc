@@ -1,8 +1,22 @@
-// The contact nodes on the DoF space (core/dof_space.h): the pairing's nodes (contact/
-// contact_pairing.h), their partners' ghosts and the cells whose condensed matrices change with
-// the active set; then the sparsity pattern that every active set condenses into, matrices,
-// vectors and the solver choice.
-#include "fe_stage/model.h"
+// ContactPattern (contact/contact_pattern.h), the contact nodes on the DoF space (core/
+// dof_space.h): the pairing's nodes (contact/contact_pairing.h), their partners' ghosts and the
+// cells whose condensed matrices change with the active set; then the sparsity pattern that
+// every active set condenses into and the assembler's matrices on it.
+#include "fe_stage/contact/contact_pattern.h"
+
+#include "fe_stage/solve/contact_solve.h"
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <algorithm>
+#include <map>
+#include <vector>
 
 namespace clearjoint::fe::detail
 {
@@ -80,15 +94,36 @@ namespace clearjoint::fe::detail
     }
   }  // namespace
 
+  ContactPattern::ContactPattern(MeshPreparation &mesh, const Parts &parts)
+    : mesh_(mesh)
+    , scene_(parts.scene)
+    , plan_(parts.plan)
+    , bodies_(parts.bodies)
+    , dofs_(parts.dofs)
+    , contact_(parts.contact)
+    , pairing_(parts.pairing)
+    , frame_(parts.frame)
+    , system_(parts.system)
+    , state_(parts.state)
+    , contact_solve_(parts.contact_solve)
+    , comm_(parts.comm)
+    , n_ranks_(Utilities::MPI::n_mpi_processes(parts.comm))
+  {}
+
+  bool ContactPattern::rolling_deformable_journal() const
+  {
+    return contact_solve_.rolling_deformable_journal();
+  }
+
   /// The pairing's contact nodes, searched between the reference surfaces or those displaced
   /// by `search_displacement` (ghosted; finite sliding's rebuild), then their partners' ghosts
   /// and the contact cells.
-  void Model::find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement)
+  void ContactPattern::find_contact_nodes(const TrilinosWrappers::MPI::Vector *search_displacement)
   {
     std::map<types::global_dof_index, Point<dim>> support;
     DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
     contact_.nodes().clear();
-    for (auto &[d, cn] : pairing_->find(support, search_displacement))
+    for (auto &[d, cn] : pairing_.find(support, search_displacement))
       contact_.nodes().push_back(cn);
 
     if (plan_.deformable_partner && n_ranks_ > 1)
@@ -100,11 +135,10 @@ namespace clearjoint::fe::detail
     system_.set_contact_cells(std::move(contact_cell_of), n);
   }
 
-  /// Matrices and vectors. The sparsity pattern is built with every candidate's contact line
-  /// present, so any active set condenses into it (the two-body lines couple journal DoFs).
-  void Model::make_matrices()
+  /// The matrices. The sparsity pattern is built with every candidate's contact line present,
+  /// so any active set condenses into it (the two-body lines couple journal DoFs).
+  void ContactPattern::make_matrices()
   {
-    newton_.forget_tangent();  // the matrices are made again
     AffineConstraints<double> worst(dofs_.relevant());
     pattern_partners_.clear();
     for (const auto &cn : contact_.nodes())
@@ -205,23 +239,5 @@ namespace clearjoint::fe::detail
     }
     SparsityTools::distribute_sparsity_pattern(dsp, dofs_.owned(), comm_, dofs_.relevant());
     system_.reinit(dsp);
-
-    state_.reinit(dofs_, comm_);
-
-    const auto n_dofs = dofs_.handler().n_dofs();
-    bool direct = false;
-    switch (scene_.solver.linear)
-      {
-        case LinearSolver::direct:
-          direct = true;
-          break;
-        case LinearSolver::cg_amg:
-          direct = false;
-          break;
-        case LinearSolver::automatic:
-          direct = n_dofs < scene_.solver.direct_below_dofs;
-          break;
-      }
-    solver_.configure(direct, scene_.solver.tolerance, scene_.solver.max_linear_iterations);
   }
 }  // namespace clearjoint::fe::detail

@@ -1,8 +1,19 @@
 // Finite sliding (contact.sliding: finite): after every converged increment the mortar search is
 // done again between the surfaces as they are now, x = X + u, so a node is coupled to the
 // partners that face it after the surfaces have slid past each other, not to those that faced
-// it in the reference configuration.
-#include "fe_stage/model.h"
+// it in the reference configuration. ContactPattern's second file (contact/contact_pattern.h).
+#include "fe_stage/contact/contact_pattern.h"
+
+#include "fe_stage/solve/contact_solve.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
 
 namespace clearjoint::fe::detail
 {
@@ -13,15 +24,17 @@ namespace clearjoint::fe::detail
   /// gap at the converged u is the weighted gap found there, and slip counts from u_start (the
   /// increment's start) with the new partners. Returns how far the coupling moved (the
   /// largest over the candidate nodes of Σ_m |ΔC_sm| and |Δgap|/δ_max). `rebuild` forces the
-  /// rebuild: after a failed attempt restored contact_.nodes() whose partners the pattern no longer has.
-  double Model::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start, const bool rebuild)
+  /// rebuild: after a failed attempt restored contact_.nodes() whose partners the pattern no
+  /// longer has (pair_restored).
+  double ContactPattern::follow_sliding(const TrilinosWrappers::MPI::Vector &u_start,
+                                        const bool rebuild)
   {
     // How much the coupling moved: per node the sum of |C_new − C_old| over its partners
     // [1] and the change of its linearised gap at u [m] (against δ_max).
     const double delta_max = scene_.loading.delta_max;
     std::map<types::global_dof_index, Point<dim>> support;
     DoFTools::map_dofs_to_support_points(bodies_.mapping(), dofs_.handler(), support);
-    const ContactPairing::Nodes fresh = pairing_->find(support, &state_.u());
+    const ContactPairing::Nodes fresh = pairing_.find(support, &state_.u());
 
     // the new couplings fit the pattern when every new candidate was one in the pattern, with
     // the same constrained component and its new partners among the pattern's
@@ -91,7 +104,7 @@ namespace clearjoint::fe::detail
         for (const auto &cn : contact_.nodes())
           old_state.emplace(cn.dofs[0], cn);
         // the DoF numbering stays (same mesh); the ghosts, the pattern and A_static change
-        prepare_mesh(&u_ghosted);
+        mesh_.prepare_mesh(&u_ghosted);
         state_.u_owned() = u_owned;
         state_.publish();
         for (auto &cn : contact_.nodes())
@@ -102,9 +115,9 @@ namespace clearjoint::fe::detail
             cn.active = it->second.active && cn.candidate;
             cn.stick = it->second.stick;
           }
-        if (elastoplastic())
-          system_.keep_elastic_operator();  // the new pattern's elastic matrices
-        ++n_sliding_rebuilds_;
+        if (system_.kind() == Assembler::Operator::tangent)  // elastoplastic
+          system_.keep_elastic_operator();                   // the new pattern's elastic matrices
+        ++n_rebuilds_;
       }
     // Friction: the slip of the (re-solved or next) increment counts from its start, u_start,
     // measured with the new partners.
@@ -133,5 +146,15 @@ namespace clearjoint::fe::detail
     // relative displacements and gaps at u with the new couplings
     contact_solve_.evaluate_contact(0.0);
     return change;
+  }
+
+  void ContactPattern::pair_restored(const TrilinosWrappers::MPI::Vector &u,
+                                     const unsigned int rebuilds_saved)
+  {
+    // finite sliding rebuilt the pattern for couplings of the failed attempt: pair the
+    // restored state again so that the pattern holds its partners (the rolling study's turning
+    // journal, not finite sliding, searches again at its next evaluation anyway)
+    if (finite_sliding() && n_rebuilds_ != rebuilds_saved)
+      follow_sliding(u, true);
   }
 }  // namespace clearjoint::fe::detail

@@ -4,6 +4,7 @@
 
 #include "fe_stage/core/step_failure.h"
 
+#include "common/error.h"
 #include "common/log.h"
 #include "common/units.h"
 

@@ -4,6 +4,7 @@
 // elastic; this tells the user where that is no longer true.
 #include "fe_stage/results/field_output.h"
 
+#include "common/error.h"
 #include "common/log.h"
 #include "common/units.h"
 

@@ -1,5 +1,6 @@
 #include "fe_stage/solve/hht_stepper.h"
 
+#include "fe_stage/core/step_failure.h"
 #include "fe_stage/solve/root_finder.h"
 
 #include "common/error.h"
@@ -202,9 +203,11 @@ namespace clearjoint::fe::detail
     work_contact_ += w_bodies + w_journal;
     // the energies
     const double strain_total = energy(model_.system.elastic_stiffness(), u_new_, false);
-    const double strain_j = deformable_ ? energy(model_.system.elastic_stiffness(), u_new_, true) : 0.0;
+    const double strain_j =
+      deformable_ ? energy(model_.system.elastic_stiffness(), u_new_, true) : 0.0;
     const double kinetic_total = energy(model_.system.mass(), v_new_, false);
-    const double kinetic_fe_journal = deformable_ ? energy(model_.system.mass(), v_new_, true) : 0.0;
+    const double kinetic_fe_journal =
+      deformable_ ? energy(model_.system.mass(), v_new_, true) : 0.0;
     const double kinetic_b = kinetic_total - kinetic_fe_journal;
     const double kinetic_j =
       deformable_ ? kinetic_fe_journal : 0.5 * m_J_ * d_rate_new * d_rate_new;

@@ -7,6 +7,7 @@
 
 #include "fe_stage/solve/adaptive_estimate.h"
 
+#include "common/error.h"
 #include "common/log.h"
 #include "common/units.h"
 
@@ -228,7 +229,7 @@ namespace clearjoint::fe::detail
       close_adaptive_sequence(result, last_mesh_marked);
     result.sliding_rebuilds = model_.sliding_rebuilds();
     result.sliding_resolves = stepper.sliding_resolves();
-    if (rank_ == 0 && parts_.scene.contact.sliding == Contact::Sliding::finite)
+    if (rank_ == 0 && stepper.finite_sliding())
       log::info("fe_stage: finite sliding: the mortar search was redone after every converged "
                 "increment; " +
                 std::to_string(model_.sliding_rebuilds()) +

@@ -58,6 +58,9 @@ namespace clearjoint::fe::detail
     bool push_through(const std::vector<double> &targets, std::string &message,
                       const std::function<void(unsigned int, IncrementRecord &)> &on_converged);
 
+    /// contact.sliding finite: the mortar search again after each converged increment (as the
+    /// model's contact pattern says).
+    bool finite_sliding() const { return parts_.finite_sliding; }
     /// Increments solved again with a new coupling by finite sliding, over every push so far.
     unsigned int sliding_resolves() const { return n_sliding_resolves_; }
 

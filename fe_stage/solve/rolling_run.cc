@@ -9,6 +9,7 @@
 // profile, slip stages).
 #include "fe_stage/solve/rolling_run.h"
 
+#include "common/error.h"
 #include "common/log.h"
 #include "common/units.h"
 

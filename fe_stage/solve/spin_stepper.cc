@@ -1,6 +1,7 @@
 #include "fe_stage/solve/spin_stepper.h"
 
 #include "fe_stage/core/scoped_timer.h"
+#include "fe_stage/core/step_failure.h"
 #include "fe_stage/solve/root_finder.h"
 
 #include "common/error.h"

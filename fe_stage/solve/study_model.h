@@ -8,6 +8,7 @@
 #pragma once
 
 #include "fe_stage/fe_model.h"
+#include "fe_stage/material/material_state.h"
 #include "fe_stage/solve/hht.h"
 #include "fe_stage/solve/hht_stepper.h"
 #include "fe_stage/solve/quasi_static_stepper.h"
@@ -18,18 +19,6 @@
 
 namespace clearjoint::fe::detail
 {
-  /// A converged elastoplastic step committed to the points' history: its energies and the
-  /// extremes of the committed states.
-  struct PlasticEnergies
-  {
-    double plastic_work_step = 0.0;  // [J] full body
-    double elastic_energy = 0.0;     // [J]
-    double plastic_volume = 0.0;     // [m^3]
-    double max_plastic_strain = 0.0, max_strain = 0.0;
-    // the bearing's own (material 0): its balance in its frame
-    double bearing_plastic_work_step = 0.0, bearing_elastic_energy = 0.0;  // [J]
-  };
-
   class StudyModel
   {
   public:

@@ -1,25 +1,50 @@
-// The elastoplastic bodies' quadrature-point history seen from the model (study rolling):
-// the tangent assembled from it, committing a converged step with its energies, and the per-cell and mid-plane fields that
-// the output and the rolling study's strain profiles read from it.
+// MaterialState (material/material_state.h): the bodies' law with its quadrature-point history
+// on the mesh — sizing it, committing a converged state (with the step's energies: the rolling
+// study's balance), and the strain profile at the contact's mid-plane.
+#include "fe_stage/material/material_state.h"
+
+#include "fe_stage/core/step_failure.h"
 #include "fe_stage/material/strain_measure.h"
-#include "fe_stage/model.h"
+#include "fe_stage/mesh/boundary_ids.h"
+
+#include "common/error.h"
+#include "common/units.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/fe_values_extractors.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
 
 namespace clearjoint::fe::detail
 {
-  void Model::init_plasticity()
+  MaterialState::MaterialState(const Parts &parts)
+    : scene_(parts.scene)
+    , bodies_(parts.bodies)
+    , dofs_(parts.dofs)
+    , state_(parts.state)
+    , comm_(parts.comm)
+    , law_(make_material(parts.scene, parts.scene.material.model == Material::Model::elastoplastic))
+  {}
+
+  void MaterialState::init_history(const unsigned int n_q_points)
   {
-    if (!material_->has_history())
+    if (!law_->has_history())
       throw NumericalError("fe_stage: the elastoplastic assembly needs a material law with "
                            "history (make_material)");
-    material_->resize(std::size_t(bodies_.triangulation().n_active_cells()) * system_.n_q_points());
-    system_.use_tangent();
+    n_q_points_ = n_q_points;
+    law_->resize(std::size_t(bodies_.triangulation().n_active_cells()) * n_q_points);
   }
 
   /// Trial → committed at every quadrature point (after a converged step), and the step's
   /// energies from the committed states.
-  PlasticEnergies Model::commit_plasticity()
+  PlasticEnergies MaterialState::commit_with_energies()
   {
-    newton_.forget_tangent();  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
     const unsigned int n_q = quadrature.size();
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature,
@@ -43,19 +68,19 @@ namespace clearjoint::fe::detail
             {
               const std::size_t point = first + q;
               // the trial state at the converged u (the same return map as the assembly's)
-              const double plastic_work =
-                finite ? material_->evaluate_finite(point, grad_u[q]).plastic_work :
-                         material_->evaluate(point, eps[q]).plastic_work;
+              const double plastic_work = finite ?
+                                            law_->evaluate_finite(point, grad_u[q]).plastic_work :
+                                            law_->evaluate(point, eps[q]).plastic_work;
               e.plastic_work_step += plastic_work * fv.JxW(q);
-              material_->commit(point);
-              const double elastic = material_->elastic_energy(point, eps[q]) * fv.JxW(q);
+              law_->commit(point);
+              const double elastic = law_->elastic_energy(point, eps[q]) * fv.JxW(q);
               e.elastic_energy += elastic;
               if (bearing)
                 {
                   e.bearing_plastic_work_step += plastic_work * fv.JxW(q);
                   e.bearing_elastic_energy += elastic;
                 }
-              const double alpha = material_->equivalent_plastic_strain(point);
+              const double alpha = law_->equivalent_plastic_strain(point);
               e.max_plastic_strain = std::max(e.max_plastic_strain, alpha);
               if (alpha > 0.0)
                 cell_plastic_volume += fv.JxW(q);
@@ -82,8 +107,9 @@ namespace clearjoint::fe::detail
   /// γ for the deformable journal, angles about the body's own axis): the face quadrature
   /// points of the contact-surface faces that touch z = 0, nearest row to the plane.
   /// Collective; every rank gets the sorted profile.
-  std::vector<StrainProfilePoint> Model::strain_profile(const unsigned int body, const double turn,
-                                                        const double half_angle) const
+  std::vector<StrainProfilePoint> MaterialState::strain_profile(const unsigned int body,
+                                                                const double turn,
+                                                                const double half_angle) const
   {
     const QGauss<dim - 1> fq(dofs_.fe().degree + 2);
     FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq,
@@ -93,7 +119,7 @@ namespace clearjoint::fe::detail
     std::vector<SymmetricTensor<2, dim>> eps(fq.size());
     const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
     std::vector<double> mine;
-    const unsigned int n_q = system_.n_q_points();  // the material points of a cell
+    const unsigned int n_q = n_q_points_;  // the material points of a cell
     const double R = body == 0 ? scene_.geometry.R_B : scene_.geometry.R_J();
     const double axis_y = body == 0 ? 0.0 : -scene_.geometry.c_r;  // the body's axis (x = 0)
     const types::boundary_id surface = body == 0 ? bid_contact : bid_journal_surface;
@@ -119,8 +145,8 @@ namespace clearjoint::fe::detail
               SymmetricTensor<2, dim> mean_eps_p;
               for (unsigned int q = 0; q < n_q; ++q)
                 {
-                  alpha = std::max(alpha, material_->equivalent_plastic_strain(first + q));
-                  mean_eps_p += material_->plastic_strain(first + q) / double(n_q);
+                  alpha = std::max(alpha, law_->equivalent_plastic_strain(first + q));
+                  mean_eps_p += law_->plastic_strain(first + q) / double(n_q);
                 }
               for (const unsigned int q : fv.quadrature_point_indices())
                 {
@@ -137,7 +163,7 @@ namespace clearjoint::fe::detail
                   const Tensor<1, dim> et({-p[1] / r, p[0] / r, 0.0});
                   mine.insert(mine.end(),
                               {a, er * (eps[q] * er), et * (eps[q] * et), eps[q][2][2], alpha,
-                               von_mises(material_->elastic().stress(eps[q] - mean_eps_p))});
+                               von_mises(law_->elastic().stress(eps[q] - mean_eps_p))});
                 }
             }
     std::vector<StrainProfilePoint> profile;
@@ -160,26 +186,10 @@ namespace clearjoint::fe::detail
     return profile;
   }
 
-  /// The tangent and its load at the current displacement (small or finite kinematics),
-  /// then the contact nodes' share of the load (MaterialProblem).
-  unsigned int Model::assemble_plastic()
-  {
-    unsigned int n_plastic_points = 0;
-    {
-      const ScopedTimer timer = contact_solve_.assembly_timer();
-      n_plastic_points = scene_.material.kinematics == Material::Kinematics::finite ?
-                           system_.assemble_finite_tangent(*material_, state_.u()) :
-                           system_.assemble_tangent(*material_, state_.u());
-    }
-    set_contact_load_offsets();
-    return n_plastic_points;
-  }
-
   /// The last assembly left trial states at the last Newton iterate, not at the converged
   /// displacement: evaluate every point there again, then make it the point's history.
-  void Model::commit_material()
+  void MaterialState::commit()
   {
-    newton_.forget_tangent();  // the history changes
     const QGauss<dim> quadrature(dofs_.fe().degree + 1);
     const unsigned int n_q = quadrature.size();
     FEValues<dim> fv(bodies_.mapping(), dofs_.fe(), quadrature, update_gradients);
@@ -194,9 +204,9 @@ namespace clearjoint::fe::detail
           const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const bool converged =
-                finite ? material_->evaluate_finite(first + q, grad_u[q]).converged :
-                         material_->evaluate(first + q, symmetrize(grad_u[q])).converged;
+              const bool converged = finite ?
+                                       law_->evaluate_finite(first + q, grad_u[q]).converged :
+                                       law_->evaluate(first + q, symmetrize(grad_u[q])).converged;
               if (!converged)  // (nothing committed yet: the step can still be cut)
                 throw StepFailure{"the material law failed at a quadrature point of the "
                                   "converged state"};
@@ -205,6 +215,6 @@ namespace clearjoint::fe::detail
     for (const auto &cell : dofs_.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         for (unsigned int q = 0; q < n_q; ++q)
-          material_->commit(std::size_t(cell->active_cell_index()) * n_q + q);
+          law_->commit(std::size_t(cell->active_cell_index()) * n_q + q);
   }
 }  // namespace clearjoint::fe::detail
