@@ -22,8 +22,14 @@ namespace
   constexpr unsigned int n = 40;
 
   /// A tridiagonal, diagonally dominant matrix (a 1D Laplacian with a varying shift).
-  void fill(TrilinosWrappers::SparseMatrix &A)
+  void make_matrix(TrilinosWrappers::SparseMatrix &A)
   {
+    const IndexSet all = complete_index_set(n);
+    DynamicSparsityPattern dsp(n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1); ++j)
+        dsp.add(i, j);
+    A.reinit(all, all, dsp, MPI_COMM_SELF);
     for (unsigned int i = 0; i < n; ++i)
       {
         A.set(i, i, 2.0 + 0.01 * i);
@@ -50,13 +56,8 @@ namespace
 TEST(DirectSolver, ReusesItsFactorizationWhileTheMatrixRepeats)
 {
   const IndexSet all = complete_index_set(n);
-  DynamicSparsityPattern dsp(n);
-  for (unsigned int i = 0; i < n; ++i)
-    for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1); ++j)
-      dsp.add(i, j);
   TrilinosWrappers::SparseMatrix A;
-  A.reinit(all, all, dsp, MPI_COMM_SELF);
-  fill(A);
+  make_matrix(A);
   TrilinosWrappers::MPI::Vector b(all, MPI_COMM_SELF), x(all, MPI_COMM_SELF);
   for (unsigned int i = 0; i < n; ++i)
     b(i) = std::sin(1.0 + i);
@@ -97,13 +98,8 @@ TEST(DirectSolver, ReusesItsFactorizationWhileTheMatrixRepeats)
 TEST(DirectSolver, ASingularSystemIsAStepFailure)
 {
   const IndexSet all = complete_index_set(n);
-  DynamicSparsityPattern dsp(n);
-  for (unsigned int i = 0; i < n; ++i)
-    for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1); ++j)
-      dsp.add(i, j);
   TrilinosWrappers::SparseMatrix A;
-  A.reinit(all, all, dsp, MPI_COMM_SELF);
-  fill(A);
+  make_matrix(A);
   // row 10 all zeros (its entries stay in the pattern): singular
   A.set(10, 9, 0.0);
   A.set(10, 10, 0.0);
