@@ -117,7 +117,7 @@ namespace clearjoint::fe::detail
         {
           const Tensor<1, dim> t = tangential(contact_.traction(cn), cn.n);
           Tensor<1, dim> arm = scene_.geometry.R_J() * cn.n;
-          if (rolling_deformable_journal())
+          if (plan_.journal_turns_deformable())
             for (unsigned int c = 0; c + 1 < dim; ++c)
               arm[c] = cn.X[c] + state_.u()[cn.dofs[c]] - frame_.centre[c];
           torque -= arm[0] * t[1] - arm[1] * t[0];

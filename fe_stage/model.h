@@ -42,7 +42,7 @@
 //     step-41/42): an active node gets the linearised non-penetration constraint as an
 //     AffineConstraints line on its dominant displacement component; the contact force at a
 //     node is λ = (K u − b)·n; Coulomb friction by the semi-smooth Newton rows of
-//     contact/contact_rows.cc. Partners: a rigid obstacle, node-to-node on common rays, or dual
+//     solve/contact_rows.cc. Partners: a rigid obstacle, node-to-node on common rays, or dual
 //     mortar (and finite sliding). The converged solution does not depend on the
 //     complementarity constants;
 //   - quasi-static increments of δ, HHT-α time steps (impact), or the turning bearing's time
@@ -130,8 +130,7 @@ namespace clearjoint::fe::detail
     {
       pattern_.follow_sliding(u_start);
     }
-    bool rolling_deformable_journal() const { return contact_solve_.rolling_deformable_journal(); }
-    bool journal_turns_deformable() const override { return rolling_deformable_journal(); }
+    bool journal_turns_deformable() const override { return plan_.journal_turns_deformable(); }
     unsigned int sliding_rebuilds() const override { return pattern_.rebuilds(); }
 
     // ---- the steppers over the model's parts, the start and the rollback (model.cc)

@@ -62,5 +62,10 @@ namespace clearjoint::fe
     /// meshed), elastoplastic, the journal's spin found from its torque balance.
     bool rolling = false;
     std::array<std::string, 2> body_names;  // material ids 0 and 1
+
+    /// The rolling study's deformable journal, turning over the bore in its own frame: its
+    /// partners move with it (the pairing places them by the journal's pose, the contact
+    /// rows turn their displacements, every torque evaluation searches again).
+    bool journal_turns_deformable() const { return rolling && deformable_partner; }
   };
 }  // namespace clearjoint::fe

@@ -4,8 +4,6 @@
 // every active set condenses into and the assembler's matrices on it.
 #include "fe_stage/contact/contact_pattern.h"
 
-#include "fe_stage/solve/contact_solve.h"
-
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
@@ -105,15 +103,10 @@ namespace clearjoint::fe::detail
     , frame_(parts.frame)
     , system_(parts.system)
     , state_(parts.state)
-    , contact_solve_(parts.contact_solve)
+    , evaluation_(parts.evaluation)
     , comm_(parts.comm)
     , n_ranks_(Utilities::MPI::n_mpi_processes(parts.comm))
   {}
-
-  bool ContactPattern::rolling_deformable_journal() const
-  {
-    return contact_solve_.rolling_deformable_journal();
-  }
 
   /// The pairing's contact nodes, searched between the reference surfaces or those displaced
   /// by `search_displacement` (ghosted; finite sliding's rebuild), then their partners' ghosts
@@ -166,7 +159,7 @@ namespace clearjoint::fe::detail
                   // (the rolling study's turning journal: its partners' x and y mix)
                   for (const auto &p : cn.partners)
                     for (unsigned int m = 0; m < dim; ++m)
-                      if (m == k || rolling_deformable_journal())
+                      if (m == k || plan_.journal_turns_deformable())
                         worst.add_entry(cn.dofs[k], p.dofs[m], 1.0);
                 }
         }

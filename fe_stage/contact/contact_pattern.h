@@ -31,8 +31,6 @@
 
 namespace clearjoint::fe::detail
 {
-  class ContactSolve;
-
   /// What the pattern asks of the model when finite sliding's new couplings do not fit it:
   /// everything that depends on the mesh made again (Model::prepare_mesh), the contact nodes
   /// searched between the surfaces displaced by `search_displacement` (ghosted).
@@ -45,12 +43,26 @@ namespace clearjoint::fe::detail
     ~MeshPreparation() = default;
   };
 
+  /// What finite sliding asks of the contact solve (solve/contact_solve.h) once the nodes are
+  /// paired again: the turning journal's partners placed at the frame's pose now, and every
+  /// node's force, gap and relative displacement at the current u.
+  class ContactEvaluation
+  {
+  public:
+    virtual void set_obstacle_position(double delta) = 0;
+    virtual void evaluate_contact(double delta) = 0;
+
+  protected:
+    ~ContactEvaluation() = default;
+  };
+
   class ContactPattern
   {
   public:
     /// The model's parts the pattern works on: it adds the partners' ghosts to the DoF space,
     /// fills and re-pairs the contact nodes, gives the assembler its contact cells and
-    /// pattern, and (finite sliding) evaluates the contact at u through the contact solve.
+    /// pattern, and (finite sliding) evaluates the contact at u through the contact solve
+    /// (`evaluation`).
     struct Parts
     {
       const FeScene &scene;
@@ -62,7 +74,7 @@ namespace clearjoint::fe::detail
       const JournalFrame &frame;
       Assembler &system;
       State &state;
-      ContactSolve &contact_solve;
+      ContactEvaluation &evaluation;
       MPI_Comm comm;
     };
 
@@ -90,9 +102,6 @@ namespace clearjoint::fe::detail
     unsigned int rebuilds() const { return n_rebuilds_; }
 
   private:
-    /// The rolling study's deformable journal turns over the bore (ContactSolve's answer).
-    bool rolling_deformable_journal() const;
-
     MeshPreparation &mesh_;
     // the parts (Parts), by the names the pattern's files use
     const FeScene &scene_;
@@ -104,7 +113,7 @@ namespace clearjoint::fe::detail
     const JournalFrame &frame_;
     Assembler &system_;
     State &state_;
-    ContactSolve &contact_solve_;
+    ContactEvaluation &evaluation_;
     MPI_Comm comm_;
     const unsigned int n_ranks_;
 

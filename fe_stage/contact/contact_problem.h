@@ -5,7 +5,7 @@
 // Hüeber–Stadler–Wohlmuth 2008; contact/active_set.cc).
 //
 // The pairing's nodes fill it (contact/contact_pairing.h, contact/contact_pattern.cc), the
-// constraint and friction rows read them (contact/contact_rows.cc), the evaluation after a
+// constraint and friction rows read them (solve/contact_rows.cc), the evaluation after a
 // solve writes their forces and gaps (results/reactions.cc).
 #pragma once
 

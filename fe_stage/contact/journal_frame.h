@@ -15,6 +15,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <array>
 #include <cmath>
@@ -51,6 +52,19 @@ namespace clearjoint::fe::detail
     {
       const Point<dim> c(centre[0], centre[1], centre[2]);
       return c + rotation_z(psi()) * (X - Point<dim>(axis_mesh) + u);
+    }
+
+    /// Σ_p w_p Q u_p: the node's partners' displacement v as the slave node sees it (ghosted
+    /// v; Q the partners' turn now unless given).
+    Tensor<1, dim> partner_displacement(const ContactNode &cn,
+                                        const TrilinosWrappers::MPI::Vector &v,
+                                        const Tensor<2, dim> *Q = nullptr) const
+    {
+      Tensor<1, dim> s;
+      for (const auto &p : cn.partners)
+        for (unsigned int c = 0; c < dim; ++c)
+          s[c] += p.weight * v[p.dofs[c]];
+      return (Q ? *Q : partner_rotation) * s;
     }
 
     /// How the journal's frame at centre c and turn ψ moves the node's partner combination

@@ -153,7 +153,7 @@ namespace clearjoint::fe::detail
       {
         // a node's position in the configuration searched: X, or X + u; the rolling study's
         // turning journal (the master) placed in the bearing's frame by its pose
-        const bool turning_journal = c_.frame.turning && c_.plan.deformable_partner;
+        const bool turning_journal = c_.plan.journal_turns_deformable();
         auto position = [&](const std::array<types::global_dof_index, dim> &d,
                             const bool master_node = false) {
           Point<dim> x = support.at(d[0]);

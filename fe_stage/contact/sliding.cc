@@ -4,8 +4,6 @@
 // it in the reference configuration. ContactPattern's second file (contact/contact_pattern.h).
 #include "fe_stage/contact/contact_pattern.h"
 
-#include "fe_stage/solve/contact_solve.h"
-
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -124,12 +122,12 @@ namespace clearjoint::fe::detail
     // The turning journal: the slip counts from the step's start, where the journal's frame
     // had the last converged pose (frame_.centre_previous, ψ of the last converged step):
     // the new partners' frame motion and turn there. (The pose now: set_obstacle_position.)
-    const bool turning = rolling_deformable_journal();
+    const bool turning = plan_.journal_turns_deformable();
     const Tensor<2, dim> Q_start =
       turning ? JournalFrame::rotation_z(frame_.psi_converged) : frame_.partner_rotation;
     if (turning)
       {
-        contact_solve_.set_obstacle_position(0.0);
+        evaluation_.set_obstacle_position(0.0);
         for (auto &cn : contact_.nodes())
           cn.obstacle_u_converged =
             frame_.partner_motion(cn, frame_.centre_previous, frame_.psi_converged);
@@ -141,10 +139,10 @@ namespace clearjoint::fe::detail
         for (unsigned int c = 0; c < dim; ++c)
           cn.relative_converged[c] = start[cn.dofs[c]];
         cn.relative_converged -=
-          contact_solve_.partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
+          frame_.partner_displacement(cn, start, &Q_start) + cn.obstacle_u_converged;
       }
     // relative displacements and gaps at u with the new couplings
-    contact_solve_.evaluate_contact(0.0);
+    evaluation_.evaluate_contact(0.0);
     return change;
   }
 

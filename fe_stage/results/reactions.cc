@@ -37,7 +37,7 @@ namespace clearjoint::fe::detail
           }
         // the partners (turned into the slave's frame), and the rigid motion of the obstacle's
         // surface point or of the partners' frame (0 for two bodies at rest)
-        cn.relative -= partner_displacement(cn, state_.u()) + cn.obstacle_u;
+        cn.relative -= frame_.partner_displacement(cn, state_.u()) + cn.obstacle_u;
         cn.lambda = cn.traction * cn.n;
         // ĝ = g0 + n·(u − Σ w Q u_p); the obstacle's (or the partners' frame's) motion is
         // already in g0

@@ -7,13 +7,14 @@
 // set's lines) and the time it spends; it works on the parts it is given (the contact nodes,
 // the assembler, u) and keeps nothing else between increments.
 //
-// Files: solve/contact_iteration.cc (the iteration and its system), contact/contact_rows.cc
+// Files: solve/contact_iteration.cc (the iteration and its system), solve/contact_rows.cc
 // (obstacle, nodal areas, constraint and friction rows), results/reactions.cc (evaluation,
 // forces, Coulomb check).
 #pragma once
 
 #include "fe_stage/contact/contact_node.h"
 #include "fe_stage/contact/contact_pairing.h"
+#include "fe_stage/contact/contact_pattern.h"
 #include "fe_stage/contact/contact_problem.h"
 #include "fe_stage/contact/journal_frame.h"
 #include "fe_stage/contact/rigid_obstacle.h"
@@ -37,7 +38,7 @@
 
 namespace clearjoint::fe::detail
 {
-  class ContactSolve
+  class ContactSolve : public ContactEvaluation
   {
   public:
     /// The parts the solve works on: it moves the obstacle (and the turning journal's
@@ -66,30 +67,15 @@ namespace clearjoint::fe::detail
     IncrementRecord solve_increment(double delta);
 
     /// The rigid obstacle at δ: each node's gap g0, normal n and the displacement of the
-    /// obstacle's surface point facing it (contact/contact_rows.cc says how for each study).
-    void set_obstacle_position(double delta);
+    /// obstacle's surface point facing it (solve/contact_rows.cc says how for each study).
+    void set_obstacle_position(double delta) override;
     /// λ = (K u)·n, ĝ and the relative displacement of every node at the current u.
-    void evaluate_contact(double delta);
+    void evaluate_contact(double delta) override;
     /// Nodal areas w_i = ∫ φ_i dA over the contact surface (once per mesh).
     void compute_nodal_weights();
     /// Each contact node's share of the step's known load b (the friction rows read the
     /// traction K u − b in the dynamic and elastoplastic solves). Collective.
     void set_contact_load_offsets();
-
-    /// Σ_p w_p Q u_p: the partners' displacement as the slave node sees it (ghosted v; Q the
-    /// partners' turn now unless given).
-    Tensor<1, dim> partner_displacement(const ContactNode &cn,
-                                        const TrilinosWrappers::MPI::Vector &v,
-                                        const Tensor<2, dim> *Q = nullptr) const
-    {
-      Tensor<1, dim> s;
-      for (const auto &p : cn.partners)
-        for (unsigned int c = 0; c < dim; ++c)
-          s[c] += p.weight * v[p.dofs[c]];
-      return (Q ? *Q : frame_.partner_rotation) * s;
-    }
-    /// The rolling study's deformable journal turns over the bore (its partners move with it).
-    bool rolling_deformable_journal() const { return frame_.turning && plan_.deformable_partner; }
 
     /// The time in the contact assembly (another assembly, the elastoplastic tangent's, adds
     /// to it through assembly_timer()), the linear solves and the evaluation [s].

@@ -1,6 +1,6 @@
-// What the active set adds to the system (ContactSolve, solve/contact_solve.h): the rigid obstacle's gaps at δ, nodal areas, the
-// constraint lines of active nodes (normal, or all free components when sticking) and the
-// friction rows of slipping nodes.
+// What the active set adds to the system (ContactSolve, solve/contact_solve.h): the rigid
+// obstacle's gaps at δ, nodal areas, the constraint lines of active nodes (normal, or all free
+// components when sticking) and the friction rows of slipping nodes.
 #include "fe_stage/solve/contact_solve.h"
 
 #include "fe_stage/solve/rolling_kinematics.h"
@@ -65,7 +65,7 @@ namespace clearjoint::fe::detail
   {
     if (frame_.turning)
       obstacle_.frame_angle = frame_.phi;
-    if (rolling_deformable_journal())
+    if (plan_.journal_turns_deformable())
       {
         frame_.partner_rotation = JournalFrame::rotation_z(frame_.psi());
         for (auto &cn : contact_.nodes())
