@@ -97,6 +97,7 @@ TEST(FeGolden, RollingManifestListsTheFieldsIndex)
     "study: rolling\n"
     "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
     "loading: {delta_max: 1.0e-5, journal: rigid}\n"
+    "material: {kinematics: small}\n"
     "rolling: {n_steps: 4, ramp_time: 0.02, end_time: 0.02, field_stride: 2}\n",
     code);
   ASSERT_EQ(code, 0);

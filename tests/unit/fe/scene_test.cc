@@ -558,10 +558,16 @@ TEST(FeScene, KinematicsAndTheElastoplasticPatchTest)
                {"material.kinematics", "elastoplastic"});
   expect_error("schema: clearjoint.fe/1\nmaterial: {model: elastoplastic, kinematics: finite}\n",
                {"material.model"});  // radial: not elastoplastic at all
-  // the rolling study is elastoplastic by default: finite is accepted there
+  // the rolling study is elastoplastic by default, and finite is its default (the paper's push
+  // strains the bore to ~1); small stays available there
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nstudy: rolling\n").material.kinematics,
+            Material::Kinematics::finite);
   EXPECT_EQ(parse("schema: clearjoint.fe/1\nstudy: rolling\nmaterial: {kinematics: finite}\n")
               .material.kinematics,
             Material::Kinematics::finite);
+  EXPECT_EQ(parse("schema: clearjoint.fe/1\nstudy: rolling\nmaterial: {kinematics: small}\n")
+              .material.kinematics,
+            Material::Kinematics::small);
   expect_error(patch + "material: {model: elastoplastic}\n"
                        "verification: {indenter: deformable}\n",
                {"verification.indenter", "rigid flat"});

@@ -18,6 +18,7 @@ namespace
     "study: rolling\n"
     "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
     "loading: {delta_max: 6.25e-5}\n"
+    "material: {kinematics: small}\n"
     "rolling: {n_steps: 4, ramp_time: 0.015625}\n";
 
   unsigned int total(const RunResult &r, unsigned int RollingStepRecord::*count)

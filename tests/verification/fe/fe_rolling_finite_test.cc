@@ -19,7 +19,7 @@ namespace
   {
     const FeScene small_scene = scene(reduced_rolling(8, journal));
     const FeScene finite_scene =
-      scene(reduced_rolling(8, journal) + "material: {kinematics: finite}\n");
+      scene(reduced_rolling(8, journal, "", "finite"));
     ASSERT_EQ(finite_scene.material.kinematics, Material::Kinematics::finite);
     const RunResult small = run(small_scene);
     ASSERT_TRUE(small.complete) << small.message;

@@ -18,7 +18,7 @@ namespace
   {
     return "study: rolling\n"
            "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
-           "material: {hardening: [[0, 1.0e12], [1, 1.0e12]]}\n" + extra;
+           "material: {kinematics: small, hardening: [[0, 1.0e12], [1, 1.0e12]]}\n" + extra;
   }
 } // namespace
 
@@ -109,7 +109,8 @@ TEST(FeRolling, ElastoplasticPushDissipatesAndClosesTheEnergyBalance)
                            "rolling: {n_steps: 8, omega_B: 1.0e-6}\n";
   const RunResult plastic = run(scene(
     "study: rolling\n"
-    "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n" + keys));
+    "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, contact_refinements: 1}\n"
+    "material: {kinematics: small}\n" + keys));
   ASSERT_TRUE(plastic.complete) << plastic.message;
   const RunResult elastic = run(scene(coarse_rolling(keys)));
   ASSERT_TRUE(elastic.complete) << elastic.message;
@@ -160,7 +161,7 @@ namespace
                              "contact: {mu: 0}\n";
     const RunResult rolling = run(scene(
       "study: rolling\n" + mesh +
-      "material: {hardening: [[0, 1.0e12], [1, 1.0e12]]}\n"
+      "material: {kinematics: small, hardening: [[0, 1.0e12], [1, 1.0e12]]}\n"
       "loading: {delta_max: 5.0e-5, journal: " + journal + "}\n"
       "rolling: {n_steps: 8, omega_B: 1.0e-6, support: upper_half}\n"));
     ASSERT_TRUE(rolling.complete) << rolling.message;
@@ -253,6 +254,7 @@ namespace
     FeScene s = scene("study: rolling\n"
                       "mesh: {n_circumferential: 8, n_radial: 1, n_axial: 2, "
                       "contact_refinements: 1}\n"
+                      "material: {kinematics: small}\n"
                       "loading: {delta_max: 5.0e-6, journal: " + journal + "}\n"
                       "rolling: {n_steps: 4, ramp_time: 0.01}\n");
     s.solver.linear = LinearSolver::cg_amg;
