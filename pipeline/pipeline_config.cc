@@ -30,6 +30,11 @@ namespace clearjoint::pipeline
     return overrides_for_preset(sweep.overrides, sweep.preset_overrides, preset);
   }
 
+  Overrides rolling_overrides(const RollingStudy &rolling, const std::string &preset)
+  {
+    return overrides_for_preset(rolling.overrides, rolling.preset_overrides, preset);
+  }
+
   std::string value_label(const double value)
   {
     // Shortest "%.{p}g" that reads back as the same double: 0.004 stays "0.004", a computed
@@ -74,10 +79,10 @@ namespace clearjoint::pipeline
       return out;
     }
 
-    /// A block's `presets` (an FE sweep's; see PresetOverrides): absent
-    /// or null → empty; else a mapping that names every preset, each null or a mapping of
-    /// scene key paths to values (read_overrides), and no other name. `block` names the block
-    /// in the message of a missing preset (e.g. "sweep").
+    /// A block's `presets` (an FE sweep's, the rolling study's; see PresetOverrides): absent or
+    /// null → empty; else a mapping that names every preset, each null or a mapping of scene
+    /// key paths to values (read_overrides), and no other name. `block` names the block in the
+    /// message of a missing preset ("sweep", "rolling study").
     PresetOverrides read_preset_overrides(StrictObject &o, const std::string &block)
     {
       PresetOverrides out;
@@ -497,7 +502,7 @@ namespace clearjoint::pipeline
       return impact;
     }
 
-    /// `rolling`: the FE rolling study's scene and its overrides.
+    /// `rolling`: the FE rolling study's scene, its overrides and its settings per preset.
     RollingStudy read_rolling(StrictObject m)
     {
       RollingStudy rolling;
@@ -505,6 +510,7 @@ namespace clearjoint::pipeline
       if (rolling.scene.empty())
         m.fail("scene", "", "an FE scene file (clearjoint.fe/1) with study: rolling");
       rolling.overrides = read_overrides(m, "overrides");
+      rolling.preset_overrides = read_preset_overrides(m, "rolling study");
       m.finish();
       return rolling;
     }

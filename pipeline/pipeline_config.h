@@ -30,7 +30,7 @@ namespace clearjoint::pipeline
   /// as null is empty.
   using PresetOverrides = std::map<std::string, Overrides>;
 
-  /// What a block (e.g. an FE sweep) sets after the preset's `fe` map when
+  /// What a block (an FE sweep, the rolling study) sets after the preset's `fe` map when
   /// `preset` runs, in order: its `overrides`, then its `presets.<preset>` (if any).
   Overrides overrides_for_preset(const Overrides &overrides,
                                  const PresetOverrides &preset_overrides,
@@ -116,6 +116,10 @@ namespace clearjoint::pipeline
     /// Set in the scene after the preset's `fe` overrides (e.g. mesh.global_refinements: 0 to
     /// keep the rolling mesh coarse whatever the preset).
     Overrides overrides;
+    /// `presets.<p>`: set in the scene after `overrides` when preset p runs (e.g. the mesh
+    /// level and rolling.n_steps of a rolling case whose cost the presets' `fe` maps cannot
+    /// set without changing every other FE task); see PresetOverrides.
+    PresetOverrides preset_overrides;
   };
 
   /// A preset's measured estimated error of F(δ_max) for one FE sweep (or the impact or
@@ -185,6 +189,10 @@ namespace clearjoint::pipeline
   /// What a case of `sweep` sets after the preset's `fe` map, in order: the sweep's
   /// `overrides`, then its `presets.<preset>` (the swept key comes last, per case).
   Overrides sweep_overrides(const FeSweep &sweep, const std::string &preset);
+
+  /// What the rolling study's scene sets after the preset's `fe` map, in order: the block's
+  /// `overrides`, then its `presets.<preset>`.
+  Overrides rolling_overrides(const RollingStudy &rolling, const std::string &preset);
 
   /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a sweep that
   /// does not exist or a value not in that sweep → InputError naming the key and valid range.
