@@ -590,6 +590,13 @@ TEST(RunPipeline, TheRollingStudysOwnPresetSettingsComeAfterItsOverrides)
       // The stand-in ran those steps: one row per step after t = 0.
       const CsvTable history = read_csv((run_dir / "fe/rolling/rolling_history.csv").string());
       EXPECT_EQ(history.rows.size(), std::size_t(n_steps + 1)) << preset;
+      // The summary lists the block's settings under each preset (the report's table).
+      const auto summary = read_json_file((run_dir / "pipeline_summary.json").string());
+      for (const auto &p : summary["presets"])
+        if (p["name"] == "standard")
+          EXPECT_EQ(p["rolling"]["rolling.n_steps"], 64) << p.dump();
+        else if (p["name"] == "accurate")
+          EXPECT_EQ(p["rolling"], nlohmann::json::object()) << p.dump();
     }
 }
 
