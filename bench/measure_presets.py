@@ -204,6 +204,10 @@ class Measurer:
                 raise MeasureError("the pipeline has no rolling study")
             r = json.loads(json.dumps(self.pipeline["rolling"]))
             r["overrides"] = {**(r.get("overrides") or {}), **extra}
+            # the block's own preset settings (rolling.presets) come after its overrides: `set`
+            # must win there too
+            for name, own in (r.get("presets") or {}).items():
+                r["presets"][name] = {**(own or {}), **extra}
             p["rolling"] = r
         else:
             raise MeasureError(f"study '{study}': kind '{kind}' has no reference case")

@@ -186,13 +186,7 @@ namespace clearjoint::pipeline
             scene["geometry"].erase("mesh");
           const std::string label = sweep.parameter + "=" + value_label(sweep.values[v]);
           const std::string file = write_scene("fe_" + sweep.name + "_" + label + ".yaml", scene);
-          std::vector<Origin> origins = preset_origins("fe");
-          for (const auto &[k, val] : sweep.overrides)
-            origins.push_back({k, key + ".overrides." + k, val});
-          const auto own = sweep.preset_overrides.find(config_.preset);
-          if (own != sweep.preset_overrides.end())
-            for (const auto &[k, val] : own->second)
-              origins.push_back({k, key + ".presets." + config_.preset + "." + k, val});
+          std::vector<Origin> origins = fe_origins(key, sweep.overrides, sweep.preset_overrides);
           origins.push_back({sweep.key, key + ".values[" + std::to_string(v) + "]",
                              sweep.keywords[v].empty() ? nlohmann::json(sweep.values[v])
                                                        : nlohmann::json(sweep.keywords[v])});
@@ -309,7 +303,7 @@ namespace clearjoint::pipeline
     }
 
     /// The FE rolling study's scene: it exists, is readable, is a rolling scene, and fe_stage
-    /// accepts it with the preset's and the rolling block's overrides.
+    /// accepts it with the preset's `fe` map, rolling.overrides and rolling.presets.<preset>.
     void rolling()
     {
       const std::string &base = config_.rolling->scene;
@@ -336,9 +330,8 @@ namespace clearjoint::pipeline
         throw InputError(src_, "rolling.scene", base, "a scene with study: rolling",
                          "its study is " + (study ? json_excerpt(*study) : "radial (not stated)"));
       const std::string file = write_scene("fe_rolling.yaml", scene);
-      std::vector<Origin> origins = preset_origins("fe");
-      for (const auto &[k, val] : config_.rolling->overrides)
-        origins.push_back({k, "rolling.overrides." + k, val});
+      const std::vector<Origin> origins =
+        fe_origins("rolling", config_.rolling->overrides, config_.rolling->preset_overrides);
       run_scene_check("fe_stage", file, origins, "rolling.scene",
                       "FE rolling study (scene " + base + ")");
     }
@@ -390,6 +383,22 @@ namespace clearjoint::pipeline
                                "presets." + config_.preset + "." + stage + "." +
                                  key.substr(stage.size() + 1),
                                value});
+      return origins;
+    }
+
+    /// The pipeline keys behind an FE scene built as overrides_for_preset() builds it, in the
+    /// order they are set: the chosen preset's `fe` map, then the block's (`key`: a sweep's
+    /// or the rolling study's) `overrides` and its `presets.<chosen preset>`.
+    std::vector<Origin> fe_origins(const std::string &key, const Overrides &overrides,
+                                   const PresetOverrides &preset_overrides) const
+    {
+      std::vector<Origin> origins = preset_origins("fe");
+      for (const auto &[k, val] : overrides)
+        origins.push_back({k, key + ".overrides." + k, val});
+      const auto own = preset_overrides.find(config_.preset);
+      if (own != preset_overrides.end())
+        for (const auto &[k, val] : own->second)
+          origins.push_back({k, key + ".presets." + config_.preset + "." + k, val});
       return origins;
     }
 

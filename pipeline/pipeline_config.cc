@@ -15,13 +15,24 @@ namespace clearjoint::pipeline
 {
   namespace fs = std::filesystem;
 
-  Overrides sweep_overrides(const FeSweep &sweep, const std::string &preset)
+  Overrides overrides_for_preset(const Overrides &overrides,
+                                 const PresetOverrides &preset_overrides, const std::string &preset)
   {
-    Overrides out = sweep.overrides;
-    const auto p = sweep.preset_overrides.find(preset);
-    if (p != sweep.preset_overrides.end())
+    Overrides out = overrides;
+    const auto p = preset_overrides.find(preset);
+    if (p != preset_overrides.end())
       out.insert(out.end(), p->second.begin(), p->second.end());
     return out;
+  }
+
+  Overrides sweep_overrides(const FeSweep &sweep, const std::string &preset)
+  {
+    return overrides_for_preset(sweep.overrides, sweep.preset_overrides, preset);
+  }
+
+  Overrides rolling_overrides(const RollingStudy &rolling, const std::string &preset)
+  {
+    return overrides_for_preset(rolling.overrides, rolling.preset_overrides, preset);
   }
 
   std::string value_label(const double value)
@@ -65,6 +76,37 @@ namespace clearjoint::pipeline
         }
         out.emplace_back(it.key(), value);
       }
+      return out;
+    }
+
+    /// A block's `presets` (an FE sweep's, the rolling study's; see PresetOverrides): absent or
+    /// null → empty; else a mapping that names every preset, each null or a mapping of scene
+    /// key paths to values (read_overrides), and no other name. `block` names the block in the
+    /// message of a missing preset ("sweep", "rolling study").
+    PresetOverrides read_preset_overrides(StrictObject &o, const std::string &block)
+    {
+      PresetOverrides out;
+      if (!o.has("presets"))
+        {
+          o.allow("presets");
+          return out;
+        }
+      const auto &given = o.raw("presets");
+      if (!given.is_object())
+        o.fail("presets", json_excerpt(given, 60),
+               "a mapping of preset names (fast, standard, accurate) to scene settings");
+      StrictObject presets = o.object("presets");
+      for (const auto &preset : preset_names())
+        {
+          if (!given.contains(preset))
+            presets.fail(preset, "missing",
+                         "settings (or null) for every preset: fast, standard, accurate",
+                         "a " + block +
+                           "'s presets name every preset, so that no preset runs this " + block +
+                           " on settings nobody measured for it");
+          out[preset] = read_overrides(presets, preset);
+        }
+      presets.finish();  // an unknown preset name: the message lists the valid ones
       return out;
     }
 
@@ -209,31 +251,13 @@ namespace clearjoint::pipeline
       for (const auto &[key, value] : f.overrides)
         if (key == f.key)
           s.fail("overrides", key, "keys other than the swept parameter's key '" + f.key + "'");
-      if (s.has("presets"))
-      {
-        const auto &given = s.raw("presets");
-        if (!given.is_object())
-          s.fail("presets", json_excerpt(given, 60),
-                 "a mapping of preset names (fast, standard, accurate) to scene settings");
-        StrictObject presets = s.object("presets");
+      f.preset_overrides = read_preset_overrides(s, "sweep");
+      if (!f.preset_overrides.empty())  // given, it names every preset
         for (const auto &preset : preset_names())
-        {
-          if (!given.contains(preset))
-            presets.fail(preset, "missing",
-                         "settings (or null) for every preset: fast, standard, accurate",
-                         "a sweep's presets name every preset, so that no preset runs this "
-                         "sweep on settings nobody measured for it");
-          Overrides o = read_overrides(presets, preset);
-          for (const auto &[key, value] : o)
+          for (const auto &[key, value] : f.preset_overrides.at(preset))
             if (key == f.key)
-              presets.fail(preset, key,
-                           "keys other than the swept parameter's key '" + f.key + "'");
-          f.preset_overrides[preset] = std::move(o);
-        }
-        presets.finish();
-      }
-      else
-        s.allow("presets");
+              s.fail("presets." + preset, key,
+                     "keys other than the swept parameter's key '" + f.key + "'");
       if (s.has("mesh_parameters"))
       {
         const auto &mp = s.raw("mesh_parameters");
@@ -478,7 +502,7 @@ namespace clearjoint::pipeline
       return impact;
     }
 
-    /// `rolling`: the FE rolling study's scene and its overrides.
+    /// `rolling`: the FE rolling study's scene, its overrides and its settings per preset.
     RollingStudy read_rolling(StrictObject m)
     {
       RollingStudy rolling;
@@ -486,6 +510,7 @@ namespace clearjoint::pipeline
       if (rolling.scene.empty())
         m.fail("scene", "", "an FE scene file (clearjoint.fe/1) with study: rolling");
       rolling.overrides = read_overrides(m, "overrides");
+      rolling.preset_overrides = read_preset_overrides(m, "rolling study");
       m.finish();
       return rolling;
     }

@@ -24,6 +24,18 @@ namespace clearjoint::pipeline
   /// Scene key path → value, applied in order.
   using Overrides = std::vector<std::pair<std::string, nlohmann::json>>;
 
+  /// A block's `presets.<p>`: preset name → scene settings set after the block's `overrides`
+  /// when preset p runs. Empty: the global presets alone. Given, it names every preset (a
+  /// preset left out would run the block on settings nobody measured for it); an entry given
+  /// as null is empty.
+  using PresetOverrides = std::map<std::string, Overrides>;
+
+  /// What a block (an FE sweep, the rolling study) sets after the preset's `fe` map when
+  /// `preset` runs, in order: its `overrides`, then its `presets.<preset>` (if any).
+  Overrides overrides_for_preset(const Overrides &overrides,
+                                 const PresetOverrides &preset_overrides,
+                                 const std::string &preset);
+
   /// The keyword a sweep's `values` (and a law's `value`) may hold instead of a number:
   /// θ_max of the sweep's scene geometry (paper Eq. 3), see sweep_values.h.
   inline constexpr const char *theta_max_keyword = "theta_max";
@@ -43,11 +55,10 @@ namespace clearjoint::pipeline
     std::vector<std::string> keywords;  ///< parallel to values: "" or e.g. "theta_max"
     /// Set in every case's scene after the preset's overrides (e.g. geometry.mesh).
     Overrides overrides;
-    /// `presets.<p>`: preset name → set in every case's scene after `overrides` when preset p
-    /// runs (e.g. the adaptive cycles of a sweep whose scene does not converge on the presets'
-    /// uniform levels). Empty: the global presets alone. Given, it names every preset (a
-    /// preset left out would run the sweep on settings nobody measured for it).
-    std::map<std::string, Overrides> preset_overrides;
+    /// `presets.<p>`: set in every case's scene after `overrides` when preset p runs (e.g. the
+    /// adaptive cycles of a sweep whose scene does not converge on the presets' uniform
+    /// levels); see PresetOverrides.
+    PresetOverrides preset_overrides;
     /// Extra `gmsh -setnumber NAME VALUE` when the scene's geometry.mesh names a .geo file
     /// (the scene's geometry keys R_B, t_B, L_B, c_r, c_a are always passed) [SI].
     std::map<std::string, double> mesh_parameters;
@@ -105,6 +116,10 @@ namespace clearjoint::pipeline
     /// Set in the scene after the preset's `fe` overrides (e.g. mesh.global_refinements: 0 to
     /// keep the rolling mesh coarse whatever the preset).
     Overrides overrides;
+    /// `presets.<p>`: set in the scene after `overrides` when preset p runs (e.g. the mesh
+    /// level and rolling.n_steps of a rolling case whose cost the presets' `fe` maps cannot
+    /// set without changing every other FE task); see PresetOverrides.
+    PresetOverrides preset_overrides;
   };
 
   /// A preset's measured estimated error of F(δ_max) for one FE sweep (or the impact or
@@ -174,6 +189,10 @@ namespace clearjoint::pipeline
   /// What a case of `sweep` sets after the preset's `fe` map, in order: the sweep's
   /// `overrides`, then its `presets.<preset>` (the swept key comes last, per case).
   Overrides sweep_overrides(const FeSweep &sweep, const std::string &preset);
+
+  /// What the rolling study's scene sets after the preset's `fe` map, in order: the block's
+  /// `overrides`, then its `presets.<preset>`.
+  Overrides rolling_overrides(const RollingStudy &rolling, const std::string &preset);
 
   /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a sweep that
   /// does not exist or a value not in that sweep → InputError naming the key and valid range.

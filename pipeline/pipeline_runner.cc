@@ -324,7 +324,8 @@ namespace clearjoint::pipeline
 
   nlohmann::json PipelineRunner::rolling_scene() const
   {
-    return compose_scene(config_, config_.rolling->scene, "fe", config_.rolling->overrides);
+    return compose_scene(config_, config_.rolling->scene, "fe",
+                         rolling_overrides(*config_.rolling, config_.preset));
   }
 
   void PipelineRunner::run_rolling()

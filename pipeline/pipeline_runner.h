@@ -110,7 +110,8 @@ namespace clearjoint::pipeline
     /// step (docs/fe.md): a failure of it is recorded in the summary (status, message, where
     /// its partial output is) and the run goes on; run_pipeline then exits 2 after the report.
     void run_rolling();
-    /// The rolling study's scene: base scene, the preset's `fe` overrides, rolling.overrides.
+    /// The rolling study's scene: base scene, the preset's `fe` overrides, rolling.overrides,
+    /// rolling.presets.<preset>.
     nlohmann::json rolling_scene() const;
     /// Writes a composed scene to <run>/scenes/<name>.yaml.
     std::string write_scene(const nlohmann::json &scene, const std::string &base,

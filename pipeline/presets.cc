@@ -3,6 +3,7 @@
 #include "common/log.h"
 
 #include <cstdio>
+#include <optional>
 
 namespace clearjoint::pipeline
 {
@@ -51,17 +52,28 @@ namespace clearjoint::pipeline
           const auto colon = key.find(':');
           p[key.substr(0, colon)][key.substr(colon + 1)] = value;
         }
+      // A block's own settings for this preset ({key path: value}; {} for a null entry).
+      const auto settings = [&name](const PresetOverrides &own) -> std::optional<nlohmann::json> {
+        const auto it = own.find(name);
+        if (it == own.end())
+          return std::nullopt;
+        nlohmann::json out = nlohmann::json::object();
+        for (const auto &[key, value] : it->second)
+          out[key] = value;
+        return out;
+      };
       // A sweep's own settings for this preset (fe_sweeps[i].presets.<name>), set after its
       // overrides in that sweep's cases only.
       p["sweeps"] = nlohmann::json::object();
       for (const auto &sweep : config.fe_sweeps)
-        if (const auto it = sweep.preset_overrides.find(name); it != sweep.preset_overrides.end())
-        {
-          nlohmann::json settings = nlohmann::json::object();
-          for (const auto &[key, value] : it->second)
-            settings[key] = value;
-          p["sweeps"][sweep.name] = settings;
-        }
+        if (const auto own = settings(sweep.preset_overrides))
+          p["sweeps"][sweep.name] = *own;
+      // The rolling study's (rolling.presets.<name>), set after rolling.overrides in its scene
+      // only; null without a rolling study or without its presets.
+      p["rolling"] = nullptr;
+      if (config.rolling)
+        if (const auto own = settings(config.rolling->preset_overrides))
+          p["rolling"] = *own;
       p["measured"] = nullptr;
       if (const auto it = config.preset_measured.find(name); it != config.preset_measured.end())
       {

@@ -16,8 +16,9 @@ namespace clearjoint::pipeline
   /// measured (...)"; sweeps the preset gives no entry for say so too.
   std::string describe_preset_errors(const PipelineConfig &config, const std::string &preset);
 
-  /// Every preset with its scene settings, measurements and whether it is the chosen one
-  /// (pipeline_summary.json "presets").
+  /// Every preset with its scene settings (its `fe` and `mbd` maps; a sweep's own settings for
+  /// it under `sweeps.<sweep>`, the rolling study's under `rolling`, null without them),
+  /// measurements and whether it is the chosen one (pipeline_summary.json "presets").
   nlohmann::json presets_summary(const PipelineConfig &config);
 
   /// A measured figure "misses" a run's time when either is more than this factor times the

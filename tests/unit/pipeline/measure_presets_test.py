@@ -130,6 +130,22 @@ def main():
                f"a reference's set after the sweep's own presets: {s0}")
         expect(sweep["presets"]["accurate"] == {"mesh.adaptive_cycles": 4},
                "the pipeline's own sweep is left as it was")
+        # The same for the rolling study's own preset settings (rolling.presets): a reference's
+        # finer steps must not be undone by the preset's own rolling.n_steps.
+        rolling = {"scene": "r.yaml", "overrides": {"mesh.global_refinements": 0},
+                   "presets": {"fast": {"mesh.contact_refinements": 0, "rolling.n_steps": 32},
+                               "standard": None, "accurate": None}}
+        m = measure_presets.Measurer(
+            args, {"presets": {p: {"fe": None, "mbd": None} for p in measure_presets.PRESETS},
+                   "rolling": rolling},
+            {"studies": {"rolling": {"kind": "rolling"}}})
+        r0 = m.pipeline_for("rolling", {"preset": "fast", "set": {"rolling.n_steps": 128}})["rolling"]
+        expect(r0["presets"]["fast"] == {"mesh.contact_refinements": 0, "rolling.n_steps": 128}
+               and r0["presets"]["standard"] == {"rolling.n_steps": 128}
+               and r0["overrides"] == {"mesh.global_refinements": 0, "rolling.n_steps": 128},
+               f"a reference's set after the rolling study's own presets: {r0}")
+        expect(rolling["presets"]["fast"]["rolling.n_steps"] == 32,
+               "the pipeline's own rolling block is left as it was")
         build = os.path.join(d, "build")
         fakes = os.path.join(ROOT, "tests", "data", "fake_stages")
         for link, target in [("fe_stage/fe_stage", os.path.join(fakes, "fake_fe_stage.py")),

@@ -326,6 +326,48 @@ TEST(PipelineCheck, TheRollingSectionIsChecked)
   EXPECT_FALSE(fs::exists(dir.file("out")));
 }
 
+// The rolling study's own preset settings (rolling.presets) are checked like a sweep's: a value
+// fe_stage rejects is named by its pipeline key, rolling.presets.<preset>.<key>, and only the
+// preset that runs is checked. Applied after the preset's map and the block's overrides: a
+// preset setting replaces a bad override of the same key.
+TEST(PipelineCheck, TheRollingStudysOwnPresetSettingIsNamedByItsKey)
+{
+  test_support::ScratchDir dir("pipeline_check_rolling_presets");
+  const Build b(dir);
+  test_support::write_text(dir.file("rolling.yaml"), "{\"study\": \"rolling\"}\n");
+  const auto with = [&](const std::string &overrides, const std::string &fast) {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("report: false"), 13,
+                 "rolling:\n  scene: " + dir.file("rolling.yaml") + "\n  overrides: " + overrides +
+                   "\n  presets:\n    fast: " + fast +
+                   "\n    standard: {rolling.n_steps: 16}\n    accurate: null\n"
+                   "report: false");
+    const std::string preset = "fast: {fe: null,";
+    text.replace(text.find(preset), preset.size(), "fast: {fe: {rolling.n_steps: 6},");
+    test_support::write_text(dir.file("p.yaml"), text);
+  };
+  std::string log;
+  with("{rolling.n_steps: 8}", "{rolling.n_steps: 32, mesh.contact_refinements: 0}");
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+  // fe_stage (and the stand-in) refuse fewer than 4 steps: the preset's own setting is named.
+  with("{rolling.n_steps: 8}", "{rolling.n_steps: 2, mesh.contact_refinements: 0}");
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 1) << log;
+  EXPECT_NE(log.find("key 'rolling.presets.fast.rolling.n_steps'"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out"))) << log;
+  // Without --check too: the run stops before its first task.
+  EXPECT_EQ(run_pipeline(dir, b, "", log), 1) << log;
+  EXPECT_NE(log.find("key 'rolling.presets.fast.rolling.n_steps'"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.file("out"))) << log;
+  // Another preset runs: the fast preset's setting is not used, so not checked.
+  EXPECT_EQ(run_pipeline(dir, b, "--check --preset standard", log), 0) << log;
+  // A bad override that the preset's setting replaces is not in the scene fe_stage checks; with
+  // a preset that sets nothing it is, and named as the override.
+  with("{rolling.n_steps: 2}", "{rolling.n_steps: 32}");
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+  EXPECT_EQ(run_pipeline(dir, b, "--check --preset accurate", log), 1) << log;
+  EXPECT_NE(log.find("key 'rolling.overrides.rolling.n_steps'"), std::string::npos) << log;
+}
+
 // SIGINT and SIGTERM while a stage plots: run_pipeline passes the signal on (to the stage's
 // process group), the stage stops its plot.py and the run exits 130/143 with the task left as
 // '<dir>.partial'. The stand-in plot.py ignores SIGINT, so only the stage's SIGTERM ends it:

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 
 using namespace clearjoint;
@@ -490,6 +491,70 @@ TEST(PipelineConfig, RollingStudy)
     const std::string m = error_for("mbd_runs:", block + "mbd_runs:");
     EXPECT_NE(m.find("key '" + key + "'"), std::string::npos) << block << " → " << m;
   }
+}
+
+// The rolling study's own settings per preset (rolling.presets): read by the same code as a
+// sweep's presets, so the same rules — in order after the block's overrides, every preset
+// named (null: nothing extra), each a mapping, no other preset name; each bad shape an input
+// error naming the key under rolling.presets.
+TEST(PipelineConfig, TheRollingStudysOwnPresetSettings)
+{
+  const std::string at = "mbd_runs:";
+  const auto rolling = [&](const std::string &presets) {
+    return "rolling:\n  scene: r.yaml\n  overrides: {mesh.global_refinements: 0, "
+           "rolling.n_steps: 8}\n  presets: " +
+           presets + "\n" + at;
+  };
+  {
+    test_support::ScratchDir dir("pipeline_config_rolling_presets");
+    std::string text = good;
+    text.replace(text.find(at), at.size(),
+                 rolling("\n    fast: {mesh.contact_refinements: 0, rolling.n_steps: 32}\n"
+                         "    standard: {mesh.contact_refinements: 1}\n    accurate: null"));
+    test_support::write_text(dir.file("p.yaml"), text);
+    const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
+    ASSERT_TRUE(c.rolling.has_value());
+    const RollingStudy &r = *c.rolling;
+    ASSERT_EQ(r.preset_overrides.size(), 3u);
+    EXPECT_TRUE(r.preset_overrides.at("accurate").empty()) << "null: nothing extra";
+    const Overrides fast = rolling_overrides(r, "fast");
+    ASSERT_EQ(fast.size(), 4u);
+    EXPECT_EQ(fast[0].first, "mesh.global_refinements") << "the block's overrides first";
+    EXPECT_EQ(fast[1].first, "rolling.n_steps");
+    EXPECT_EQ(fast[1].second, 8);
+    EXPECT_EQ(fast[2].first, "mesh.contact_refinements") << "then the preset's own settings";
+    EXPECT_EQ(fast[2].second, 0);
+    EXPECT_EQ(fast[3].first, "rolling.n_steps") << "a key set in both: the preset's comes last";
+    EXPECT_EQ(fast[3].second, 32);
+    const Overrides standard = rolling_overrides(r, "standard");
+    ASSERT_EQ(standard.size(), 3u);
+    EXPECT_EQ(standard[2].first, "mesh.contact_refinements");
+    EXPECT_EQ(standard[2].second, 1);
+    EXPECT_EQ(rolling_overrides(r, "accurate"), r.overrides);
+    // Without `presets` (or with null), the overrides alone.
+    text = good;
+    text.replace(text.find(at), at.size(), rolling("null"));
+    test_support::write_text(dir.file("q.yaml"), text);
+    const PipelineConfig q = read_pipeline_config(dir.file("q.yaml"));
+    EXPECT_TRUE(q.rolling->preset_overrides.empty());
+    EXPECT_EQ(rolling_overrides(*q.rolling, "fast"), q.rolling->overrides);
+  }
+  for (const auto &[presets, key, expected] : std::vector<std::array<std::string, 3>>{
+         {"[fast, standard]", "rolling.presets", "a mapping of preset names"},
+         {"3", "rolling.presets", "a mapping of preset names"},
+         {"{fast: {rolling.n_steps: 32}, standard: null}", "rolling.presets.accurate",
+          "every preset"},
+         {"{fast: null, standard: null, accurate: null, quick: {rolling.n_steps: 4}}",
+          "rolling.presets.quick", "accurate, fast, standard"},
+         {"{fast: 3, standard: null, accurate: null}", "rolling.presets.fast",
+          "a mapping of scene key paths"},
+         {"{fast: [rolling.n_steps], standard: null, accurate: null}", "rolling.presets.fast",
+          "a mapping of scene key paths"}})
+    {
+      const std::string m = error_for(at, rolling(presets));
+      EXPECT_NE(m.find("key '" + key + "'"), std::string::npos) << presets << " → " << m;
+      EXPECT_NE(m.find(expected), std::string::npos) << presets << " → " << m;
+    }
 }
 
 // The committed pipeline.yaml runs the rolling study, and its scene is a rolling study.

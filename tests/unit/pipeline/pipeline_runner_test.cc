@@ -20,6 +20,7 @@
 #include <chrono>
 #include <set>
 #include <thread>
+#include <tuple>
 
 using namespace clearjoint;
 namespace fs = std::filesystem;
@@ -544,6 +545,59 @@ TEST(RunPipeline, TheRollingStudyIsOneTaskWithItsOwnTime)
   const Outcome third = run(dir, build);
   ASSERT_EQ(third.exit_code, 0) << third.log;
   EXPECT_EQ(with(third, "ran"), std::set<std::string>{"fe/rolling"}) << third.log;
+}
+
+// rolling.presets: the rolling study's own settings for the preset that runs, set in its scene
+// after the preset's `fe` map and after rolling.overrides (the paper's full rolling case needs
+// its own mesh and steps per preset). The preset's map, the block's overrides and its presets
+// all set rolling.n_steps here, so settings applied too early, not at all, or another preset's
+// show in the written scene and in the steps the stand-in ran.
+TEST(RunPipeline, TheRollingStudysOwnPresetSettingsComeAfterItsOverrides)
+{
+  test_support::ScratchDir dir("pipeline_rolling_presets");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("rolling.yaml"), "{\"study\": \"rolling\"}\n");
+  std::string yaml = pipeline_yaml(dir.path(), "[0.002, 0.004]");
+  const std::string plain = "presets: {fast: {fe: null, mbd: null}, ";
+  yaml.replace(yaml.find(plain), plain.size(),
+               "presets: {fast: {fe: {rolling.n_steps: 6, mesh.contact_refinements: 2}, "
+               "mbd: null}, ");
+  yaml.replace(yaml.find("report: false"), 13,
+               "rolling:\n  scene: " + dir.file("rolling.yaml") +
+                 "\n  overrides: {rolling.n_steps: 12, rolling.omega_B: 12.0}\n"
+                 "  presets:\n"
+                 "    fast: {rolling.n_steps: 32, mesh.contact_refinements: 0}\n"
+                 "    standard: {rolling.n_steps: 64, mesh.contact_refinements: 1}\n"
+                 "    accurate: null\n"
+                 "report: false");
+  test_support::write_text(dir.file("p.yaml"), yaml);
+  const fs::path run_dir = dir.file("out/r");
+  // accurate: null — its `fe` map sets nothing, so the block's overrides alone.
+  for (const auto &[preset, n_steps, refinements] :
+       std::vector<std::tuple<std::string, int, nlohmann::json>>{{"fast", 32, 0},
+                                                                 {"standard", 64, 1},
+                                                                 {"accurate", 12, nullptr}})
+    {
+      const Outcome o = run(dir, build, "--preset " + preset);
+      ASSERT_EQ(o.exit_code, 0) << o.log;
+      EXPECT_EQ(with(o, "ran").count("fe/rolling"), 1u)
+        << "another preset, another scene: " << o.log;
+      const auto scene = read_yaml_file((run_dir / "scenes/fe_rolling.yaml").string());
+      EXPECT_EQ(scene["rolling"]["n_steps"], n_steps) << preset << ": " << scene.dump();
+      EXPECT_EQ(scene["rolling"]["omega_B"], 12.0) << preset << ": the block's overrides stay";
+      const nlohmann::json *cr = find_key_path(scene, "mesh.contact_refinements");
+      EXPECT_EQ(cr ? *cr : nlohmann::json(), refinements) << preset << ": " << scene.dump();
+      // The stand-in ran those steps: one row per step after t = 0.
+      const CsvTable history = read_csv((run_dir / "fe/rolling/rolling_history.csv").string());
+      EXPECT_EQ(history.rows.size(), std::size_t(n_steps + 1)) << preset;
+      // The summary lists the block's settings under each preset (the report's table).
+      const auto summary = read_json_file((run_dir / "pipeline_summary.json").string());
+      for (const auto &p : summary["presets"])
+        if (p["name"] == "standard")
+          EXPECT_EQ(p["rolling"]["rolling.n_steps"], 64) << p.dump();
+        else if (p["name"] == "accurate")
+          EXPECT_EQ(p["rolling"], nlohmann::json::object()) << p.dump();
+    }
 }
 
 // A failing rolling study (a first step, docs/fe.md) does not stop the rest: every other task

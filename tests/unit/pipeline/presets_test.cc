@@ -120,6 +120,32 @@ TEST(Presets, RollingTimeAndErrorNeedTheRollingStudy)
   EXPECT_NE(bad.find("presets.fast.measured.rolling_time"), std::string::npos) << bad;
 }
 
+// The summary lists a block's own settings per preset beside the preset's `fe` map: the rolling
+// study's (rolling.presets.<p>) under `rolling`, {} for a null entry, null without them.
+TEST(Presets, SummaryListsTheRollingStudysOwnSettings)
+{
+  test_support::ScratchDir dir("presets_rolling_own");
+  test_support::write_text(
+    dir.file("p.yaml"), pipeline_text("measured: {note: x, error_F_max: {}}") +
+                          "rolling:\n  scene: r.yaml\n  overrides: {rolling.n_steps: 8}\n"
+                          "  presets: {fast: {mesh.contact_refinements: 0, rolling.n_steps: 32}, "
+                          "standard: {rolling.n_steps: 64}, accurate: null}\n");
+  const auto s = presets_summary(read_pipeline_config(dir.file("p.yaml")));
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0]["rolling"],
+            (nlohmann::json{{"mesh.contact_refinements", 0}, {"rolling.n_steps", 32}}))
+    << s[0].dump();
+  EXPECT_EQ(s[1]["rolling"], (nlohmann::json{{"rolling.n_steps", 64}})) << s[1].dump();
+  EXPECT_EQ(s[2]["rolling"], nlohmann::json::object()) << "null: nothing extra; " << s[2].dump();
+  EXPECT_TRUE(s[0]["fe"].empty()) << "not mixed into the preset's own map: " << s[0].dump();
+  // Without the block's presets, or without a rolling study: null.
+  test_support::write_text(dir.file("q.yaml"),
+                           pipeline_text("measured: {note: x, error_F_max: {}}") +
+                             "rolling: {scene: r.yaml}\n");
+  EXPECT_TRUE(presets_summary(read_pipeline_config(dir.file("q.yaml")))[0]["rolling"].is_null());
+  EXPECT_TRUE(presets_summary(read(dir, measured))[0]["rolling"].is_null());
+}
+
 // Issue 32 item 2: what bench/measure_presets.py writes besides the figures above — per-sweep
 // case times and DoFs, the machine and the date — read strictly; a bad value names its key.
 TEST(Presets, MeasuredMachineDateAndPerSweepFigures)

@@ -94,7 +94,13 @@ def main():
         if not ok:
             bad.append(what)
 
-    summary = {"presets": PRESETS, "sweeps": [{"name": "thickness"}],
+    # a sweep's and the rolling study's own settings for a preset (fe_sweeps[i].presets,
+    # rolling.presets; {} for a null entry, null without them) follow the preset's own map
+    presets = [dict(p) for p in PRESETS]
+    presets[0].update({"sweeps": {"thickness": {"mesh.adaptive_cycles": 2}},
+                       "rolling": {"rolling.n_steps": 32, "mesh.contact_refinements": 0}})
+    presets[1].update({"sweeps": {"thickness": {}}, "rolling": {}})
+    summary = {"presets": presets, "sweeps": [{"name": "thickness"}],
                "impact": {"scene": "impact.yaml"}, "rolling": {"status": "complete"}}
     t = parse(preset_section(summary))
     heads = [text for text, _ in t.rows[0]]
@@ -123,6 +129,12 @@ def main():
         expect(accurate[rolling] == ("not yet measured", "not yet: 64 steps"),
                f"a null rolling percent: {accurate[rolling]}")
         expect("(this run)" in accurate["preset"][0], f"the chosen preset marked: {accurate['preset']}")
+        settings = "FE scene settings"
+        expect(fast[settings][0] == "rolling.n_steps = 8; sweep thickness: mesh.adaptive_cycles = 2; "
+               "rolling study: mesh.contact_refinements = 0, rolling.n_steps = 32",
+               f"the preset's, the sweep's and the rolling study's settings: {fast[settings]}")
+        expect(accurate[settings][0] == "rolling.n_steps = 8",
+               f"null entries add nothing: {accurate[settings]}")
     for where in (WHERE_ROLLING, WHERE_IMPACT, WHERE_THICKNESS):
         expect(sum(where in item for item in t.items) == 1,
                f"'{where}' listed once below the table: {t.items}")
