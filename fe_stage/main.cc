@@ -262,6 +262,10 @@ namespace
         if (!rolling.empty())
           keys += "; then rolling.overrides: " + list(rolling);
         preset.overrides.insert(preset.overrides.end(), rolling.begin(), rolling.end());
+        const fe::PresetOverrides own = fe::read_rolling_preset(preset.file, preset.name);
+        if (!own.empty())
+          keys += "; then rolling.presets." + preset.name + ": " + list(own);
+        preset.overrides.insert(preset.overrides.end(), own.begin(), own.end());
       }
     fe::apply_preset(scene_doc, preset.overrides, preset.file);
     if (root)

@@ -52,6 +52,28 @@ namespace clearjoint::fe
     return out;
   }
 
+  PresetOverrides read_rolling_preset(const std::string &pipeline_file, const std::string &name)
+  {
+    const nlohmann::json doc = read_structured_file(pipeline_file);
+    PresetOverrides out;
+    const nlohmann::json *presets = find_key_path(doc, "rolling.presets");
+    if (!presets || presets->is_null())
+      return out;
+    const std::string where = "rolling.presets." + name;
+    if (!presets->is_object() || !presets->contains(name))
+      throw InputError(pipeline_file, where, "(missing)",
+                       "settings (or null) for every preset: fast, standard, accurate");
+    const nlohmann::json &own = presets->at(name);
+    if (own.is_null())
+      return out;
+    if (!own.is_object())
+      throw InputError(pipeline_file, where, own.dump(),
+                       "a mapping of scene key paths to values, or null");
+    for (const auto &[k, v] : own.items())
+      out.emplace_back(k, v);
+    return out;
+  }
+
   void apply_preset(nlohmann::json &scene, const PresetOverrides &overrides,
                     const std::string &pipeline_file)
   {

@@ -25,6 +25,11 @@ namespace clearjoint::fe
   /// `fe_stage rolling.yaml --preset P` sets them too, so it runs what the pipeline's task runs.
   PresetOverrides read_rolling_overrides(const std::string &pipeline_file);
 
+  /// The file's rolling.presets.<name> (empty if the file has no rolling.presets, or the entry
+  /// is null): the rolling study's own settings for that preset, which run_pipeline sets after
+  /// rolling.overrides (its mesh and time steps per preset).
+  PresetOverrides read_rolling_preset(const std::string &pipeline_file, const std::string &name);
+
   /// Applies the overrides to a scene document (before it is read and validated).
   void apply_preset(nlohmann::json &scene, const PresetOverrides &overrides,
                     const std::string &pipeline_file);

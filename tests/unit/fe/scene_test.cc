@@ -5,6 +5,7 @@
 #include "fe_stage/presets.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/solve/hht.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -339,9 +340,9 @@ TEST(FePreset, ThePipelinePresetsSetTheSceneMesh)
 }
 
 // The rolling study's scene with --preset gets what run_pipeline's rolling task runs: the
-// preset's keys, then pipeline.yaml's rolling.overrides (the mesh kept coarse whatever the
-// preset).
-TEST(FePreset, TheRollingSceneGetsThePipelinesRollingOverrides)
+// preset's keys, then pipeline.yaml's rolling.overrides (the ring's base mesh whatever the
+// preset), then its rolling.presets.<preset> (the contact's mesh and the time steps).
+TEST(FePreset, TheRollingSceneGetsThePipelinesRollingSettings)
 {
   const std::string file = std::string(CLEARJOINT_SOURCE_DIR) + "/pipeline.yaml";
   const nlohmann::json pipeline = read_structured_file(file);
@@ -349,19 +350,54 @@ TEST(FePreset, TheRollingSceneGetsThePipelinesRollingOverrides)
   ASSERT_TRUE(rolling.is_object() && !rolling.empty());
   for (const std::string preset : {"fast", "standard", "accurate"})
     {
+      const nlohmann::json &own = pipeline["rolling"]["presets"][preset];
+      ASSERT_TRUE(own.is_object() && own.contains("rolling.n_steps") &&
+                  own.contains("mesh.contact_refinements"))
+        << preset;
       const FeScene s = [&] {
-        nlohmann::json d = parse_yaml_string("schema: clearjoint.fe/1\nstudy: rolling\n", "test.yaml");
-        apply_preset(d, read_fe_preset(file, preset), file);
-        apply_preset(d, read_rolling_overrides(file), file);  // as fe_stage main does
+        nlohmann::json d =
+          parse_yaml_string("schema: clearjoint.fe/1\nstudy: rolling\n", "test.yaml");
+        apply_preset(d, read_fe_preset(file, preset), file);  // as fe_stage main does
+        apply_preset(d, read_rolling_overrides(file), file);
+        apply_preset(d, read_rolling_preset(file, preset), file);
         return scene_from_json(d, "test.yaml");
       }();
       EXPECT_EQ(s.mesh.global_refinements, rolling["mesh.global_refinements"].get<unsigned int>())
         << preset;
-      EXPECT_EQ(s.rolling.n_steps,
-                pipeline["presets"][preset]["fe"]["rolling.n_steps"].get<unsigned int>())
+      // the preset's own settings win over its fe map (which sets contact_refinements too)
+      EXPECT_EQ(s.mesh.contact_refinements, own["mesh.contact_refinements"].get<unsigned int>())
         << preset;
+      EXPECT_EQ(s.rolling.n_steps, own["rolling.n_steps"].get<unsigned int>()) << preset;
+      EXPECT_EQ(read_rolling_preset(file, preset).size(), own.size()) << preset;
     }
   EXPECT_EQ(read_rolling_overrides(file).size(), rolling.size());
+}
+
+// A rolling.presets entry that is missing or not a mapping is an input error naming it; a
+// null entry or no rolling.presets at all sets nothing.
+TEST(FePreset, ARollingPresetsEntryIsAMappingOrNull)
+{
+  const test_support::ScratchDir dir("fe_rolling_presets");
+  const auto with = [&](const std::string &rolling_block) {
+    const std::string file = dir.file("p.yaml");
+    test_support::write_text(file, "presets: {fast: {fe: null}}\nrolling:\n" + rolling_block);
+    return file;
+  };
+  EXPECT_TRUE(read_rolling_preset(with("  scene: r.yaml\n"), "fast").empty());
+  EXPECT_TRUE(read_rolling_preset(with("  presets: {fast: null}\n"), "fast").empty());
+  EXPECT_EQ(read_rolling_preset(with("  presets: {fast: {rolling.n_steps: 8}}\n"), "fast").size(),
+            1u);
+  for (const std::string bad : {"  presets: {standard: null}\n", "  presets: {fast: 3}\n"})
+    try
+      {
+        read_rolling_preset(with(bad), "fast");
+        ADD_FAILURE() << "no error for " << bad;
+      }
+    catch (const InputError &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("rolling.presets.fast"), std::string::npos)
+          << e.what();
+      }
 }
 
 TEST(FeScene, YieldStressDefaultsToTheHardeningTablesFirstPoint)
