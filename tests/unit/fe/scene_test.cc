@@ -613,6 +613,20 @@ TEST(FeScene, KinematicsAndTheElastoplasticPatchTest)
                {"solver.max_newton_iterations"});
 }
 
+// Issue 30 item 7: a step may turn the bearing by a quarter turn at most. ω_B = 1e3 rad/s over
+// the default 0.25 s is 250 rad: 32 steps (7.8 rad each) are refused with the least number of
+// steps that would do, ceil(250 / (π/2)) = 160, which is accepted.
+TEST(FeScene, RollingStepsMayTurnTheBearingAQuarterTurnAtMost)
+{
+  const std::string rolling = "schema: clearjoint.fe/1\nstudy: rolling\n";
+  expect_error(rolling + "rolling: {omega_B: 1000, n_steps: 32}\n",
+               {"rolling.n_steps", "32", ">= 160", "quarter turn"});
+  EXPECT_EQ(parse(rolling + "rolling: {omega_B: 1000, n_steps: 160}\n").rolling.n_steps, 160u);
+  // the hold after the ramp counts too: 1 s at 12.56 rad/s is 12.56 rad, 4 steps too few
+  expect_error(rolling + "rolling: {n_steps: 4, end_time: 1.0}\n", {"rolling.n_steps", ">= 8"});
+  EXPECT_EQ(parse(rolling + "rolling: {omega_B: 1.0e-3, n_steps: 4}\n").rolling.n_steps, 4u);
+}
+
 // Issue 30 item 2: rolling.spin_solver, how a rolling step finds the journal's spin
 TEST(FeScene, RollingSpinSolverIsCoupledOrNested)
 {
