@@ -472,6 +472,12 @@ def _slip_stages(run):
             "</table>" + note)
 
 
+def _finite_strain(scene):
+    """The run's kinematics was finite (fe_stage writes the scene it ran, defaults included;
+    a scene without the key is from before the rolling study's default became finite)."""
+    return get(scene, "material", "kinematics") == "finite" if isinstance(scene, dict) else False
+
+
 def _what_was_modelled(run):
     sc = run.scene
     r = sc.get("rolling", {}) if isinstance(sc, dict) else {}
@@ -497,8 +503,9 @@ def _what_was_modelled(run):
               "frame that turns with it")
     return ("<p>The bearing turns at ω_B; the " + ("deformable" if deformable else "rigid") +
             " journal's axis is pushed radially into it and the journal turns freely, driven by "
-            "friction alone; " + bodies + " (docs/fe.md, “Rolling study”). Coarse mesh, small "
-            "strain." + (f" This run: {esc(', '.join(parts))}." if parts else "") + "</p>")
+            "friction alone; " + bodies + " (docs/fe.md, “Rolling study”). Coarse mesh, " +
+            ("finite strain (total Lagrangian, J2 in the logarithmic strain space)"
+             if _finite_strain(sc) else "small strain") + "." + (f" This run: {esc(', '.join(parts))}." if parts else "") + "</p>")
 
 
 def _frame_note(h):
@@ -562,7 +569,7 @@ def rolling_section(rolling, base, warnings):
                      f"|work_push| = {run.work_in():.4g} J; limit ±{100 * BALANCE_LIMIT:g} %)" +
                      _frame_note(h), "rolling")
     eps = run.max_of("max_strain", "max_strain")
-    if eps is not None and eps > STRAIN_LIMIT:
+    if eps is not None and eps > STRAIN_LIMIT and not _finite_strain(run.scene):
         warnings.add("FE rolling study",
                      f"the largest principal strain reaches <strong>{eps:.3g}</strong> (above "
                      f"{STRAIN_LIMIT:g}): the small-strain model is not accurate there — a "

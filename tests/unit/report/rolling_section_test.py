@@ -64,7 +64,7 @@ def step(k, n=4, error=0.05, strain=0.02, force=12345.6):
 
 
 def write_run(folder, rows=4, complete=True, message="", shuffle=False, extra_column=False,
-              journal=None, **kw):
+              journal=None, kinematics=None, **kw):
     os.makedirs(folder, exist_ok=True)
     cols = list(COLUMNS) + ([("work_drive_torque", "J")] if extra_column else [])
     if shuffle:
@@ -97,7 +97,8 @@ def write_run(folder, rows=4, complete=True, message="", shuffle=False, extra_co
             "scene": {"study": "rolling",
                       "loading": dict({"delta_max": 5e-5}, **({"journal": journal} if journal else {})),
                       "contact": {"mu": 0.3},
-                      "rolling": {"omega_B": 12.56, "ramp_time": 0.25, "end_time": 0.25, "n_steps": 4}},
+                      "rolling": {"omega_B": 12.56, "ramp_time": 0.25, "end_time": 0.25, "n_steps": 4},
+                      **({"material": {"kinematics": kinematics}} if kinematics else {})},
             "rolling": {
                 "journal_inertia": {"value": 1.8e-6, "unit": "kg m^2"},
                 "rolling_rate": {"value": 13.22, "unit": "rad/s", "meaning": "..."},
@@ -192,6 +193,15 @@ def main():
         _, w = section({"fe_dir": big, "status": "complete"}, d)
         expect(len(w.items) == 1 and "0.08" in w.items[0][1] and "small-strain" in w.items[0][1],
                f"strain 0.08 gives the small-strain warning: {warning_texts(w)}")
+        html, _ = section({"fe_dir": big, "status": "complete"}, d)
+        expect("small strain." in html, "a run without kinematics is said to be small strain")
+        # ... but not in a finite-strain run (the rolling study's default since issue 30), which
+        # the section says it was
+        big_finite = write_run(os.path.join(d, "strain_finite"), strain=0.08, kinematics="finite")
+        html, w = section({"fe_dir": big_finite, "status": "complete"}, d)
+        expect(not w.items, f"strain 0.08 in finite strain gives no warning: {warning_texts(w)}")
+        expect("finite strain (total Lagrangian" in html and "small strain." not in html,
+               "a finite-strain run is said to be finite strain")
 
         # Incomplete (manifest and CSV say so) though the task itself exited 0.
         inc = write_run(os.path.join(d, "incomplete"), rows=2, complete=False,
