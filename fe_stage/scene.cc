@@ -1204,7 +1204,8 @@ namespace clearjoint::fe
         << "      # [s] the push reaches delta_max at this time\n"
         << "  # end_time: 0.3       # [s] >= ramp_time: hold delta_max until then (default "
            "ramp_time)\n"
-        << "  n_steps: " << d.rolling.n_steps << "          # time steps over the run, >= 4 and at most a\n"
+        << "  n_steps: " << d.rolling.n_steps
+        << "          # time steps over the run, >= 4 and at most a\n"
         << "                      #   quarter turn of the bearing each\n"
         << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
         << "                      #   radial study's support, turning with the bearing)\n"
