@@ -72,6 +72,10 @@ UNITS = {"fe_dofs": "[1] DoFs of the thickness sweep's reference case",
          "rolling_time": "[s] run_pipeline's task: the FE rolling study"}
 
 
+# Where a note carries the note before it (what it said of the figures kept from earlier).
+EARLIER_NOTE = " || the previous note: "
+
+
 class MeasureError(Exception):
     pass
 
@@ -421,7 +425,10 @@ def flow(d):
                            for k, v in d.items()) + "}"
 
 
-def block_text(block, indent):
+def block_text(block, indent, comments=None):
+    """The block's lines; a key in `comments` keeps that comment (a figure this run did not
+    measure keeps what was said of it), the others get the unit's."""
+    comments = comments or {}
     pad = " " * indent
     lines = [pad + "measured:  # written by bench/measure_presets.py (docs/benchmarks.md "
                    "\"Preset figures\"): do not edit by hand"]
@@ -434,7 +441,9 @@ def block_text(block, indent):
                 lines.append(f"{pad}    {study}: {flow(e)}")
             continue
         text = f"{pad}  {k}: {flow(v) if isinstance(v, dict) else scalar(v)}"
-        if k in UNITS:
+        if k in comments:
+            text = text.ljust(indent + 30) + "  # " + comments[k]
+        elif k in UNITS:
             text = text.ljust(indent + 30) + "  # " + UNITS[k]
         lines.append(text)
     return lines
@@ -481,14 +490,33 @@ def find_block(lines, preset):
     return None, last + 1, p_indent + 2
 
 
-def write_blocks(path, blocks, dry_run):
+def old_comments(lines, indent, keys):
+    """The comments beside the block's top-level `keys` in its old lines (`key: value  # text`;
+    the last "  # " on the line, as this command writes them)."""
+    out = {}
+    for line in lines:
+        stripped = line.strip()
+        if len(line) - len(line.lstrip(" ")) != indent + 2 or "  # " not in line:
+            continue
+        key = stripped.split(":", 1)[0]
+        if key in keys:
+            out[key] = line.rsplit("  # ", 1)[1].strip()
+    return out
+
+
+def write_blocks(path, blocks, dry_run, kept=None):
+    """Writes each preset's block in place; `kept`: per preset, the top-level keys whose figures
+    this run did not measure (their comments stay)."""
+    kept = kept or {}
     with open(path) as f:
         lines = f.read().split("\n")
     for preset in PRESETS:  # in the file's order, one at a time (line numbers move)
         if preset not in blocks:
             continue
         start, end, indent = find_block(lines, preset)
-        new = block_text(blocks[preset], indent)
+        comments = old_comments(lines[start:end], indent, kept.get(preset, ())) \
+            if start is not None else {}
+        new = block_text(blocks[preset], indent, comments)
         if start is None:
             lines[end:end] = new
         else:
@@ -587,7 +615,7 @@ def main(argv=None):
     m.date = now.strftime("%Y-%m-%d %H:%M UTC")
     where_machine = machine()
     load_before = load_average()
-    blocks, failures = {}, []
+    blocks, failures, kept_keys = {}, [], {}
     for preset in args.presets:
         old = ((pipeline["presets"].get(preset) or {}).get("measured")) or {}
         block = json.loads(json.dumps(old, default=str))
@@ -614,10 +642,16 @@ def main(argv=None):
                 f"{', '.join(wrote)}")
         if kept:
             note += f"; from earlier: {', '.join(kept)}"
+            # what the last note said of them (where they came from), one note back: the note
+            # before that is not carried, or the notes would grow with every run
+            earlier = str(old.get("note", "")).split(EARLIER_NOTE)[0].strip()
+            if earlier:
+                note += EARLIER_NOTE + earlier
         block["note"] = note
         blocks[preset] = block
+        kept_keys[preset] = {k.split(".")[0] for k in kept}
     if blocks:
-        write_blocks(pipeline_path, blocks, args.dry_run)
+        write_blocks(pipeline_path, blocks, args.dry_run, kept_keys)
         print(("would write" if args.dry_run else "wrote") + f" presets {', '.join(blocks)} of {pipeline_path}")
         if not args.dry_run and not args.no_check:
             check = subprocess.run([args.run_pipeline, pipeline_path, "--check", "--build-dir",

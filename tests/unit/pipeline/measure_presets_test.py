@@ -36,7 +36,7 @@ presets:
       note: "typed by hand"
       fe_dofs: 3588           # [1] a hand-typed comment, replaced
       fe_case_time: 2.3       # [s]
-      pipeline_time: 66
+      pipeline_time: 66       # [s] how it was timed, kept while the figure is
       error_F_max:
         thickness: {percent: 4.8, where: "by hand"}
     # a comment after the block stays
@@ -208,6 +208,13 @@ def main():
         kept = m["fast"]["measured"]
         expect(kept.get("pipeline_time") == 66 and "from earlier: pipeline_time" in kept.get("note", ""),
                f"a figure not measured is kept and the note says so: {kept}")
+        # ... with what was said of it: its comment, and the note before (one note back)
+        text = open(p).read()
+        expect("# [s] how it was timed, kept while the figure is" in text,
+               "a kept figure keeps its comment")
+        expect("a hand-typed comment, replaced" not in text, "a measured figure's comment is new")
+        expect(kept.get("note", "").endswith(" || the previous note: typed by hand"),
+               f"the note carries the note before it: {kept.get('note')}")
 
         # 2. run_pipeline reads the blocks and prints each FE task's time beside its figure
         run = subprocess.run([run_pipeline, p, "--no-plots", "--build-dir", build, "--jobs", "1"],
