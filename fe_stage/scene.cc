@@ -122,8 +122,9 @@ namespace clearjoint::fe
       // core (deformable, in its own frame). Finite kinematics (issue 30): at the paper's push
       // the strains reach 0.5–1, where small strain is not the same problem (docs/fe.md
       // "Finite strain in the FE model"); material.kinematics small stays available.
-      // Its first contact needs 3–4 halvings of the time step (the elastic predictor is far
-      // beyond yield; docs/fe.md), and the step size carries over, so it may cut 10 times.
+      // Up to 10 cuts: the step size carries over, and a large step from rest may need
+      // several (the paper's case at 16 steps on the coarsest ring: 5; at 32 or 64 steps, with
+      // the line search: none; docs/benchmarks.md "The paper's rolling case at 1 mm").
       if (s.study == Study::rolling)
         {
           s.loading.journal = JournalLoading::rigid;
