@@ -619,11 +619,11 @@ namespace clearjoint::fe
       // and the run only cuts its way through: measured at omega_B 1e3 rad/s with 32 steps
       // over 0.25 s (7.8 rad a step), 173 steps after cuts and 6 min on the coarsest ring for
       // a result no finer step was checked against.
-      const double turn_per_step = R.omega_B * rolling_end_time(s) / R.n_steps;
+      const double turn = R.omega_B * rolling_end_time(s);  // [rad] over the run
+      const double turn_per_step = turn / R.n_steps;
       if (turn_per_step > 0.5 * units::pi)
         {
-          const auto needed = static_cast<unsigned long>(
-            std::ceil(R.omega_B * rolling_end_time(s) / (0.5 * units::pi)));
+          const auto needed = static_cast<unsigned long>(std::ceil(turn / (0.5 * units::pi)));
           throw InputError(f, "rolling.n_steps", std::to_string(R.n_steps),
                            ">= " + std::to_string(needed) + " at omega_B " +
                              format_value(R.omega_B) + " rad/s over " +
