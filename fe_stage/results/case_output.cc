@@ -124,15 +124,13 @@ namespace clearjoint::fe
                                                           force_penetration_comments(scene));
     curve_->write(IncrementRecord{});
     // Study impact: force_penetration.csv holds the quasi-static reference curve of the same
-    // mesh; the time history goes to impact_history.csv.
+    // mesh; the time history goes to impact_history.csv (its t = 0 row comes from the run,
+    // which knows the journal's mass: a deformable journal's is its mesh's).
     if (scene.study == Study::impact)
-      {
-        impact_history_ =
-          std::make_unique<RecordCsv<DynamicStepRecord>>(dir + "/impact_history.csv",
-                                                         impact_history_columns(),
-                                                         impact_history_comments(scene));
-        impact_history_->write(impact_history_start(scene));
-      }
+      impact_history_ =
+        std::make_unique<RecordCsv<DynamicStepRecord>>(dir + "/impact_history.csv",
+                                                       impact_history_columns(),
+                                                       impact_history_comments(scene));
     // Study rolling: the time history and, at the end, the strain profile.
     if (scene.study == Study::rolling)
       {

@@ -69,10 +69,8 @@ namespace clearjoint::fe
                                std::string("frictionless contact (mu = 0)")};
   }
 
-  DynamicStepRecord impact_history_start(const FeScene &scene)
+  DynamicStepRecord impact_history_start(const double m_J, const double v)
   {
-    const double m_J = rigid_journal_mass(scene);
-    const double v = scene.impact.velocity;
     DynamicStepRecord start;
     start.delta_rate = v;
     start.kinetic_journal = 0.5 * m_J * v * v;

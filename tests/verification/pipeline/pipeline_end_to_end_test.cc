@@ -339,13 +339,13 @@ TEST(PipelineEndToEnd, DeformableImpactBesideTheRigidOne)
   ASSERT_GT(T_J.size(), 10u);
   const double E0 = deformable.column("kinetic_initial_J")[0];  // ½ m v², the ledger's start
   EXPECT_NEAR(E0, 0.5 * deformable.column("journal_mass_kg")[0] * 0.01, 1e-12 * E0);
-  // The t = 0 row's journal kinetic energy is 1 + 3.8e-5 of ½mv² on this mesh (2.3e-6 on level
-  // 1), while every later row closes against ½mv² to 1e-16: that row is computed with a
-  // slightly different mass than the ledger's (fe_stage; measured 2026-11-28, issue 31 item 2
-  // report). 1e-4 bounds it; the ledger below starts at step 1.
-  EXPECT_NEAR(T_J[0] + T_B[0] + U_B[0] + U_J[0], E0, 1e-4 * E0);
+  // The t = 0 row is the ledger's start, with the journal's FE mass (until 2026-11-29 it used
+  // the rigid journal's ρ π R_J² L_J: 1 + 3.8e-5 of ½mv² on this mesh); 1e-12: the same
+  // product of the same two numbers, written with 17 digits.
+  EXPECT_NEAR(T_J[0], E0, 1e-12 * E0);
+  EXPECT_EQ(T_B[0] + U_B[0] + U_J[0], 0.0);
   double max_strain_journal = 0.0;
-  for (std::size_t k = 1; k < T_J.size(); ++k)
+  for (std::size_t k = 0; k < T_J.size(); ++k)
   {
     const double E = T_J[k] + T_B[k] + U_B[k] + U_J[k];
     EXPECT_NEAR(E, E0 + W[k] - D[k], 1e-8 * E0) << "step " << k;
