@@ -146,6 +146,20 @@ def main():
                f"a reference's set after the rolling study's own presets: {r0}")
         expect(rolling["presets"]["fast"]["rolling.n_steps"] == 32,
                "the pipeline's own rolling block is left as it was")
+        # A part that compares a run with itself (the impact's mesh part, {set: 80 steps}
+        # against {preset: accurate, set: 80 steps}, measured for the accurate preset) is the
+        # same run: error() leaves it out instead of counting 0 %.
+        m = measure_presets.Measurer(
+            args, {"presets": {p: {"fe": {"mesh.global_refinements": i}, "mbd": None}
+                               for i, p in enumerate(measure_presets.PRESETS)},
+                   "impact": {"scene": "i.yaml"}},
+            {"studies": {"impact": {"kind": "impact"}}})
+        steps = {"impact.steps_per_period": 80}
+        of, finest = {"set": steps}, {"preset": "accurate", "set": steps}
+        expect(m.run_key("impact", m.spec(of, "accurate")) == m.run_key("impact", m.spec(finest, "accurate")),
+               "the accurate preset's mesh part compares its own run")
+        expect(m.run_key("impact", m.spec(of, "standard")) != m.run_key("impact", m.spec(finest, "standard")),
+               "the standard preset's mesh part compares two meshes")
         build = os.path.join(d, "build")
         fakes = os.path.join(ROOT, "tests", "data", "fake_stages")
         for link, target in [("fe_stage/fe_stage", os.path.join(fakes, "fake_fe_stage.py")),
