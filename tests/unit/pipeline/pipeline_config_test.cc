@@ -330,9 +330,16 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
   for (const auto &p : preset_names())
     for (const auto &s : c.fe_sweeps)
       EXPECT_TRUE(c.preset_measured.at(p).error_F_max.count(s.name)) << p << " " << s.name;
-  EXPECT_EQ(*c.preset_measured.at("fast").error_F_max.at("thickness").percent, 4.8);
-  EXPECT_EQ(*c.preset_measured.at("standard").error_F_max.at("thickness").percent, 2.0);
-  EXPECT_EQ(*c.preset_measured.at("accurate").error_F_max.at("thickness").percent, 0.85);
+  // The thickness figures are read as numbers, and finer presets are measured more accurate
+  // (their values are bench/measure_presets.py's and docs/benchmarks.md's, not this test's).
+  const auto thickness = [&](const char *p) {
+    const auto &e = c.preset_measured.at(p).error_F_max.at("thickness").percent;
+    EXPECT_TRUE(e.has_value()) << p;
+    return e.value_or(-1.0);
+  };
+  EXPECT_GT(thickness("accurate"), 0.0);
+  EXPECT_LT(thickness("accurate"), thickness("standard"));
+  EXPECT_LT(thickness("standard"), thickness("fast"));
 
   // The flanged pipeline names the .geo, made absolute, and it exists.
   const auto &mesh = flanged.fe_sweeps.at(0).overrides.at(0);
