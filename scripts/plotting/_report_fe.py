@@ -157,6 +157,11 @@ def own_estimate_section(fs, preset_error=None):
         out.append(f"<p>The preset's measured error for this sweep: {percent:.3g} % "
                    f"({esc(where)}). The run's own estimate is set beside it as a check: where "
                    f"they differ much, the measurement may not describe this run's scene.</p>")
+        worst, case = largest_own_estimate(fs)
+        if 100 * worst["value"] > percent:
+            out.append(f"<p class='warn'>At {esc(case_label(fs.sweep, case))} the run's own "
+                       f"estimate, {esc(own_estimate_words(worst))}, exceeds the preset's measured "
+                       f"{percent:.3g} %: take the larger as the error of this case.</p>")
     else:
         worst, case = largest_own_estimate(fs)
         out.append(f"<p class='warn'>The preset's error is not measured for this sweep"

@@ -3,10 +3,11 @@
 (fe_stage's manifest extra.adaptive.estimated_error_F_max, as fe_stage/results/case_output.cc
 writes it) shows each case's estimate — its value, and whether it is extrapolated or a lower
 bound — with the last mesh's DoFs and F(δ_max); beside the chosen preset's measured figure where
-there is one, and, where the preset's figure is null (a Gmsh bearing without a convergence
-study), says that the run's own estimate is the figure to use, naming the largest. The summary's
-"What ran" says the same per sweep, and "What was modelled" names the Gmsh mesh. A sweep without adaptive cases gets no such section.
-Small fake run directories written here.
+there is one (saying so where the own estimate is the larger), and, where the preset's figure
+is null (a Gmsh bearing without a convergence study), says that the run's own estimate is the
+figure to use, naming the largest. The summary's "What ran" says the same per sweep, and "What
+was modelled" names the Gmsh mesh. A sweep without adaptive cases gets no such section. Small
+fake run directories written here.
 
     own_estimate_test.py
 """
@@ -109,6 +110,13 @@ def main():
         html = own_estimate_section(fs, {"percent": 1.2, "where": "h = 4 mm, 3 cycles"})
         expect("The preset's measured error for this sweep: 1.2 % (h = 4 mm, 3 cycles)" in html
                and "figure to use" not in html, f"beside the preset's figure: {html}")
+        # a preset figure below the run's own estimate: the larger is named
+        html = own_estimate_section(fs, {"percent": 3.0, "where": "t_B = 6 mm"})
+        expect("At t_B = 6 mm the run's own estimate, ≥ 3.3 % (a lower bound: the change in the "
+               "last cycle), exceeds the preset's measured 3 %: take the larger" in html,
+               f"an own estimate above the preset's figure: {html}")
+        expect("exceeds" not in own_estimate_section(fs, {"percent": 4.0, "where": "x"}),
+               "no such note where the preset's figure is the larger")
         # no preset entry for the sweep at all: as a null figure
         expect("figure to use" in own_estimate_section(fs, None), "no preset entry: figure to use")
 
