@@ -161,7 +161,9 @@ def own_estimate_section(fs, preset_error=None):
         if 100 * worst["value"] > percent:
             out.append(f"<p class='warn'>At {esc(case_label(fs.sweep, case))} the run's own "
                        f"estimate, {esc(own_estimate_words(worst))}, exceeds the preset's measured "
-                       f"{percent:.3g} %: take the larger as the error of this case.</p>")
+                       f"{percent:.3g} %. The measured figure comes from longer sequences of the "
+                       f"cases its note names; for a case it does not name, the larger is the "
+                       f"safer figure.</p>")
     else:
         worst, case = largest_own_estimate(fs)
         out.append(f"<p class='warn'>The preset's error is not measured for this sweep"

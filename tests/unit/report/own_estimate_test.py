@@ -113,7 +113,9 @@ def main():
         # a preset figure below the run's own estimate: the larger is named
         html = own_estimate_section(fs, {"percent": 3.0, "where": "t_B = 6 mm"})
         expect("At t_B = 6 mm the run's own estimate, ≥ 3.3 % (a lower bound: the change in the "
-               "last cycle), exceeds the preset's measured 3 %: take the larger" in html,
+               "last cycle), exceeds the preset's measured 3 %. The measured figure comes from "
+               "longer sequences of the cases its note names; for a case it does not name, the "
+               "larger is the safer figure" in html,
                f"an own estimate above the preset's figure: {html}")
         expect("exceeds" not in own_estimate_section(fs, {"percent": 4.0, "where": "x"}),
                "no such note where the preset's figure is the larger")
