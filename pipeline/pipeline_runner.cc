@@ -207,6 +207,61 @@ namespace clearjoint::pipeline
     }
   }
 
+  void PipelineRunner::watch_own_estimate(const int node, const std::string &sweep,
+                                          const std::string &label, const std::string &fe_dir)
+  {
+    graph_.node(node).on_done.push_back(
+      [this, sweep, label, fe_dir](TaskGraph &, const TaskResult &) {
+        const std::string path = fe_dir + "/manifest.json";
+        if (!fs::exists(path))
+          return;
+        std::optional<OwnErrorEstimate> e;
+        try
+        {
+          e = read_own_error_estimate(parse_json_string(read_file(path), path));
+        }
+        catch (const std::exception &)
+        {
+          return;  // the report says what the manifest lacks; the run goes on
+        }
+        if (!e)
+          return;
+        own_estimates_[sweep][label] = *e;
+        std::string dofs;
+        if (e->n_dofs)
+        {
+          char buf[64];
+          std::snprintf(buf, sizeof(buf), " on the last of %d meshes, %.0f DoFs", e->n_meshes,
+                        *e->n_dofs);
+          dofs = buf;
+        }
+        log::info("          fe/" + sweep + "/" + label +
+                  ": own estimate of the error of F(delta_max) " + describe_own_estimate(*e) +
+                  dofs);
+      });
+  }
+
+  void PipelineRunner::log_own_estimates()
+  {
+    for (auto &s : summary_["sweeps"])
+    {
+      const auto found = own_estimates_.find(s["name"].get<std::string>());
+      if (found == own_estimates_.end())
+        continue;
+      log::info("FE sweep '" + found->first + "': " +
+                describe_own_estimates(config_, found->first, found->second));
+      for (auto &c : s["cases"])
+      {
+        const std::string label =
+          s["parameter"].get<std::string>() + "=" + value_label(c["value"].get<double>());
+        if (const auto e = found->second.find(label); e != found->second.end())
+          c["own_error_F_max"] = {{"value", e->second.relative},
+                                  {"unit", "1"},
+                                  {"lower_bound", e->second.lower_bound}};
+      }
+    }
+  }
+
   void PipelineRunner::record_tasks(const Scheduler &scheduler)
   {
     for (int id = 0; id < graph_.size(); ++id)
@@ -481,6 +536,7 @@ namespace clearjoint::pipeline
     FeCase c;
     c.fe_node = add(fe, "fe", mesh_tasks, config_.mpi_ranks, scene_json);
     attach_figure(c.fe_node, sweep.name);
+    watch_own_estimate(c.fe_node, sweep.name, label, fe.output_dir);
     c.csv = fe.output_dir + "/force_penetration.csv";
 
     Task fit;
@@ -624,6 +680,7 @@ namespace clearjoint::pipeline
       run_rolling();
 
     execute_tasks();
+    log_own_estimates();
     // the run's tasks and their setup (not the report, which follows): beside pipeline_time
     summary_["wall_time"] = {
       {"value", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()},

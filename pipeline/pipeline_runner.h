@@ -3,6 +3,7 @@
 #pragma once
 
 #include "pipeline/pipeline_config.h"
+#include "pipeline/presets.h"
 #include "pipeline/run_eta.h"
 #include "pipeline/scheduler.h"
 #include "pipeline/task_graph.h"
@@ -120,6 +121,14 @@ namespace clearjoint::pipeline
     /// composed scene the task runs, whose named files join its inputs when it starts.
     int add(const Task &task, const std::string &stage_group, std::vector<int> after,
             int ranks = 1, const nlohmann::json &scene = nullptr);
+    /// When FE case `node` (value `label` of `sweep`) ends: logs fe_stage's own estimate of
+    /// the error of F(delta_max) if the case ran adaptive cycles, and keeps it for the sweep's
+    /// line at the end of the run and the summary (log_own_estimates).
+    void watch_own_estimate(int node, const std::string &sweep, const std::string &label,
+                            const std::string &fe_dir);
+    /// After the tasks: one line per sweep with the run's own estimates beside the preset's
+    /// measured figure, and each case's estimate in the summary (own_error_F_max).
+    void log_own_estimates();
     /// Sets the chosen preset's measured time of task `node` (of FE sweep `sweep`, if any):
     /// printed beside its time when it ends and written into the summary (presets.h).
     void attach_figure(int node, const std::string &sweep = "");
@@ -150,5 +159,8 @@ namespace clearjoint::pipeline
     std::map<std::string, Done> meshes_;  ///< mesh task output folder → its .msh
     std::set<std::string> planned_meshes_;  ///< mesh task folders found by the dry run
     std::unique_ptr<RunEta> eta_;
+    /// Sweep name → value label → fe_stage's own estimate of the error of F(delta_max), from
+    /// each adaptive case's manifest as its task ends (watch_own_estimate).
+    std::map<std::string, std::map<std::string, OwnErrorEstimate>> own_estimates_;
   };
 } // namespace clearjoint::pipeline

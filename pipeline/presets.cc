@@ -115,6 +115,60 @@ namespace clearjoint::pipeline
     return out;
   }
 
+  std::optional<OwnErrorEstimate> read_own_error_estimate(const nlohmann::json &fe_manifest)
+  {
+    const nlohmann::json::json_pointer at("/extra/adaptive/estimated_error_F_max/value");
+    if (!fe_manifest.is_object() || !fe_manifest.contains(at) || !fe_manifest.at(at).is_number())
+      return std::nullopt;
+    const nlohmann::json &a = fe_manifest.at(nlohmann::json::json_pointer("/extra/adaptive"));
+    OwnErrorEstimate e;
+    e.relative = a.at(nlohmann::json::json_pointer("/estimated_error_F_max/value")).get<double>();
+    const auto method = a["estimated_error_F_max"].value("method", std::string());
+    e.lower_bound = method.find("lower bound") != std::string::npos;
+    if (const auto c = a.find("cycles"); c != a.end() && c->is_array() && !c->empty())
+    {
+      e.n_meshes = static_cast<int>(c->size());
+      if (const auto n = c->back().find("n_dofs"); n != c->back().end() && n->is_number())
+        e.n_dofs = n->get<double>();
+    }
+    return e;
+  }
+
+  std::string describe_own_estimate(const OwnErrorEstimate &e)
+  {
+    char buf[96];
+    if (e.lower_bound)
+      std::snprintf(buf, sizeof(buf), ">= %.2g %% (a lower bound: the change in the last cycle)",
+                    100.0 * e.relative);
+    else
+      std::snprintf(buf, sizeof(buf), "%.2g %% (extrapolated)", 100.0 * e.relative);
+    return buf;
+  }
+
+  std::string describe_own_estimates(const PipelineConfig &config, const std::string &sweep,
+                                     const std::map<std::string, OwnErrorEstimate> &estimates)
+  {
+    std::string out = "own estimate of the error of F(delta_max):";
+    bool first = true;
+    for (const auto &[label, e] : estimates)
+    {
+      out += (first ? " " : ", ") + label + " " + describe_own_estimate(e);
+      first = false;
+    }
+    const PresetError *measured = nullptr;
+    if (const auto m = config.preset_measured.find(config.preset); m != config.preset_measured.end())
+      if (const auto it = m->second.error_F_max.find(sweep); it != m->second.error_F_max.end())
+        measured = &it->second;
+    if (measured && measured->percent)
+    {
+      char buf[32];
+      std::snprintf(buf, sizeof(buf), "%.3g %%", *measured->percent);
+      return out + "; preset " + config.preset + " measured " + buf;
+    }
+    return out + "; preset " + config.preset +
+           ": not measured for this sweep, so the run's own estimate is the figure to use";
+  }
+
   std::optional<std::pair<std::string, double>> task_figure(const PipelineConfig &config,
                                                             const std::string &stage,
                                                             const std::string &sweep)

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -20,6 +21,33 @@ namespace clearjoint::pipeline
   /// it under `sweeps.<sweep>`, the rolling study's under `rolling`, null without them),
   /// measurements and whether it is the chosen one (pipeline_summary.json "presets").
   nlohmann::json presets_summary(const PipelineConfig &config);
+
+  /// fe_stage's own estimate of the relative error of F(delta_max) on an adaptive case's last
+  /// mesh (its manifest's extra.adaptive.estimated_error_F_max; docs/fe.md "The error
+  /// estimate"): the figure to use where the preset's measured one does not apply (a Gmsh
+  /// bearing without a convergence study).
+  struct OwnErrorEstimate
+  {
+    double relative = 0.0;     ///< [1]
+    bool lower_bound = false;  ///< the last cycle's change, not an extrapolation
+    int n_meshes = 0;          ///< meshes in the sequence
+    std::optional<double> n_dofs;  ///< [1] of the last mesh
+  };
+
+  /// The estimate in an fe_stage manifest; nullopt for a case without adaptive cycles (or one
+  /// whose manifest is not of that shape).
+  std::optional<OwnErrorEstimate> read_own_error_estimate(const nlohmann::json &fe_manifest);
+
+  /// "0.85 % (extrapolated)" or ">= 3.3 % (a lower bound: the change in the last cycle)".
+  std::string describe_own_estimate(const OwnErrorEstimate &e);
+
+  /// The run's own estimates of one FE sweep (value label → estimate) beside the chosen
+  /// preset's measured figure for it: "own estimate of the error of F(delta_max): t_B=0.004
+  /// 0.85 % (extrapolated), ...; preset fast measured 1.2 %", or, where the preset's figure is
+  /// null or absent, "...; preset fast: not measured for this sweep, so the run's own estimate
+  /// is the figure to use".
+  std::string describe_own_estimates(const PipelineConfig &config, const std::string &sweep,
+                                     const std::map<std::string, OwnErrorEstimate> &estimates);
 
   /// A measured figure "misses" a run's time when either is more than this factor times the
   /// other (report.py uses the same factor): the figure is stale in either direction — too low,

@@ -91,6 +91,95 @@ def trend_words(values):
     return 0, f"is not monotonic ({up} of {len(diffs)} steps up)"
 
 
+def own_estimate(man):
+    """fe_stage's own estimate of the relative error of F(δ_max) on an adaptive case's last mesh
+    (manifest extra.adaptive.estimated_error_F_max, docs/fe.md "The error estimate"), as
+    {"value": [1], "lower_bound": bool, "method": words, "extrapolated_force": N or None,
+    "n_meshes": int, "n_dofs": DoFs of the last mesh}; None for a case without adaptive cycles
+    or with a single mesh (nothing to estimate from)."""
+    a = get(man, "extra", "adaptive")
+    e = value_of(get(a, "estimated_error_F_max"))
+    if e is None:
+        return None
+    method = str(get(a, "estimated_error_F_max", "method", default=""))
+    cycles = get(a, "cycles", default=[]) or []
+    return {"value": e, "lower_bound": "lower bound" in method, "method": method,
+            "extrapolated_force": value_of(get(a, "extrapolated_force")),
+            "n_meshes": len(cycles), "n_dofs": value_of(get(cycles, -1, "n_dofs"))}
+
+
+def own_estimate_words(est):
+    """"0.85 % (extrapolated from the sequence)" or "≥ 0.4 % (a lower bound: the change in the
+    last cycle)"."""
+    if est["lower_bound"]:
+        return f"≥ {100 * est['value']:.2g} % (a lower bound: the change in the last cycle)"
+    return f"{100 * est['value']:.2g} % (extrapolated from the sequence)"
+
+
+def largest_own_estimate(fs):
+    """(estimate, case) with the largest own estimate over the sweep's cases, or None."""
+    found = [(own_estimate(man), case) for case, _, man in fs.cases]
+    found = [(e, c) for e, c in found if e is not None]
+    return max(found, key=lambda ec: ec[0]["value"]) if found else None
+
+
+def own_estimate_section(fs, preset_error=None):
+    """The run's own error estimate of F(δ_max) per adaptive case beside the chosen preset's
+    measured figure (`preset_error`: presets.<p>.measured.error_F_max.<sweep>, {percent, where}
+    or None). Where the preset's figure is null (a geometry without a convergence study, e.g. a
+    Gmsh bearing) the run's own estimate is the figure to use, and the section says so. Empty
+    for a sweep without adaptive cases."""
+    rows = []
+    for case, _, man in fs.cases:
+        est = own_estimate(man)
+        if est is None:
+            continue
+        F = value_of(get(man, "extra", "force_at_delta_max"))
+        F_inf = est["extrapolated_force"]
+        rows.append(f"<tr><td>{esc(case_label(fs.sweep, case))}</td><td>{est['n_meshes']}</td>"
+                    f"<td>{thousands(est['n_dofs']) if est['n_dofs'] else '?'}</td>"
+                    f"<td>{thousands(F) if F is not None else '?'}</td>"
+                    f"<td>{esc(own_estimate_words(est))}</td>"
+                    f"<td>{thousands(F_inf) if F_inf is not None else '—'}</td></tr>")
+    if not rows:
+        return ""
+    percent = get(preset_error, "percent")
+    where = get(preset_error, "where", default="")
+    out = ["<h4>Mesh error of F(δ_max)</h4>",
+           "<p>Every case ran an adaptive sequence of meshes (Kelly indicator); fe_stage "
+           "estimates the error of F(δ_max) on the last mesh from the sequence itself (docs/fe.md "
+           "“The error estimate”): extrapolated when the last changes shrink steadily, else only "
+           "the last cycle's change, a lower bound.</p>",
+           "<table><tr><th>case</th><th>meshes</th><th>DoFs, last mesh [1]</th>"
+           "<th>F(δ_max) [N]</th><th>the run's own estimate of the error of F(δ_max)</th>"
+           "<th>extrapolated F [N]</th></tr>", "".join(rows), "</table>"]
+    if percent is not None:
+        out.append(f"<p>The preset's measured error for this sweep: {percent:.3g} % "
+                   f"({esc(where)}). The run's own estimate is set beside it as a check: where "
+                   f"they differ much, the measurement may not describe this run's scene.</p>")
+        worst, case = largest_own_estimate(fs)
+        if 100 * worst["value"] > percent:
+            out.append(f"<p class='warn'>At {esc(case_label(fs.sweep, case))} the run's own "
+                       f"estimate, {esc(own_estimate_words(worst))}, exceeds the preset's measured "
+                       f"{percent:.3g} %. The measured figure comes from longer sequences of the "
+                       f"cases its note names; for a case it does not name, the larger is the "
+                       f"safer figure.</p>")
+    else:
+        worst, case = largest_own_estimate(fs)
+        out.append(f"<p class='warn'>The preset's error is not measured for this sweep"
+                   f"{f' ({esc(where)})' if where else ''}: <strong>the run's own estimate is the "
+                   f"figure to use</strong>, the largest here "
+                   f"{esc(own_estimate_words(worst))} at {esc(case_label(fs.sweep, case))}."
+                   + (" A lower bound says only that the error is at least that: run more "
+                      "cycles (mesh.adaptive_cycles) for an extrapolated figure."
+                      if any(own_estimate(m) and own_estimate(m)["lower_bound"]
+                             for _, _, m in fs.cases) else "")
+                   + " The fitted laws carry no mesh error (their law files' "
+                     "discretisation_error is null): add this estimate to their uncertainty by "
+                     "hand.</p>")
+    return "".join(out)
+
+
 class FeSweep:
     """One FE sweep of pipeline_summary.json (its `sweeps`) with its laws and FE manifests loaded."""
 
@@ -116,6 +205,13 @@ class FeSweep:
 
     def values_shown(self):
         return [shown(c["value"], self.sweep["unit"])[0] for c, _, _ in self.cases]
+
+
+def gmsh_mesh_name(path):
+    """A Gmsh mesh's file with its folder: run_pipeline's mesh tasks write
+    mesh/<.geo stem>-<hash>/mesh.msh, whose folder names the .geo."""
+    parts = str(path).replace("\\", "/").split("/")
+    return "/".join(parts[-2:]) if parts[-1] == "mesh.msh" and len(parts) > 1 else parts[-1]
 
 
 def modelled_paragraph(fs):
@@ -144,16 +240,22 @@ def modelled_paragraph(fs):
     if sym:
         parts.append(f"; {'quarter' if sym == 4 else 'half' if sym == 2 else 'full'} model "
                      f"(forces × {sym:g} for the full joint)")
-    if mesh:
+    if mesh and g.get("mesh"):
+        # a Gmsh bearing: its cells, not the generated base mesh's counts
+        parts.append(f"; Q{mesh.get('degree', '?')} elements on the Gmsh mesh "
+                     f"{esc(gmsh_mesh_name(g['mesh']))} (the bearing on its polar chart, so "
+                     f"refined faces follow the cylinders), {mesh.get('global_refinements')} global "
+                     f"and {mesh.get('contact_refinements')} contact-zone refinements")
+    elif mesh:
         parts.append(f"; Q{mesh.get('degree', '?')} elements, base mesh "
                      f"{mesh.get('n_circumferential')}×{mesh.get('n_radial')}×{mesh.get('n_axial')}, "
                      f"{mesh.get('global_refinements')} global and {mesh.get('contact_refinements')} "
                      f"contact-zone refinements")
-        if (mesh.get("adaptive_cycles") or 0) > 0:
-            parts.append(f", then {mesh['adaptive_cycles']} adaptive cycles refining the "
-                         f"{100 * (mesh.get('adaptive_fraction') or 0.2):.3g} % of cells with the "
-                         f"largest Kelly indicators (the curve on the last mesh; each mesh in the "
-                         f"case's adaptive_cycles.csv)")
+    if mesh and (mesh.get("adaptive_cycles") or 0) > 0:
+        parts.append(f", then {mesh['adaptive_cycles']} adaptive cycles refining the "
+                     f"{100 * (mesh.get('adaptive_fraction') or 0.2):.3g} % of cells with the "
+                     f"largest Kelly indicators (the curve on the last mesh; each mesh in the "
+                     f"case's adaptive_cycles.csv)")
     if dofs:
         parts.append(f" ({thousands(dofs)} DoFs for the first case)")
     parts.append(".</p>")
@@ -741,7 +843,9 @@ def fe_case_warnings(fs, warnings):
                                 f"not follow one power law well", fs.anchor)
 
 
-def sweep_section(sweep, base, warnings):
+def sweep_section(sweep, base, warnings, preset_error=None):
+    """`preset_error`: the chosen preset's measured error of F(δ_max) for this sweep
+    ({percent, where}, or None where the preset states none)."""
     fs = FeSweep(sweep)
     head = (f"<h2 id='{esc(fs.anchor)}'>FE sweep “{esc(sweep['name'])}”: contact force over "
             f"{esc(param_axis_label(sweep))}</h2>")
@@ -751,7 +855,7 @@ def sweep_section(sweep, base, warnings):
     fe_case_warnings(fs, warnings)
     pictures, _ = pictures_and_checks(fs, base, warnings)
     parts = [head, modelled_paragraph(fs), force_figure(fs), fref_figure(fs), claim_table(fs),
-             "<h4>Fields</h4>", pictures,
+             own_estimate_section(fs, preset_error), "<h4>Fields</h4>", pictures,
              fig7_cuts(fs, base, warnings) if sweep["parameter"] == "theta" else "",
              yield_section(fs, warnings), "<h4>Laws</h4>",
              law_table(fs, base),

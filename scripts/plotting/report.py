@@ -19,7 +19,8 @@ import os
 
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
-from plotting._report_fe import f_ref_interval, mesh_error, sweep_section, trend_finding
+from plotting._report_fe import (case_label, f_ref_interval, largest_own_estimate, mesh_error,
+                                 own_estimate_words, sweep_section, trend_finding)
 from plotting._report_impact import both_journals_html, impact_headline, impact_section
 from plotting._report_mbd import headline_table, mbd_section
 from plotting._report_rolling import rolling_headline, rolling_section
@@ -242,6 +243,18 @@ def chosen_preset(summary):
     return None
 
 
+def own_estimate_words_html(fs, preset_percent):
+    """"; this run's own estimate, the largest over its cases: …" for a sweep of adaptive cases (fe_stage's estimate
+    from each case's sequence), with "(the figure to use)" where the preset states none."""
+    worst = largest_own_estimate(fs)
+    if worst is None:
+        return ""
+    est, case = worst
+    return (f"; this run's own estimate, the largest over its cases: "
+            f"{esc(own_estimate_words(est))} at {esc(case_label(fs.sweep, case))}"
+            + (", <strong>the figure to use</strong>" if preset_percent is None else ""))
+
+
 def what_ran(summary, sweeps):
     preset = chosen_preset(summary)
     errors = get(preset, "measured", "error_F_max", default={}) or {}
@@ -259,7 +272,7 @@ def what_ran(summary, sweeps):
             f"{{{esc(values)}}}, journal loading <code>{esc(loading)}</code>, "
             f"{'frictionless' if mu == 0 else f'μ = {mu:g}' if mu is not None else 'friction not stated'}; "
             f"measured error of F(δ_max) with this preset: "
-            f"{f'{e:.3g} %' if e is not None else 'not measured'}</li>")
+            f"{f'{e:.3g} %' if e is not None else 'not measured'}{own_estimate_words_html(fs, e)}</li>")
     settings = ", ".join(f"{k} = {v}" for k, v in sorted((get(preset, "fe", default={}) or {}).items()))
     return (f"<p>Preset <strong>{esc(summary['preset'])}</strong> "
             f"({esc(settings or 'the scenes as they are')})."
@@ -375,7 +388,8 @@ def main(argv):
     warnings = Warnings()
     sweep_html, sweeps = [], []
     for st in summary_sweeps(summary):
-        html_, fs = sweep_section(st, base, warnings)
+        html_, fs = sweep_section(st, base, warnings,
+                                  get(chosen_preset(summary), "measured", "error_F_max", st["name"]))
         sweep_html.append(html_)
         sweeps.append(fs)
     impact_html = impact_section(summary.get("impact"), base, warnings)

@@ -33,6 +33,9 @@ What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - geometry.mesh: must be an absolute path of an existing .msh (run_pipeline meshes a .geo
   first); K is scaled by a factor from the mesh file's sha256, so another mesh gives another law.
 - missing geometry keys take the FE defaults (R_B 10, t_B 4, L_B 20, c_r 0.5, c_a 1 mm).
+- mesh.adaptive_cycles > 0 (radial): manifest.json's extra.adaptive as fe_stage writes it, one
+  made-up mesh per cycle and the estimate of the error of F(delta_max) 0.02 / 2^cycles,
+  extrapolated from 2 cycles on, else a lower bound.
 - manifest.json carries extra.scene (the fit stage embeds it in the law file), with the
   geometry, loading.journal, contact.mu and material.yield_stress filled in as fe_stage does.
 Environment: CLEARJOINT_FAKE_SLEEP=<s> sleeps before writing (to be interrupted);
@@ -361,6 +364,20 @@ used.setdefault("material", {}).setdefault("yield_stress", 168.2e6)
 extra = {"scene": used}
 if fake_h:
     extra["n_dofs"] = int(1000 / fake_h)
+cycles = scene.get("mesh", {}).get("adaptive_cycles", 0)
+if cycles > 0:
+    # as fe_stage/results/case_output.cc writes an adaptive case: its meshes and its own
+    # estimate of the error of F(delta_max), extrapolated from three meshes on (made-up numbers)
+    F_max = K * 5e-5 ** n
+    extra["adaptive"] = {
+        "cycles": [{"n_cells": 100 * 2 ** k, "n_dofs": 1000 * 2 ** k,
+                    "force_at_delta_max": {"value": F_max * (1 + 0.02 / 2 ** k), "unit": "N"}}
+                   for k in range(cycles + 1)],
+        "fraction": 0.2, "marking_increments": 2,
+        "estimated_error_F_max": {
+            "value": 0.02 / 2 ** cycles, "unit": "1",
+            "method": "change in the last cycle (a lower bound)" if cycles < 2 else
+                      "last two cycles extrapolated with F = F_inf + C N^-q, q = 1"}}
 if os.environ.get("CLEARJOINT_FAKE_FIELDS") == "1":
     write_fields(out, g, scene.get("contact", {}).get("mu", 0.0), scene.get("fake_old_contact_fields", False))
     extra["symmetry_factor"] = 4

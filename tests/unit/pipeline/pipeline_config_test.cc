@@ -346,6 +346,23 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
   EXPECT_EQ(mesh.first, "geometry.mesh");
   EXPECT_EQ(mesh.second.get<std::string>(),
             std::string(CLEARJOINT_SOURCE_DIR) + "/fe_stage/geometries/flanged_bearing.geo");
+  // Issue 32 item 4: its presets are adaptive cycles on one coarse Gmsh base, more for the
+  // finer presets; the accurate preset's error is not measured (the run's own estimate is the
+  // figure to use), the others' are.
+  const FeSweep &fl = flanged.fe_sweeps.at(0);
+  EXPECT_EQ(fl.mesh_parameters.at("h"), 4.0e-3);
+  ASSERT_EQ(fl.preset_overrides.size(), 3u);
+  previous_cycles = 0;
+  for (const std::string p : {"fast", "standard", "accurate"})
+  {
+    std::map<std::string, nlohmann::json> set;
+    for (const auto &[k, v] : sweep_overrides(fl, p))
+      set[k] = v;
+    EXPECT_GT(set.at("mesh.adaptive_cycles").get<int>(), std::max(previous_cycles, 1)) << p;
+    previous_cycles = set.at("mesh.adaptive_cycles").get<int>();
+    const auto &e = flanged.preset_measured.at(p).error_F_max.at(fl.name);
+    EXPECT_EQ(e.percent.has_value(), p != "accurate") << p;
+  }
 }
 
 // The impact study (issue 12 item 4): a scene and one law of the same geometry, fitted here

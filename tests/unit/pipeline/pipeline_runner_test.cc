@@ -492,6 +492,48 @@ TEST(RunPipeline, PresetErrorReachesTheLawAndTheBandTasksAreCountedLogsNameFinal
     }
 }
 
+// Issue 32 item 4: every adaptive FE case's own estimate of the error of F(delta_max) (its
+// manifest's extra.adaptive) is logged as the case ends, again per sweep at the end beside the
+// preset's figure — here none, so it is named the figure to use —, reused cases too, and kept
+// in the summary per case.
+TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
+{
+  test_support::ScratchDir dir("pipeline_own_estimate");
+  FakeBuild build(dir);
+  test_support::write_text(dir.file("p.yaml"),
+                           pipeline_yaml(dir.path(), "[0.002, 0.004]",
+                                         ", \"mesh\": {\"adaptive_cycles\": 2}"));
+  for (const bool reused : {false, true})
+  {
+    const Outcome o = run(dir, build);
+    ASSERT_EQ(o.exit_code, 0) << o.log;
+    EXPECT_EQ(with(o, reused ? "reused" : "ran").size(), 12u) << o.log;
+    EXPECT_NE(o.log.find("fe/thickness/t_B=0.002: own estimate of the error of F(delta_max) "
+                         "0.5 % (extrapolated) on the last of 3 meshes, 4000 DoFs"),
+              std::string::npos)
+      << o.log;
+    EXPECT_NE(o.log.find("FE sweep 'thickness': own estimate of the error of F(delta_max): "
+                         "t_B=0.002 0.5 % (extrapolated), t_B=0.004 0.5 % (extrapolated); preset "
+                         "fast: not measured for this sweep, so the run's own estimate is the "
+                         "figure to use"),
+              std::string::npos)
+      << o.log;
+    const auto summary = read_json_file(dir.file("out/r/pipeline_summary.json"));
+    const auto &c = summary["sweeps"][0]["cases"][1];
+    EXPECT_EQ(c["value"], 0.004);
+    EXPECT_EQ(c["own_error_F_max"]["value"], 0.005);
+    EXPECT_EQ(c["own_error_F_max"]["unit"], "1");
+    EXPECT_EQ(c["own_error_F_max"]["lower_bound"], false);
+  }
+  // a sweep without adaptive cycles says nothing of it
+  test_support::ScratchDir plain("pipeline_own_estimate_none");
+  FakeBuild plain_build(plain);
+  test_support::write_text(plain.file("p.yaml"), pipeline_yaml(plain.path(), "[0.002, 0.004]"));
+  const Outcome o = run(plain, plain_build);
+  ASSERT_EQ(o.exit_code, 0) << o.log;
+  EXPECT_EQ(o.log.find("own estimate"), std::string::npos) << o.log;
+}
+
 // Issue 13 item 5: the rolling study is one fe_stage task, fe/rolling, with the preset's `fe`
 // overrides (a key only it reads, rolling.n_steps, included) and its own overrides after them,
 // its own time in the ETA (rolling_time), reused like any task; nothing depends on it.

@@ -211,3 +211,52 @@ TEST(Presets, FigureMissedEitherWay)
   EXPECT_NE(stale.find("preset standard measured"), std::string::npos) << stale;
   EXPECT_NE(stale.find("1.7x that: figure stale?"), std::string::npos) << stale;
 }
+
+// fe_stage's own estimate of the error of F(delta_max) (issue 32 item 4): read from an adaptive
+// case's manifest as fe_stage writes it (fe_stage/results/case_output.cc), its kind named, and
+// set beside the preset's measured figure, or named the figure to use where there is none.
+TEST(Presets, OwnErrorEstimateOfAnAdaptiveCase)
+{
+  const auto manifest = [](const std::string &method) {
+    return nlohmann::json::parse(R"({"status": "complete", "extra": {"adaptive": {
+      "cycles": [{"n_dofs": 9315}, {"n_dofs": 22992}, {"n_dofs": 57501}],
+      "estimated_error_F_max": {"value": 0.0085, "unit": "1", "method": ")" +
+                                 method + R"("}, "fraction": 0.2}}})");
+  };
+  const auto e = read_own_error_estimate(
+    manifest("last two cycles extrapolated with F = F_inf + C N^-q, q = 0.667"));
+  ASSERT_TRUE(e.has_value());
+  EXPECT_DOUBLE_EQ(e->relative, 0.0085);
+  EXPECT_FALSE(e->lower_bound);
+  EXPECT_EQ(e->n_meshes, 3);
+  EXPECT_EQ(*e->n_dofs, 57501.0);
+  EXPECT_EQ(describe_own_estimate(*e), "0.85 % (extrapolated)");
+  const auto b = read_own_error_estimate(manifest("change in the last cycle (a lower bound)"));
+  ASSERT_TRUE(b.has_value());
+  EXPECT_TRUE(b->lower_bound);
+  EXPECT_EQ(describe_own_estimate(*b), ">= 0.85 % (a lower bound: the change in the last cycle)");
+  // no adaptive cycles, a single mesh (no estimate), not a manifest: none
+  EXPECT_FALSE(read_own_error_estimate(nlohmann::json::parse(R"({"extra": {"n_dofs": 3588}})")));
+  EXPECT_FALSE(read_own_error_estimate(
+    nlohmann::json::parse(R"({"extra": {"adaptive": {"cycles": [{"n_dofs": 3588}]}}})")));
+  EXPECT_FALSE(read_own_error_estimate(nlohmann::json::array()));
+
+  // beside the preset's figure (thickness: 4.8 %), or the figure to use (misalignment: null;
+  // standard states none for either)
+  test_support::ScratchDir dir("presets_own_estimate");
+  auto c = read(dir, measured);
+  const std::map<std::string, OwnErrorEstimate> estimates = {{"t_B=0.004", *e},
+                                                             {"t_B=0.006", *b}};
+  std::string text = describe_own_estimates(c, "thickness", estimates);
+  EXPECT_EQ(text, "own estimate of the error of F(delta_max): t_B=0.004 0.85 % (extrapolated), "
+                  "t_B=0.006 >= 0.85 % (a lower bound: the change in the last cycle); preset "
+                  "fast measured 4.8 %");
+  text = describe_own_estimates(c, "misalignment", estimates);
+  EXPECT_NE(text.find("; preset fast: not measured for this sweep, so the run's own estimate is "
+                      "the figure to use"),
+            std::string::npos)
+    << text;
+  c.preset = "standard";
+  text = describe_own_estimates(c, "thickness", estimates);
+  EXPECT_NE(text.find("preset standard: not measured for this sweep"), std::string::npos) << text;
+}
