@@ -69,14 +69,6 @@ namespace clearjoint::fe
                                std::string("frictionless contact (mu = 0)")};
   }
 
-  DynamicStepRecord impact_history_start(const double m_J, const double v)
-  {
-    DynamicStepRecord start;
-    start.delta_rate = v;
-    start.kinetic_journal = 0.5 * m_J * v * v;
-    return start;
-  }
-
   // The columns impact_compare (mbd_stage) reads: v_in_m_per_s, peak_force_N, delta_max_m,
   // contact_duration_s, restitution, journal_mass_kg.
   Columns<ImpactSummary> impact_sweep_columns()

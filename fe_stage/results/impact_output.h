@@ -16,10 +16,6 @@ namespace clearjoint::fe
   /// impact_history.csv: one row per converged time step (and the row at t = 0).
   Columns<DynamicStepRecord> impact_history_columns();
   std::vector<std::string> impact_history_comments(const FeScene &scene);
-  /// The state at t = 0: first touch, the journal of mass `journal_mass` [kg] at `velocity`
-  /// [m/s], everything else at rest. The mass is the one the energy ledger starts from: a
-  /// deformable journal's is its mesh's, known once the mesh is built.
-  DynamicStepRecord impact_history_start(double journal_mass, double velocity);
 
   /// impact_sweep.csv: one row per impact velocity (the sweep table of issue 12).
   Columns<ImpactSummary> impact_sweep_columns();

@@ -25,7 +25,6 @@
 //      end time.
 #include "fe_stage/solve/impact_run.h"
 
-#include "fe_stage/results/impact_output.h"
 #include "fe_stage/solve/quasi_static_stepper.h"
 
 #include "common/error.h"
@@ -206,11 +205,17 @@ namespace clearjoint::fe::detail
       log::info("fe_stage: impact: deformable journal, FE mass " + format_value(S.journal_mass) +
                 " kg (rho pi R_J^2 L_J = " + format_value(m_J) + " kg)");
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
-    // impact_history.csv's t = 0 row, with the mass the ledger starts from (it was the
-    // rigid journal's ρ π R_J² L_J: 1 + 3.8e-5 of ½mv² off for the deformable journal on the
-    // coarsest mesh, its discrete volume)
+    // impact_history.csv's t = 0 row — first touch, the journal at v_in, everything else at
+    // rest — with the mass the ledger starts from (it was the rigid journal's ρ π R_J² L_J:
+    // 1 + 3.8e-5 of ½mv² off for the deformable journal on the coarsest mesh, its discrete
+    // volume)
     if (parts_.options.on_dynamic_step)
-      parts_.options.on_dynamic_step(impact_history_start(S.journal_mass, I.velocity));
+      {
+        DynamicStepRecord start;
+        start.delta_rate = I.velocity;
+        start.kinetic_journal = S.kinetic_initial;
+        parts_.options.on_dynamic_step(start);
+      }
     TrilinosWrappers::MPI::Vector u_peak(parts_.dofs.owned(), parts_.comm);
     bool have_peak = false;
     if (!march(result, stepper, u_peak, have_peak))
