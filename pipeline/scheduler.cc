@@ -6,10 +6,20 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <numeric>
 
 namespace clearjoint::pipeline
 {
   namespace fs = std::filesystem;
+
+  namespace
+  {
+    /// [s] A task no figure covers (a fit, an MBD run, a mesh; any task of a pipeline without
+    /// `measured`): these take about a second or less, so with this they cannot outrank a
+    /// measured FE task (seconds to minutes), while among themselves the longer chain still
+    /// goes first — with 0 they would add nothing to a chain.
+    constexpr double unknown_task_seconds = 1.0;
+  } // namespace
 
   Scheduler::Scheduler(TaskGraph &graph, Executor &executor, ScheduleOptions options,
                        RunEta *eta, std::function<double(const std::string &)> expected_seconds)
@@ -96,17 +106,58 @@ namespace clearjoint::pipeline
     return true;
   }
 
+  double Scheduler::expected_task_seconds(const int id) const
+  {
+    // The figure of this very task is the best guess (an FE case of its own sweep); the
+    // stage's time is one guess for every task of the stage (RunEta::expected_seconds: 0 when
+    // not measured, and for fits and MBD runs when the FE figures use up the preset's whole
+    // pipeline time).
+    const GraphNode &node = graph_.node(id);
+    if (node.figure_seconds && *node.figure_seconds > 0)
+      return *node.figure_seconds;
+    if (expected_seconds_)
+      if (const double s = expected_seconds_(node.task.stage); s > 0)
+        return s;
+    return unknown_task_seconds;
+  }
+
+  std::vector<int> Scheduler::start_order() const
+  {
+    // The graph knows each task's predecessors only, all with smaller ids: from the last id
+    // down, a task's rank is its own time plus the largest rank among the tasks after it
+    // (`tail`, complete once every larger id is seen), which it then offers to its
+    // predecessors. Tasks added later by on_done callbacks are ranked on the next call. A
+    // predecessor outranks the tasks after it (every time is > 0; equal ranks go by id), so
+    // a task reused in a pass makes the tasks after it ready within that pass.
+    const int n = graph_.size();
+    std::vector<double> tail(n, 0.0), rank(n, 0.0);
+    for (int id = n - 1; id >= 0; --id)
+    {
+      rank[id] = expected_task_seconds(id) + tail[id];
+      for (const int a : graph_.node(id).after)
+        tail[a] = std::max(tail[a], rank[id]);
+    }
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](const int a, const int b) { return rank[a] > rank[b]; });
+    return order;
+  }
+
   bool Scheduler::start_ready()
   {
     bool any = false;
-    // A reused task can make others ready at once: scan again until nothing changes
-    // (bounded: each pass that goes on has reused or started at least one task).
+    // A reused task can make others ready at once, and its on_done callbacks may add tasks:
+    // scan again until nothing changes (bounded: each pass that goes on has reused at least
+    // one task).
     for (bool again = true; again && !first_error_;)
     {
       again = false;
-      for (int id = 0; id < graph_.size() && !first_error_; ++id)
+      status_.resize(graph_.size());
+      for (const int id : start_order())
       {
-        status_.resize(graph_.size());
+        if (first_error_)
+          break;
         if (status_[id].state != NodeState::waiting)
           continue;
         bool ready = true, blocked = false;

@@ -198,3 +198,118 @@ TEST(Scheduler, AFinishedTaskAddsTasksAndASecondRunReusesAll)
   ASSERT_EQ(g2.size(), 3);
   EXPECT_EQ(s2.status(2).result.outcome, TaskOutcome::reused);
 }
+
+namespace
+{
+  /// A node with the preset's measured time of its task (nullopt: none).
+  GraphNode timed(const Task &t, std::optional<double> figure_seconds, std::vector<int> after = {})
+  {
+    GraphNode n = node(t, std::move(after));
+    n.figure_seconds = figure_seconds;
+    return n;
+  }
+
+  /// The tasks' names in the order they started.
+  std::vector<std::string> starts(const std::vector<std::string> &events)
+  {
+    std::vector<std::string> names;
+    for (const auto &e : events)
+      if (e.rfind("start ", 0) == 0)
+        names.push_back(e.substr(6));
+    return names;
+  }
+} // namespace
+
+TEST(Scheduler, TheLongestChainStartsFirst)
+{
+  // The standard pipeline's shape (issue 32 item 5): short FE cases added first, the impact
+  // study (the critical path), the rolling study and a mesh before a long FE task.
+  test_support::ScratchDir dir("scheduler_longest");
+  TaskGraph g;
+  std::vector<int> fe;
+  for (const std::string n : {"thick_0", "thick_1", "thick_2", "thick_3"})
+    fe.push_back(g.add(timed(task(dir, n), 10.0)));
+  g.add(timed(task(dir, "family"), std::nullopt, fe));
+  const int impact = g.add(timed(task(dir, "impact"), 150.0));
+  g.add(timed(task(dir, "compare"), std::nullopt, {impact}));
+  g.add(timed(task(dir, "rolling"), 97.0));
+  const int mesh = g.add(timed(task(dir, "mesh"), std::nullopt));  // ~1 s, but 80 s follow it
+  g.add(timed(task(dir, "deformable"), 80.0, {mesh}));
+  ScriptedExecutor ex(2);
+  Scheduler s(g, ex, {}, nullptr, nullptr);
+  s.run();
+  const auto started = starts(ex.events);
+  ASSERT_EQ(started.size(), std::size_t(g.size()));
+  EXPECT_EQ(std::vector<std::string>(started.begin(), started.begin() + 3),
+            (std::vector<std::string>{"impact", "rolling", "mesh"}))
+    << "by the longest path to the end: 151, 97, 81 s against the FE cases' 11 s";
+  EXPECT_LT(index_of(started, "deformable"), index_of(started, "thick_1"))
+    << "once the mesh is done, before the FE cases still waiting";
+  EXPECT_LT(index_of(started, "thick_0"), index_of(started, "compare"))
+    << "11 s of chain (the case and its family) before the 1 s of the comparison";
+  EXPECT_EQ(ex.peak(), 2);
+  for (int id = 0; id < g.size(); ++id)
+    EXPECT_EQ(s.status(id).state, NodeState::done);
+  EXPECT_EQ(s.status(impact + 1).task.depends_on.front(), s.status(impact).identity);
+}
+
+TEST(Scheduler, EqualChainsStartInTheOrderTheyWereAdded)
+{
+  test_support::ScratchDir dir("scheduler_ties");
+  TaskGraph g;
+  g.add(timed(task(dir, "a"), 20.0));
+  const int b = g.add(timed(task(dir, "b"), 10.0));
+  g.add(timed(task(dir, "c"), 10.0, {b}));  // b's chain: 10 + 10 = 20 s, as a's
+  g.add(timed(task(dir, "d"), 20.0));
+  g.add(timed(task(dir, "e"), 20.0));
+  ScriptedExecutor ex(2);
+  Scheduler s(g, ex, {}, nullptr, nullptr);
+  s.run();
+  // a and b start; a ends (the executor ends the oldest first): d, then e once b ends, and c
+  // (10 s to go) after e.
+  EXPECT_EQ(starts(ex.events), (std::vector<std::string>{"a", "b", "d", "e", "c"}));
+  ScriptedExecutor again(2);  // the same graph run again (--force): the same order
+  Scheduler s2(g, again, {true, std::nullopt}, nullptr, nullptr);
+  s2.run();
+  EXPECT_EQ(again.events, ex.events);
+}
+
+TEST(Scheduler, ATaskWithoutFigureTakesItsStagesTimeElseOneSecond)
+{
+  test_support::ScratchDir dir("scheduler_unknown");
+  TaskGraph g;
+  g.add(timed(task(dir, "short"), 0.5));
+  g.add(timed(task(dir, "unknown"), std::nullopt));  // stage fake: no time, so 1 s
+  Task slow = task(dir, "by_stage");
+  slow.stage = "slow";
+  g.add(timed(slow, std::nullopt));  // the stage's 60 s
+  Task measured = task(dir, "measured");
+  measured.stage = "slow";
+  g.add(timed(measured, 30.0));  // its own figure comes before the stage's time
+  ScriptedExecutor ex(2);
+  Scheduler s(g, ex, {}, nullptr, [](const std::string &stage) {
+    return stage == "slow" ? 60.0 : 0.0;  // 0: not measured (RunEta::expected_seconds)
+  });
+  s.run();
+  EXPECT_EQ(starts(ex.events),
+            (std::vector<std::string>{"by_stage", "measured", "unknown", "short"}));
+}
+
+TEST(Scheduler, TasksAddedByAFinishedTaskTakeTheirPlaceInTheOrder)
+{
+  test_support::ScratchDir dir("scheduler_added");
+  TaskGraph g;
+  GraphNode fit = timed(task(dir, "fit"), 10.0);
+  fit.on_done.push_back(
+    [&](TaskGraph &graph, const TaskResult &) { graph.add(timed(task(dir, "band"), 50.0, {0})); });
+  g.add(fit);
+  for (const std::string n : {"x", "y", "z"})
+    g.add(timed(task(dir, n), 5.0));
+  ScriptedExecutor ex(2);
+  Scheduler s(g, ex, {}, nullptr, nullptr);
+  s.run();
+  ASSERT_EQ(g.size(), 5);
+  EXPECT_EQ(starts(ex.events), (std::vector<std::string>{"fit", "x", "band", "y", "z"}))
+    << "the band run (50 s) goes before the waiting 5 s tasks";
+  EXPECT_EQ(s.status(4).state, NodeState::done);
+}
