@@ -207,6 +207,16 @@ namespace clearjoint::pipeline
     }
   }
 
+  namespace
+  {
+    /// An FE case's name within its sweep ("t_B=0.004"): its task and folder names, and the
+    /// key its own error estimate is kept under until the summary takes it.
+    std::string fe_case_label(const std::string &parameter, const double value)
+    {
+      return parameter + "=" + value_label(value);
+    }
+  } // namespace
+
   void PipelineRunner::watch_own_estimate(const int node, const std::string &sweep,
                                           const std::string &label, const std::string &fe_dir)
   {
@@ -253,7 +263,7 @@ namespace clearjoint::pipeline
       for (auto &c : s["cases"])
       {
         const std::string label =
-          s["parameter"].get<std::string>() + "=" + value_label(c["value"].get<double>());
+          fe_case_label(s["parameter"].get<std::string>(), c["value"].get<double>());
         if (const auto e = found->second.find(label); e != found->second.end())
           c["own_error_F_max"] = {{"value", e->second.relative},
                                   {"unit", "1"},
@@ -528,7 +538,7 @@ namespace clearjoint::pipeline
   {
     const std::string run = run_dir();
     const double value = sweep.values[i];
-    const std::string label = sweep.parameter + "=" + value_label(value);
+    const std::string label = fe_case_label(sweep.parameter, value);
     std::vector<int> mesh_tasks;  // a .geo's mesh task, if any
     const nlohmann::json scene_json = fe_case_scene(sweep, value, false, mesh_tasks);
     const std::string scene = write_scene(scene_json, sweep.scene, "fe_" + sweep.name + "_" + label);
