@@ -217,16 +217,19 @@ class Measurer:
             raise MeasureError(f"study '{study}': kind '{kind}' has no reference case")
         return p
 
+    @staticmethod
+    def key_of(pipeline):
+        """A generated pipeline's identity: runs of equal keys are one run (made once, read twice)."""
+        return hashlib.sha256(json.dumps(pipeline, sort_keys=True).encode()).hexdigest()[:10]
+
     def run_key(self, study, spec):
-        """The run's identity: runs of equal keys are one run (made once, read twice)."""
-        text = json.dumps(self.pipeline_for(study, spec), sort_keys=True)
-        return hashlib.sha256(text.encode()).hexdigest()[:10]
+        return self.key_of(self.pipeline_for(study, spec))
 
     def run(self, study, spec, own):
         """One run of `study` as `spec` says: {seconds, outcome, value, dofs}. `own`: the
         preset's own run, whose time is measured now (--force)."""
         p = self.pipeline_for(study, spec)
-        key = self.run_key(study, spec)
+        key = self.key_of(p)
         # a reference run that is also a preset's own run measured here is run as such
         own = own or (not spec.get("set") and spec["preset"] in self.args.presets
                       and study in self.studies)
