@@ -105,6 +105,41 @@ namespace clearjoint::fe::detail
     return rs;
   }
 
+  MaterialIteration Model::material_iteration(const double delta, const bool line_search,
+                                              TurnSensitivity *sensitivity)
+  {
+    if (!sensitivity)
+      return newton_.iterate(delta, line_search);
+    return newton_.iterate(delta, line_search, [&](const TrilinosWrappers::MPI::Vector &u_start) {
+      measure_turn_sensitivity(delta, u_start, *sensitivity);
+    });
+  }
+
+  void Model::measure_turn_sensitivity(const double delta,
+                                       const TrilinosWrappers::MPI::Vector &u_start,
+                                       TurnSensitivity &s)
+  {
+    // what the solve left, to be put back: u, the nodal forces, the nodes (their frame-
+    // dependent gaps and normals, forces and slips) and the partners' turn
+    const double torque = journal_torque();
+    const TrilinosWrappers::MPI::Vector u_solved = state_.u_owned();
+    const TrilinosWrappers::MPI::Vector forces = state_.forces();
+    const std::vector<ContactNode> nodes = contact_.nodes();
+    const JournalFrame frame = frame_;
+    // the obstacle linearised about the iteration's start, as the solve's was; the solve
+    // itself starts from the solution at ψ (the answer differs from it by the turn's effect)
+    state_.set(u_start);
+    frame_.delta_psi += s.d_psi;
+    s.linear_iterations = contact_solve_.solve_with_sets_kept(delta, u_solved);
+    s.d_torque = journal_torque() - torque;
+    s.du = state_.u_owned();
+    s.du -= u_solved;
+    frame_ = frame;
+    contact_.nodes() = nodes;
+    state_.set(u_solved);
+    state_.forces() = forces;
+  }
+
   double Model::journal_torque() const
   {
     // the contact's torque on the journal about its axis: the force on the journal is −t at

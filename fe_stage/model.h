@@ -177,10 +177,12 @@ namespace clearjoint::fe::detail
     unsigned int assemble_plastic() override;
     /// One material Newton iteration (SpinProblem: the coupled spin iteration's), and its
     /// tolerance: the iteration's own (MaterialNewton).
-    MaterialIteration material_iteration(double delta, bool line_search) override
-    {
-      return newton_.iterate(delta, line_search);
-    }
+    MaterialIteration material_iteration(double delta, bool line_search,
+                                         TurnSensitivity *sensitivity) override;
+    /// The iteration's contact solve again at the journal's turn + s.d_psi (the sets kept),
+    /// from `u_start`; the differences into `s`, then the solved state back as it was.
+    void measure_turn_sensitivity(double delta, const TrilinosWrappers::MPI::Vector &u_start,
+                                  TurnSensitivity &s);
     double material_tolerance() const override { return newton_.tolerance(); }
     /// One state of the rolling bearing for a given journal spin (the torque-balance's g):
     /// Newton on the material around the active-set contact solve. Throws StepFailure.

@@ -369,9 +369,13 @@ namespace clearjoint::fe
           Rolling::Support::outer_surface;
       if (o.has("journal_inertia"))
         R.journal_inertia = o.number("journal_inertia", Range::open(0.0, 1.0e6, "kg m^2"));
-      R.spin_solver = o.string_or("spin_solver", "coupled", {"coupled", "nested"}) == "nested" ?
-                        Rolling::SpinSolver::nested :
-                        Rolling::SpinSolver::coupled;
+      {
+        const std::string spin =
+          o.string_or("spin_solver", "bordered", {"bordered", "coupled", "nested"});
+        R.spin_solver = spin == "bordered" ? Rolling::SpinSolver::bordered :
+                        spin == "nested"   ? Rolling::SpinSolver::nested :
+                                             Rolling::SpinSolver::coupled;
+      }
       R.max_spin_iterations = uint_or(o, "max_spin_iterations", R.max_spin_iterations, 1, 10000);
       R.max_newton_iterations =
         uint_or(o, "max_newton_iterations", R.max_newton_iterations, 1, 1000);
@@ -1211,9 +1215,9 @@ namespace clearjoint::fe
         << "  support: outer_surface  # outer_surface (turned by its housing) | upper_half (the\n"
         << "                      #   radial study's support, turning with the bearing)\n"
         << "  # journal_inertia: 1.8e-6  # [kg m^2] > 0: instead of 1/2 m R_J^2 of the journal\n"
-        << "  spin_solver: coupled  # the journal's spin: coupled (updated in each material "
-           "Newton\n"
-        << "                      #   iteration) | nested (a root finder around whole solves)\n"
+        << "  spin_solver: bordered  # the journal's spin: bordered (an unknown of each material\n"
+        << "                      #   Newton iteration) | coupled (a secant step in each) |\n"
+        << "                      #   nested (a root finder around whole solves)\n"
         << "  max_spin_iterations: " << d.rolling.max_spin_iterations
         << "   # torque-balance evaluations per step at most (nested)\n"
         << "  max_newton_iterations: " << d.rolling.max_newton_iterations
@@ -1234,6 +1238,24 @@ namespace clearjoint::fe
         << "#   journal_mass: [own, 1.0, 25.0]   # [kg] (study impact, rigid journal; own: rho pi "
            "R_J^2 L_J;\n"
         << "#                                    # with velocity: every velocity at every mass)\n";
+    }
+  }  // namespace
+
+  namespace
+  {
+    /// rolling.spin_solver as the scene writes it
+    const char *spin_solver_name(const Rolling::SpinSolver s)
+    {
+      switch (s)
+        {
+          case Rolling::SpinSolver::coupled:
+            return "coupled";
+          case Rolling::SpinSolver::nested:
+            return "nested";
+          case Rolling::SpinSolver::bordered:
+            break;
+        }
+      return "bordered";
     }
   }  // namespace
 
@@ -1296,8 +1318,7 @@ namespace clearjoint::fe
                                     "upper_half" :
                                     "outer_surface"},
                       {"journal_inertia", rolling_journal_inertia(s)},
-                      {"spin_solver",
-                       s.rolling.spin_solver == Rolling::SpinSolver::nested ? "nested" : "coupled"},
+                      {"spin_solver", spin_solver_name(s.rolling.spin_solver)},
                       {"max_spin_iterations", s.rolling.max_spin_iterations},
                       {"max_newton_iterations", s.rolling.max_newton_iterations},
                       {"field_stride", s.rolling.field_stride}};

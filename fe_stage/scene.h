@@ -297,14 +297,18 @@ namespace clearjoint::fe
     /// [kg m²] > 0: the journal's spin inertia about its axis instead of ½ m R_J² with
     /// m = ρ π R_J² L_J (0: that)
     double journal_inertia = 0.0;
-    /// How a step finds the journal's spin γ̇ (solve/spin_stepper.h): `coupled` (γ̇ updated in
-    /// each material Newton iteration: one nonlinear solve a step; the root finder where that
-    /// fails) or `nested` (a root finder on γ̇ around whole material solves).
+    /// How a step finds the journal's spin γ̇ (solve/spin_stepper.h): `bordered` (γ̇ an unknown
+    /// of each material Newton iteration beside the displacements: its torque-balance row and
+    /// the displacements' dependence on the journal's turn, one Newton system), `coupled` (γ̇
+    /// updated in each material Newton iteration by a secant on the balance), both one
+    /// nonlinear solve a step with the root finder where that fails, or `nested` (a root
+    /// finder on γ̇ around whole material solves).
     enum class SpinSolver
     {
+      bordered,
       coupled,
       nested
-    } spin_solver = SpinSolver::coupled;
+    } spin_solver = SpinSolver::bordered;
     unsigned int max_spin_iterations = 60;    // torque-balance iterations per step at most
     unsigned int max_newton_iterations = 25;  // material Newton iterations per solve at most
     unsigned int field_stride = 10;           // VTU fields every this many steps (and the last)

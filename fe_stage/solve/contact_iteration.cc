@@ -170,4 +170,31 @@ namespace clearjoint::fe::detail
     record_forces(delta, rec);
     return rec;
   }
+
+  /// (the bordered spin iteration's column: the sets kept, so that the difference to the
+  /// increment's own solve is the linearised problem's dependence on the frame alone)
+  unsigned int ContactSolve::solve_with_sets_kept(const double delta,
+                                                  const TrilinosWrappers::MPI::Vector &guess)
+  {
+    set_obstacle_position(delta);
+    dofs_.set_delta(delta);
+    const double c =
+      scene_.contact.active_set_scale * scene_.material.E * bodies_.h_min();  // as the increment
+    build_contact_constraints(delta);
+    assemble_system(delta, c);
+    state_.u_owned() = guess;
+    constraints_.set_zero(state_.u_owned());
+    unsigned int linear_iterations = 0;
+    {
+      ScopedTimer timer(t_solve_);
+      linear_iterations =
+        solver_.solve(system_.system(), contact_.nonsymmetric(), dofs_.handler(), bodies_.mapping(),
+                      state_.u_owned(), system_.rhs(), scene_.solver.tolerance);
+    }
+    ScopedTimer eval_timer(t_evaluate_);
+    constraints_.distribute(state_.u_owned());
+    state_.publish();
+    evaluate_contact(delta);
+    return linear_iterations;
+  }
 }  // namespace clearjoint::fe::detail

@@ -66,6 +66,12 @@ namespace clearjoint::fe::detail
     /// StepFailure.
     IncrementRecord solve_increment(double delta);
 
+    /// The last increment's linear solve again with the contact nodes' active and stick sets
+    /// (and slip directions) kept, the obstacle placed anew at δ for the journal's frame now,
+    /// linearised about the current u; the solve starts from `guess`. Writes u and the nodes'
+    /// forces, gaps and slips; returns the linear solver's iterations. Throws StepFailure.
+    unsigned int solve_with_sets_kept(double delta, const TrilinosWrappers::MPI::Vector &guess);
+
     /// The rigid obstacle at δ: each node's gap g0, normal n and the displacement of the
     /// obstacle's surface point facing it (solve/contact_rows.cc says how for each study).
     void set_obstacle_position(double delta) override;

@@ -17,7 +17,9 @@ namespace clearjoint::fe::detail
     , rank_(Utilities::MPI::this_mpi_process(parts.comm))
   {}
 
-  MaterialIteration MaterialNewton::iterate(const double delta, const bool line_search)
+  MaterialIteration MaterialNewton::iterate(
+    const double delta, const bool line_search,
+    const std::function<void(const TrilinosWrappers::MPI::Vector &u_start)> &after_solve)
   {
     MaterialIteration it;
     if (tangent_current_ && [&] {
@@ -37,6 +39,8 @@ namespace clearjoint::fe::detail
       r_start = interior_forces();
     const TrilinosWrappers::MPI::Vector u_start = parts_.state.u_owned();
     it.record = problem_.solve_increment(delta);
+    if (after_solve)
+      after_solve(u_start);
     TrilinosWrappers::MPI::Vector step = parts_.state.u_owned();
     step -= u_start;
     it.correction = step.linfty_norm();

@@ -17,6 +17,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <functional>
+
 namespace clearjoint::fe::detail
 {
   /// One material Newton iteration from the current u.
@@ -78,7 +80,12 @@ namespace clearjoint::fe::detail
     /// solve at the push δ; how far u moved [m]. `line_search` (an iteration after a step's
     /// first, whose start already meets the step's prescribed motion): the step is shortened
     /// where it overshoots the energy's minimum along it. Throws StepFailure.
-    MaterialIteration iterate(double delta, bool line_search);
+    /// `after_solve` (when given) runs after the contact solve, before the line search, with
+    /// the iteration's start; it must leave the state as it found it.
+    MaterialIteration
+    iterate(double delta, bool line_search,
+            const std::function<void(const TrilinosWrappers::MPI::Vector &u_start)> &after_solve =
+              {});
 
     /// Iterations until the correction is below tolerance(), at most max_it; the line search
     /// from the second on when solver.line_search. Throws StepFailure when it diverges (the

@@ -271,13 +271,15 @@ namespace clearjoint::fe::detail
                             const SpinStepper &stepper, const bool deformable_journal,
                             const unsigned int n_sliding_rebuilds)
     {
-      if (scene.rolling.spin_solver == Rolling::SpinSolver::coupled)
+      if (scene.rolling.spin_solver != Rolling::SpinSolver::nested)
         log::info(
           "fe_stage: the journal's spin: " +
           std::to_string(std::count_if(result.rolling_steps.begin(), result.rolling_steps.end(),
                                        [](const auto &r) { return r.spin_coupled; })) +
           " of " + std::to_string(result.rolling_steps.size()) +
-          " steps by the coupled iteration, " + std::to_string(stepper.n_coupled_fallbacks()) +
+          " steps by the " +
+          (scene.rolling.spin_solver == Rolling::SpinSolver::bordered ? "bordered" : "coupled") +
+          " iteration, " + std::to_string(stepper.n_coupled_fallbacks()) +
           " attempts by the root finder after it failed");
       if (deformable_journal)
         log::info("fe_stage: the deformable journal's coupling: " +

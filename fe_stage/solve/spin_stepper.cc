@@ -53,15 +53,17 @@ namespace clearjoint::fe::detail
             // state predicted in time: the attempt is tried again from the last state (as
             // the root finder's); failed from there: the root finder, from the same start
             // at the same Δt
-            if (scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
-                torque_rate_slope_ < 0.0 && attempt.torque_scale > 0.0)
+            // (bordered: from the first step on, its slope its own in every iteration)
+            const bool bordered = scene_.rolling.spin_solver == Rolling::SpinSolver::bordered;
+            if (bordered || (scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
+                             torque_rate_slope_ < 0.0 && attempt.torque_scale > 0.0))
               {
                 if (have_previous_ && predict_in_time)
                   {
                     predicted_in_time = true;
                     start_predicted_in_time(step.dt);
                   }
-                if (solve_coupled(attempt, step))
+                if (solve_coupled(attempt, bordered, step))
                   break;
                 if (predicted_in_time)
                   throw StepFailure{"the coupled iteration failed"};
@@ -236,13 +238,37 @@ namespace clearjoint::fe::detail
   /// rolling rate). False when it diverges (the correction grew three times running), stalls,
   /// a solve fails, or it runs out of rolling.max_newton_iterations; the caller restores the
   /// state.
-  bool SpinStepper::solve_coupled(const Attempt &a, Step &step)
+  ///
+  /// `bordered` (rolling.spin_solver bordered): Newton on the bodies and γ̇ together. The
+  /// linearised problem of an iteration is, with ψ = γ̇ Δt − Δφ the journal's turn,
+  ///     K Δu + R_ψ Δψ = −R,    g_u Δu + g_ψ Δψ = −g;
+  /// eliminated by blocks: the iteration's own contact solve is the first column (Δu at the
+  /// turn now), and the same solve at ψ + dψ with the same tangent and sets
+  /// (SpinProblem::material_iteration's TurnSensitivity) the second, w = du/dψ with the
+  /// torque's change. The balance's slope is then the linearised total derivative
+  ///     dg/dγ̇ = (I/Δt − dM/dγ̇)/scale,   dM/dγ̇ = Δt dM/dψ,
+  /// γ̇ takes the Newton step −g/(dg/dγ̇) and u follows it, u += Δγ̇ Δt w: the next iteration
+  /// starts where the linearised bodies would be at the new spin, instead of having to find
+  /// it (the coupled iteration's linear tail, ~10× an iteration: docs/benchmarks.md "Why a
+  /// bordered solve would pay"). One more linear solve an iteration, no slope carried from
+  /// step to step.
+  bool SpinStepper::solve_coupled(const Attempt &a, const bool bordered, Step &step)
   {
     const double tolerance = problem_.material_tolerance();
     const double roll = motion_.rolling_rate(t_ + a.dt);
     const unsigned int max_it = scene_.rolling.max_newton_iterations;
-    const double slope_last = (inertia_ / a.dt - torque_rate_slope_) / a.torque_scale;  // [s/rad]
+    // the balance's scale: the attempt's (from the last step), else (bordered's first step)
+    // from the first iteration's force and torque, as the root finder's first evaluation
+    double scale = a.torque_scale;
+    const double slope_last =
+      bordered ? 0.0 : (inertia_ / a.dt - torque_rate_slope_) / scale;  // [s/rad]
     double slope = slope_last;
+    // the turn the sensitivity is taken over: 1 % of the rolling rate's over the step. The
+    // linearised state is linear in it but for the rotation's curvature (a relative error of
+    // dψ/2 ~ 1e-4 of the column) and the solves' round-off (1e-10 of |b|), which this keeps
+    // apart
+    const double rate_perturbation = 1e-2 * roll;  // [rad/s]
+    TurnSensitivity sensitivity;
     // γ̇ starts at the last step's, as the root finder's bracket does: where the balance is
     // flat in γ̇ (no contact: M = 0, g = I (γ̇ − γ̇_n)/(Δt scale)) its tolerance on g would
     // accept a guess off by 1e-6 scale Δt/I — 3e-3 rad/s for the 1.8e-6 kg m² journal under
@@ -268,15 +294,35 @@ namespace clearjoint::fe::detail
                 ++n_searches_;
                 rate_searched = rate;
               }
-            const MaterialIteration it =
-              problem_.material_iteration(a.delta, k > 0 && scene_.solver.line_search);
+            sensitivity.d_psi = rate_perturbation * a.dt;
+            const MaterialIteration it = problem_.material_iteration(
+              a.delta, k > 0 && scene_.solver.line_search, bordered ? &sensitivity : nullptr);
             ++step.newton_iterations;
             step.line_search_steps += it.line_search_steps;
             step.contact_iterations += it.record.contact_iterations;
-            step.linear_iterations += it.record.linear_iterations;
+            step.linear_iterations += it.record.linear_iterations + sensitivity.linear_iterations;
             const double torque = problem_.journal_torque();
-            const double g = (inertia_ * (rate - gamma_rate_) / a.dt - torque) / a.torque_scale;
-            if (k > 0 && rate != rate_before)
+            if (scale == 0.0)
+              scale = torque_scale(std::abs(it.record.force), torque, t_ + a.dt, a.dt);
+            const double g = (inertia_ * (rate - gamma_rate_) / a.dt - torque) / scale;
+            if (bordered)
+              {
+                // the linearised total slope; M falls as γ̇ rises, so it is positive — where the
+                // linearisation says otherwise (a pathological active set) the last one is kept,
+                // and without one the root finder takes the step
+                const double bordered_slope =
+                  (inertia_ / a.dt - sensitivity.d_torque / rate_perturbation) / scale;
+                if (bordered_slope > 0.0 && std::isfinite(bordered_slope))
+                  slope = bordered_slope, secant_taken = true;
+                else if (!secant_taken)
+                  {
+                    if (rank_ == 0)
+                      log::debug(" the bordered iteration's balance does not rise with the "
+                                 "spin; the root finder takes the step");
+                    return false;
+                  }
+              }
+            else if (k > 0 && rate != rate_before)
               {
                 const double secant = (g - g_before) / (rate - rate_before);
                 if (secant > 0.0 && ((secant > 0.2 * slope_last && secant < 5.0 * slope_last) ||
@@ -307,7 +353,7 @@ namespace clearjoint::fe::detail
                 step.state.contact_iterations = step.contact_iterations;
                 step.state.linear_iterations = step.linear_iterations;
                 if (secant_taken)
-                  torque_rate_slope_ = inertia_ / a.dt - slope * a.torque_scale;
+                  torque_rate_slope_ = inertia_ / a.dt - slope * scale;
                 last_force_ = std::abs(it.record.force);
                 last_torque_ = torque;
                 return true;
@@ -335,6 +381,12 @@ namespace clearjoint::fe::detail
             rate_before = rate;
             g_before = g;
             rate += rate_step;
+            if (bordered && rate_step != 0.0)
+              {
+                // the bodies follow the spin as the linearised problem says: u += Δγ̇ Δt w
+                state_.u_owned().add(rate_step / rate_perturbation, sensitivity.du);
+                state_.publish();
+              }
           }
       }
     catch (const StepFailure &f)

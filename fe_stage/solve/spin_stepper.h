@@ -2,6 +2,9 @@
 // journal pushed to δ(t) (rolling::Motion), and the journal's spin rate γ̇ found from its
 // torque balance  I (γ̇ − γ̇_n)/Δt = M(γ̇)  (backward Euler; M the contact's torque on the
 // journal, which falls as γ̇ rises: one root). rolling.spin_solver chooses how:
+// - bordered: γ̇ an unknown of each material Newton iteration beside the displacements (its
+//   torque-balance row, and the displacements' dependence on the journal's turn from one more
+//   solve of the iteration's contact system); one nonlinear solve a step, from the first step;
 // - coupled (default): γ̇ and the bodies' state in one iteration — each material Newton
 //   iteration solves the bodies at the current γ̇, then γ̇ takes a Newton step on the balance
 //   with the slope dM/dγ̇ of the last step (secant-corrected); one nonlinear solve a step. Until
@@ -81,7 +84,7 @@ namespace clearjoint::fe::detail
     Attempt begin_attempt(double dt);
     double torque_scale(double force, double torque, double t1, double dt) const;
     void start_predicted_in_time(double dt);
-    bool solve_coupled(const Attempt &a, Step &step);
+    bool solve_coupled(const Attempt &a, bool bordered, Step &step);
     void solve_nested(Attempt &attempt, Step &step, bool predict_in_time, bool &predicted_in_time);
     bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
                std::string &message);

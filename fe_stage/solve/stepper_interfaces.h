@@ -41,6 +41,18 @@ namespace clearjoint::fe::detail
     IncrementRecord record;
   };
 
+  /// How the linearised state of a material Newton iteration moves with the deformable or rigid
+  /// journal's turn ψ (the bordered spin iteration's column, solve/spin_stepper.cc): the
+  /// iteration's contact solve repeated at ψ + d_psi — the same tangent, the same active and
+  /// stick sets, from the same start — and the differences it makes.
+  struct TurnSensitivity
+  {
+    double d_psi = 0.0;                // [rad] the turn it is taken over (set by the caller)
+    TrilinosWrappers::MPI::Vector du;  // [m] u(ψ + d_psi) − u(ψ), owned
+    double d_torque = 0.0;             // [N m] M(ψ + d_psi) − M(ψ), full body
+    unsigned int linear_iterations = 0;
+  };
+
   /// What the quasi-static push asks of the model.
   class QuasiStaticProblem
   {
@@ -100,8 +112,11 @@ namespace clearjoint::fe::detail
     /// The converged elastoplastic state at the push δ for the spin in the journal frame, and
     /// the journal's torque there; throws StepFailure.
     virtual RollingSolve solve_rolling_state(double delta) = 0;
-    /// One material Newton iteration (the coupled spin iteration's); throws StepFailure.
-    virtual MaterialIteration material_iteration(double delta, bool line_search) = 0;
+    /// One material Newton iteration (the coupled spin iteration's); with `sensitivity`, also
+    /// its solve's dependence on the journal's turn (TurnSensitivity; the state is the
+    /// iteration's own afterwards). Throws StepFailure.
+    virtual MaterialIteration material_iteration(double delta, bool line_search,
+                                                 TurnSensitivity *sensitivity) = 0;
     /// [N m] the contact's torque on the journal about its axis, full body (collective).
     virtual double journal_torque() const = 0;
     /// [m] the material Newton iteration's tolerance on its correction.

@@ -628,16 +628,18 @@ TEST(FeScene, RollingStepsMayTurnTheBearingAQuarterTurnAtMost)
 }
 
 // Issue 30 item 2: rolling.spin_solver, how a rolling step finds the journal's spin
-TEST(FeScene, RollingSpinSolverIsCoupledOrNested)
+TEST(FeScene, RollingSpinSolverIsBorderedCoupledOrNested)
 {
   const std::string rolling = "schema: clearjoint.fe/1\nstudy: rolling\n";
-  EXPECT_EQ(parse(rolling).rolling.spin_solver, Rolling::SpinSolver::coupled);  // the default
+  EXPECT_EQ(parse(rolling).rolling.spin_solver, Rolling::SpinSolver::bordered);  // the default
   EXPECT_EQ(parse(rolling + "rolling: {spin_solver: nested}\n").rolling.spin_solver,
             Rolling::SpinSolver::nested);
   EXPECT_EQ(parse(rolling + "rolling: {spin_solver: coupled}\n").rolling.spin_solver,
             Rolling::SpinSolver::coupled);
-  expect_error(rolling + "rolling: {spin_solver: bordered}\n",
-               {"rolling.spin_solver", "coupled", "nested"});
+  EXPECT_EQ(parse(rolling + "rolling: {spin_solver: bordered}\n").rolling.spin_solver,
+            Rolling::SpinSolver::bordered);
+  expect_error(rolling + "rolling: {spin_solver: newton}\n",
+               {"rolling.spin_solver", "bordered", "coupled", "nested"});
 }
 
 TEST(FeScene, SolverLineSearchIsOnByDefaultAndABoolean)
