@@ -58,7 +58,8 @@ namespace clearjoint::fe
 
     // q by the least squares: a scan of [1e-3, 20], then golden sections around the best point
     // of the scan. Best at 1e-3: no positive rate, the changes do not shrink as a power of N
-    // (not of the assumed form); at 20 the bound below applies anyway.
+    // (not of the assumed form). Otherwise the fitted rate is reported beside the one used
+    // (below), which tells a user how far the sequence is from its asymptotic range.
     const double q_lo = 1e-3, q_hi = 20.0;
     const int n_scan = 400;  // log-spaced: neighbouring points 2.5 % apart
     auto scan_point = [&](const int i) { return q_lo * std::pow(q_hi / q_lo, double(i) / n_scan); };
@@ -83,7 +84,18 @@ namespace clearjoint::fe
           a = c;
       }
     const double q_fit = 0.5 * (a + b);
-    const double q = std::min(q_fit, max_order);
+    // The tail is extrapolated at the rate p/d whatever the fit says. Faster: a rate fitted
+    // through a few meshes above p/d made the odd meshes' estimates optimistic (issue 32,
+    // 2026-11-28). Slower: on every recorded sequence a fitted rate well below p/d came from
+    // meshes before the asymptotic range (the misalignment study's deformable journal: 0.09,
+    // 0.28, 0.32, 0.51 over its first three or four meshes), where the rate changes from cycle
+    // to cycle and such a rate extrapolated through the whole tail blew up to 13-336 % for
+    // errors of 1-4.5 %; each of those sequences turned within two cycles. The settled
+    // sequences' own rates were 0.56-1.07 (docs/benchmarks.md "The adaptive error estimate
+    // before the sequence turns"). The price: a sequence that does converge steadily more
+    // slowly gets (R^q - 1)/(R^(p/d) - 1) of its tail, R = N_k/N_{k-2} — at t_B = 10 mm
+    // (fitted 0.62, its five meshes 0.57-0.59) 0.76 of the reference's error, not 0.86.
+    const double q = max_order;
 
     // the tail beyond the last mesh from the change over the last two cycles, F_{k−2} − F_k =
     // C N_k^(−q) ((N_k/N_{k−2})^q − 1): one large and one small change of the odd/even
@@ -96,8 +108,8 @@ namespace clearjoint::fe
     e.extrapolated_force = F[k] - tail;
     e.error = std::abs(tail) / std::abs(e.extrapolated_force);
     e.method = "last two cycles extrapolated with F = F_inf + C N^-q, q = " + format_rate(q) +
-               (q < q_fit ? " (the bound p/d; " : " (") + "least squares over the last " +
-               std::to_string(e.n_meshes_fitted) + " meshes: " + format_rate(q_fit) + ")";
+               " (p/d; least squares over the last " + std::to_string(e.n_meshes_fitted) +
+               " meshes: " + format_rate(q_fit) + ", not used)";
     return e;
   }
 }  // namespace clearjoint::fe

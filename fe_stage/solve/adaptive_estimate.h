@@ -13,17 +13,18 @@ namespace clearjoint::fe
     double error = -1.0;              // [1] estimated relative error of the last F; < 0: none
     std::string method;               // how it was obtained (a lower bound, or extrapolated)
     bool extrapolated = false;        // from F = F_inf + C N^-q (see estimate_adaptive_error)
-    double order = 0.0;               // [1] q the estimate used (extrapolated only)
-    double fitted_order = 0.0;        // [1] q of the least-squares fit, before the bound
+    double order = 0.0;               // [1] q the estimate used, p/d (extrapolated only)
+    double fitted_order = 0.0;        // [1] q of the least-squares fit (reported, not used)
     double extrapolated_force = 0.0;  // [N] F_inf (extrapolated only)
     unsigned int n_meshes_fitted = 0;  // meshes whose changes the fit used (extrapolated only)
   };
 
-  /// The fastest rate in the DoF count N that the estimate credits: p/d, the energy norm's
+  /// The rate in the DoF count N at which the estimate extrapolates: p/d, the energy norm's
   /// rate on optimally refined meshes of degree-p elements in d dimensions (Kelly's indicator
   /// marks for the energy error). A functional such as F(δ_max) may converge faster (up to
   /// 2p/d), but the measured adaptive sequences show that a faster rate fitted through a few
-  /// meshes is not to be trusted (docs/fe.md "Adaptive refinement").
+  /// meshes is not to be trusted, and a slower one fitted there came from meshes before the
+  /// asymptotic range (docs/fe.md "Adaptive refinement", "The error estimate").
   inline double energy_norm_rate(const unsigned int degree, const unsigned int dim = 3)
   {
     return static_cast<double>(degree) / static_cast<double>(dim);
@@ -35,16 +36,18 @@ namespace clearjoint::fe
   /// leave the fit as the sequence grows.
   inline constexpr unsigned int adaptive_fit_changes = 4;
 
-  /// With three or more meshes: the rate q of F_k = F_∞ + C N_k^(−q) by least squares over the
-  /// last (up to adaptive_fit_changes) changes, log|F_{j−1} − F_j| = log C + log(N_{j−1}^(−q) −
-  /// N_j^(−q)) (exactly the three-mesh Richardson rate when there are three meshes), bounded
-  /// by max_order (fe_stage passes p/d, and `method` calls it so); the error of the last mesh
-  /// is then the Richardson tail of the last two cycles' change, |F_k − F_{k−2}| /
-  /// ((N_k/N_{k−2})^q − 1). Bounding q makes it larger, never smaller: for a sequence of the
-  /// assumed form with any rate ≥ max_order it is an upper bound. When the changes used are not
-  /// all of one sign, the meshes do not grow, or no positive rate fits (the changes grow), the
-  /// estimate is the last cycle's change |F_k − F_{k−1}| / |F_k|, which only bounds the error
-  /// from below — `method` says which. Fewer than two meshes: no estimate.
+  /// With three or more meshes whose last (up to adaptive_fit_changes) changes have one sign:
+  /// the error of the last mesh is the Richardson tail of the last two cycles' change,
+  /// |F_k − F_{k−2}| / ((N_k/N_{k−2})^q − 1), of F_k = F_∞ + C N_k^(−q) with q = max_order
+  /// (fe_stage passes p/d): for a sequence of that form with any rate ≥ max_order an upper
+  /// bound. The rate q of the least-squares fit over those changes, log|F_{j−1} − F_j| =
+  /// log C + log(N_{j−1}^(−q) − N_j^(−q)) (with three meshes the three-mesh Richardson rate),
+  /// is reported (fitted_order, `method`) but not used: faster than p/d it is not to be
+  /// trusted, and on the recorded sequences a slower one came from meshes before the
+  /// asymptotic range (adaptive_estimate.cc says which and what it cost). When a change in that window has the other sign,
+  /// the meshes do not grow, or no positive rate fits (the changes grow), the estimate is the
+  /// last cycle's change |F_k − F_{k−1}| / |F_k|, labelled a lower bound in `method`. Fewer
+  /// than two meshes: no estimate.
   AdaptiveEstimate estimate_adaptive_error(const std::vector<double> &n_dofs,
                                            const std::vector<double> &forces, double max_order);
 
