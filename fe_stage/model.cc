@@ -128,16 +128,27 @@ namespace clearjoint::fe::detail
     const JournalFrame frame = frame_;
     // the obstacle linearised about the iteration's start, as the solve's was; the solve
     // itself starts from the solution at ψ (the answer differs from it by the turn's effect)
+    auto put_back = [&] {
+      frame_ = frame;
+      contact_.nodes() = nodes;
+      state_.set(u_solved);
+      state_.forces() = forces;
+    };
     state_.set(u_start);
     frame_.delta_psi += s.d_psi;
-    s.linear_iterations = contact_solve_.solve_with_sets_kept(delta, u_solved);
+    try
+      {
+        s.linear_iterations = contact_solve_.solve_with_sets_kept(delta, u_solved);
+      }
+    catch (...)
+      {
+        put_back();  // (a failed solve: the caller restores the step's start anyway)
+        throw;
+      }
     s.d_torque = journal_torque() - torque;
     s.du = state_.u_owned();
     s.du -= u_solved;
-    frame_ = frame;
-    contact_.nodes() = nodes;
-    state_.set(u_solved);
-    state_.forces() = forces;
+    put_back();
   }
 
   double Model::journal_torque() const

@@ -73,8 +73,7 @@ namespace clearjoint::fe::detail
     rec.delta = delta;
     set_obstacle_position(delta);
     dofs_.set_delta(delta);
-    const double c =
-      scene_.contact.active_set_scale * scene_.material.E * bodies_.h_min();  // [N/m]
+    const double c = complementarity_constant();
     // ε_g: a penetration below this is round-off, not contact (makes the active set
     // deterministic across rank counts). 1e-9 of the push is far below any physical effect.
     const double eps_g = 1e-9 * scene_.loading.delta_max;
@@ -178,10 +177,8 @@ namespace clearjoint::fe::detail
   {
     set_obstacle_position(delta);
     dofs_.set_delta(delta);
-    const double c =
-      scene_.contact.active_set_scale * scene_.material.E * bodies_.h_min();  // as the increment
     build_contact_constraints(delta);
-    assemble_system(delta, c);
+    assemble_system(delta, complementarity_constant());
     state_.u_owned() = guess;
     constraints_.set_zero(state_.u_owned());
     unsigned int linear_iterations = 0;

@@ -91,6 +91,11 @@ namespace clearjoint::fe::detail
     double evaluation_time() const { return t_evaluate_; }
 
   private:
+    /// c [N/m], the active set's complementarity constant: contact.active_set_scale E h_min
+    double complementarity_constant() const
+    {
+      return scene_.contact.active_set_scale * scene_.material.E * bodies_.h_min();
+    }
     // the parts of one active-set iteration, in order
     void build_contact_constraints(double delta);
     void assemble_system(double delta, double c);

@@ -278,6 +278,8 @@ namespace clearjoint::fe::detail
     double rate_before = 0.0, g_before = 0.0, last_correction = 0.0;
     std::vector<double> balances;  // |g| of each iteration, for the stall test
     double rate_searched = std::numeric_limits<double>::quiet_NaN();
+    // the slope is this attempt's own (the iterates' secant, or the bordered column's), not the
+    // last step's: only then does a small γ̇ step say the root is near
     bool secant_taken = false;
     unsigned int growths = 0;
     try
