@@ -186,8 +186,8 @@ namespace clearjoint::fe
     double angle = 0.0;  // [rad] from the contact point (fixed frame, + counter-clockwise)
     double arc = 0.0;    // [m] R · angle (R_B on the bore, R_J on the journal)
     double strain_radial = 0.0, strain_tangential = 0.0, strain_axial = 0.0;  // [1] total
-    double plastic_strain = 0.0;                                              // [1] equivalent
-    double von_mises = 0.0;                                                   // [Pa]
+    double plastic_strain = 0.0;  // [1] equivalent: the largest of the sample's cell
+    double von_mises = 0.0;       // [Pa] the largest of the sample's cell's material points
     unsigned int body = 0;  // 0: the bearing's bore, 1: the deformable journal's surface
   };
 

@@ -114,8 +114,11 @@ namespace clearjoint::fe::detail
     const QGauss<dim - 1> fq(dofs_.fe().degree + 2);
     FEFaceValues<dim> fv(bodies_.mapping(), dofs_.fe(), fq,
                          update_gradients | update_quadrature_points);
+    // the cell's material points (their own plastic strains: the stress is C (ε − ε_p) there)
+    const QGauss<dim> cell_quadrature(dofs_.fe().degree + 1);
+    FEValues<dim> cv(bodies_.mapping(), dofs_.fe(), cell_quadrature, update_gradients);
     const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<2, dim>> grad_u(fq.size());
+    std::vector<Tensor<2, dim>> grad_u(fq.size()), grad_u_cell(cell_quadrature.size());
     std::vector<SymmetricTensor<2, dim>> eps(fq.size());
     const bool finite = scene_.material.kinematics == Material::Kinematics::finite;
     std::vector<double> mine;
@@ -140,13 +143,20 @@ namespace clearjoint::fe::detail
               double z_row = std::numeric_limits<double>::max();
               for (const unsigned int q : fv.quadrature_point_indices())
                 z_row = std::min(z_row, std::abs(fv.quadrature_point(q)[2]));
+              // the cell's largest equivalent plastic strain and von Mises stress over its
+              // material points. (A stress from the sample point's strain and the cell's mean
+              // plastic strain, as this column was until 2026-11-29, mixes points whose plastic
+              // strains differ by ~0.1 in the rolling study's coarse cells: 4–20 GPa.)
               const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
-              double alpha = 0.0;
-              SymmetricTensor<2, dim> mean_eps_p;
+              cv.reinit(cell);
+              cv[u].get_function_gradients(state_.u(), grad_u_cell);
+              double alpha = 0.0, vm = 0.0;
               for (unsigned int q = 0; q < n_q; ++q)
                 {
                   alpha = std::max(alpha, law_->equivalent_plastic_strain(first + q));
-                  mean_eps_p += law_->plastic_strain(first + q) / double(n_q);
+                  vm = std::max(vm, von_mises(law_->elastic().stress(
+                                      strain_measure(grad_u_cell[q], finite) -
+                                      law_->plastic_strain(first + q))));
                 }
               for (const unsigned int q : fv.quadrature_point_indices())
                 {
@@ -162,8 +172,7 @@ namespace clearjoint::fe::detail
                   const Tensor<1, dim> er({p[0] / r, p[1] / r, 0.0});
                   const Tensor<1, dim> et({-p[1] / r, p[0] / r, 0.0});
                   mine.insert(mine.end(),
-                              {a, er * (eps[q] * er), et * (eps[q] * et), eps[q][2][2], alpha,
-                               von_mises(law_->elastic().stress(eps[q] - mean_eps_p))});
+                              {a, er * (eps[q] * er), et * (eps[q] * et), eps[q][2][2], alpha, vm});
                 }
             }
     std::vector<StrainProfilePoint> profile;

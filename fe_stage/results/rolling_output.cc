@@ -96,8 +96,8 @@ namespace clearjoint::fe
             "of the rolling study (paper Fig. 12), axial mid-plane, angle "
             "from the contact point about the body's own axis "
             "(counter-clockwise, fixed frame), arc = R_B or R_J times it; "
-            "strains are total, von_mises from the cell's mean plastic "
-            "strain"};
+            "strains are total; plastic_strain and von_mises are the largest of the "
+            "sample's cell, each of its material points with its own plastic strain"};
   }
 
   nlohmann::json rolling_summary_json(const RollingSummary &s, const RollingStepRecord *last)
