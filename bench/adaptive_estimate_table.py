@@ -22,6 +22,8 @@ import math
 import os
 import statistics
 
+from adaptive_reference import three_mesh_rate  # (bench/ is this script's own folder)
+
 P_OVER_D = 2.0 / 3.0  # Q2 elements in 3D: fe_stage's default
 FIT_CHANGES = 4  # adaptive_fit_changes
 
@@ -97,17 +99,8 @@ def estimate(N, F, after):
 
 
 def richardson3(N, F, i, j, k):
-    """F_inf and q through meshes i, j, k (q by bisection in [1e-3, 10])."""
-    d1, d2 = F[j] - F[i], F[k] - F[j]
-    g = lambda q: (N[i] ** -q - N[j] ** -q) / (N[j] ** -q - N[k] ** -q) - d1 / d2
-    lo, hi = 1e-3, 10.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if (g(lo) > 0) == (g(mid) > 0):
-            lo = mid
-        else:
-            hi = mid
-    q = 0.5 * (lo + hi)
+    """F_inf and q through meshes i, j, k (q: bench/adaptive_reference.py's three_mesh_rate)."""
+    q = three_mesh_rate(N, F, i, j, k)
     return F[k] - (F[i] - F[k]) / ((N[k] / N[i]) ** q - 1.0), q
 
 

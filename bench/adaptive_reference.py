@@ -31,6 +31,21 @@ def read_sequence(run_dir):
     return N, F, t
 
 
+def three_mesh_rate(N, F, i, j, k):
+    """q of F = F_inf + C N^-q through meshes i, j, k (by bisection in [1e-3, 10])."""
+    d1, d2 = F[j] - F[i], F[k] - F[j]
+    def g(q):
+        return (N[i] ** -q - N[j] ** -q) / (N[j] ** -q - N[k] ** -q) - d1 / d2
+    lo, hi = 1e-3, 10.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if (g(lo) > 0) == (g(mid) > 0):
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
 def references(N, F, q_bound=2.0 / 3.0):
     """(F_inf with the fitted rate, F_inf with the rate bounded, q fitted) or None."""
     if len(F) < 3:
@@ -39,16 +54,7 @@ def references(N, F, q_bound=2.0 / 3.0):
     if d1 == 0 or d2 == 0 or (d1 > 0) != (d2 > 0) or abs(d2) >= abs(d1):
         return None
     # F_k = F_inf + C N^-q through the last three meshes
-    lo, hi = 1e-3, 10.0
-    def g(q):
-        return (N[-3] ** -q - N[-2] ** -q) / (N[-2] ** -q - N[-1] ** -q) - d1 / d2
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if (g(lo) > 0) == (g(mid) > 0):
-            lo = mid
-        else:
-            hi = mid
-    q = 0.5 * (lo + hi)
+    q = three_mesh_rate(N, F, -3, -2, -1)
     def tail(qq):
         return (F[-3] - F[-1]) / ((N[-1] / N[-3]) ** qq - 1.0)
     return F[-1] - tail(q), F[-1] - tail(min(q, q_bound)), q

@@ -112,6 +112,17 @@ namespace clearjoint::fe::detail
                      inertia_ * motion_.rolling_rate(t1) / dt, 1e-30});
   }
 
+  /// The deformable journal's partners found again for its pose now, slip counted from the
+  /// step's start (nothing for the rigid journal), timed and counted.
+  void SpinStepper::pair_turned_journal()
+  {
+    if (!problem_.journal_turns_deformable())
+      return;
+    ScopedTimer timer(search_time_);
+    problem_.pair_turned_journal(saved_.u);
+    ++n_searches_;
+  }
+
   /// The state extrapolated linearly in time from the last two converged steps.
   void SpinStepper::start_predicted_in_time(const double dt)
   {
@@ -169,12 +180,7 @@ namespace clearjoint::fe::detail
       // with them (follow_sliding, which rebuilds the sparsity pattern when they do not fit
       // it). Couplings kept from the step's start would be off by R_J Δψ²/2 in the gap:
       // 19 µm for a 3.6° step, more than the push.
-      if (problem_.journal_turns_deformable())
-        {
-          ScopedTimer timer(search_time_);
-          problem_.pair_turned_journal(saved_.u);
-          ++n_searches_;
-        }
+      pair_turned_journal();
       if (log::level() <= log::Level::debug && rank_ == 0)
         log::debug(" torque evaluation at the journal's spin " + format_value(rate) + " rad/s (t " +
                    format_value(t1) + " s, dt " + format_value(dt) + " s)");
@@ -289,11 +295,9 @@ namespace clearjoint::fe::detail
             frame_.delta_psi = rate * a.dt - a.dphi;
             // the deformable journal's partners for this pose (as in the root finder's
             // evaluations), found again whenever γ̇ moved
-            if (problem_.journal_turns_deformable() && !(rate == rate_searched))
+            if (!(rate == rate_searched))
               {
-                ScopedTimer timer(search_time_);
-                problem_.pair_turned_journal(saved_.u);
-                ++n_searches_;
+                pair_turned_journal();
                 rate_searched = rate;
               }
             sensitivity.d_psi = rate_perturbation * a.dt;

@@ -84,6 +84,7 @@ namespace clearjoint::fe::detail
     Attempt begin_attempt(double dt);
     double torque_scale(double force, double torque, double t1, double dt) const;
     void start_predicted_in_time(double dt);
+    void pair_turned_journal();
     bool solve_coupled(const Attempt &a, bool bordered, Step &step);
     void solve_nested(Attempt &attempt, Step &step, bool predict_in_time, bool &predicted_in_time);
     bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
