@@ -1,38 +1,42 @@
 // VTU/PVTU/PVD fields for ParaView (results/field_output.h): displacement, stress, strain, von
-// Mises, principal strains, plastic_zone (the yield check) or the plastic history's fields,
+// Mises, principal strains, plastic_zone (the yield check) or the plastic history's fields (the
+// stress then the material points' own, projected on each cell: results/point_projection.h),
 // contact pressure/gap/status/shear/slip as Abaqus's CPRESS/COPEN/CSTATUS/CSHEAR/CSLIP,
 // subdomain.
 #include "fe_stage/results/field_output.h"
 
 #include "fe_stage/contact/contact_node.h"
 #include "fe_stage/material/strain_measure.h"
+#include "fe_stage/results/point_projection.h"
 #include "fe_stage/results/vtu_files.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 
 namespace clearjoint::fe::detail
 {
-  /// Stress, strain, von Mises stress and principal strains from the displacement gradient.
-  /// The strain is the material law's (material/strain_measure.h): ε = sym ∇u, or with finite
-  /// kinematics the Hencky strain E = ½ ln C, whose stress C (E − ε̄_p) is the rotated
-  /// Kirchhoff stress of the J2 law in the logarithmic strain space.
-  class StressPostprocessor : public DataPostprocessor<dim>
+  /// Strain and principal strains from the displacement gradient, and — for an elastic body —
+  /// the stress and its von Mises value. The strain is the material law's
+  /// (material/strain_measure.h): ε = sym ∇u, or with finite kinematics the Hencky strain
+  /// E = ½ ln C, whose stress C E is the rotated Kirchhoff stress in the logarithmic strain
+  /// space. A body with a plastic history takes its stress from the material points instead
+  /// (PointStressPostprocessor): the displacement alone does not know the plastic strain.
+  class StrainPostprocessor : public DataPostprocessor<dim>
   {
   public:
-    /// mean_eps_p (elastoplastic, by active cell index): the stress is C (ε − ε̄_p), ε̄_p the
-    /// cell's mean plastic strain over its quadrature points; nullptr: elastic, C ε.
-    StressPostprocessor(const LinearElastic &material, const bool finite,
-                        const std::vector<SymmetricTensor<2, dim>> *mean_eps_p = nullptr)
+    StrainPostprocessor(const LinearElastic &material, const bool finite, const bool with_stress)
       : material_(material)
       , finite_(finite)
-      , mean_eps_p_(mean_eps_p)
+      , with_stress_(with_stress)
     {}
 
     void evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &in,
@@ -44,18 +48,19 @@ namespace clearjoint::fe::detail
           for (unsigned int i = 0; i < dim; ++i)
             grad[i] = in.solution_gradients[q][i];
           const SymmetricTensor<2, dim> eps = strain_measure(grad, finite_);
-          SymmetricTensor<2, dim> elastic = eps;
-          if (mean_eps_p_)
-            elastic -= (*mean_eps_p_)[in.template get_cell<dim>()->active_cell_index()];
-          const SymmetricTensor<2, dim> sig = material_.stress(elastic);
           unsigned int k = 0;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              out[q][k++] = sig[i][j];
+          if (with_stress_)
+            {
+              const SymmetricTensor<2, dim> sig = material_.stress(eps);
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  out[q][k++] = sig[i][j];
+            }
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
               out[q][k++] = eps[i][j];
-          out[q][k++] = von_mises(sig);
+          if (with_stress_)
+            out[q][k++] = von_mises(material_.stress(eps));
           const auto ev = eigenvalues(eps);  // descending
           for (unsigned int i = 0; i < dim; ++i)
             out[q][k++] = ev[i];
@@ -64,9 +69,12 @@ namespace clearjoint::fe::detail
 
     std::vector<std::string> get_names() const override
     {
-      std::vector<std::string> names(9, "stress");
-      names.resize(18, "strain");
-      names.push_back("von_mises_stress");
+      std::vector<std::string> names;
+      if (with_stress_)
+        names.resize(9, "stress");
+      names.resize(names.size() + 9, "strain");
+      if (with_stress_)
+        names.push_back("von_mises_stress");
       names.push_back("principal_strain_1");
       names.push_back("principal_strain_2");
       names.push_back("principal_strain_3");
@@ -76,9 +84,10 @@ namespace clearjoint::fe::detail
     std::vector<DataComponentInterpretation::DataComponentInterpretation>
     get_data_component_interpretation() const override
     {
+      const unsigned int tensors = with_stress_ ? 18 : 9;
       std::vector<DataComponentInterpretation::DataComponentInterpretation> v(
-        18, DataComponentInterpretation::component_is_part_of_tensor);
-      v.resize(22, DataComponentInterpretation::component_is_scalar);
+        tensors, DataComponentInterpretation::component_is_part_of_tensor);
+      v.resize(tensors + (with_stress_ ? 4 : 3), DataComponentInterpretation::component_is_scalar);
       return v;
     }
 
@@ -87,44 +96,108 @@ namespace clearjoint::fe::detail
   private:
     LinearElastic material_;
     bool finite_;
-    const std::vector<SymmetricTensor<2, dim>> *mean_eps_p_;
+    bool with_stress_;
   };
 
-  /// Per cell: the quadrature points' mean plastic strain tensor (the fields' stress is
-  /// C (ε − ε̄_p)), their largest equivalent plastic strain, and the largest von Mises stress of
-  /// the committed states.
-  void FieldOutput::plastic_cell_fields(std::vector<SymmetricTensor<2, dim>> &mean_eps_p,
+  /// The six independent stress components, in this order, of the material-point stress field.
+  constexpr std::array<std::pair<unsigned int, unsigned int>, 6> stress_components{
+    {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+
+  /// `stress` and `von_mises_stress` from the projected material-point stress
+  /// (results/point_projection.h): at a material point they are that point's own stress, with
+  /// its own plastic strain; the von Mises value is the projected tensor's.
+  class PointStressPostprocessor : public DataPostprocessor<dim>
+  {
+  public:
+    void evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &in,
+                               std::vector<Vector<double>> &out) const override
+    {
+      for (unsigned int q = 0; q < in.solution_values.size(); ++q)
+        {
+          SymmetricTensor<2, dim> sig;
+          for (unsigned int k = 0; k < stress_components.size(); ++k)
+            sig[stress_components[k].first][stress_components[k].second] = in.solution_values[q][k];
+          unsigned int k = 0;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              out[q][k++] = sig[i][j];
+          out[q][k++] = von_mises(sig);
+        }
+    }
+
+    std::vector<std::string> get_names() const override
+    {
+      std::vector<std::string> names(9, "stress");
+      names.push_back("von_mises_stress");
+      return names;
+    }
+
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+    get_data_component_interpretation() const override
+    {
+      std::vector<DataComponentInterpretation::DataComponentInterpretation> v(
+        9, DataComponentInterpretation::component_is_part_of_tensor);
+      v.push_back(DataComponentInterpretation::component_is_scalar);
+      return v;
+    }
+
+    UpdateFlags get_needed_update_flags() const override { return update_values; }
+  };
+
+  /// The material points' stresses C (ε − ε_p), each with its own plastic strain, projected on
+  /// each cell (the `stress` field of `stress_dofs`: six components, stress_components' order);
+  /// per cell, the points' largest equivalent plastic strain and largest von Mises stress.
+  void FieldOutput::plastic_cell_fields(const DoFHandler<dim> &stress_dofs,
+                                        const PointProjection &projection,
+                                        TrilinosWrappers::MPI::Vector &stress,
                                         Vector<float> &alpha_max, Vector<float> &vm_max) const
   {
-    const QGauss<dim> quadrature(parts_.dofs.fe().degree + 1);
+    const Quadrature<dim> &quadrature = projection.points();
     FEValues<dim> fv(parts_.bodies.mapping(), parts_.dofs.fe(), quadrature, update_gradients);
     const unsigned int n_q = quadrature.size();
     const FEValuesExtractors::Vector u(0);
     std::vector<Tensor<2, dim>> grad_u(n_q);
-    std::vector<SymmetricTensor<2, dim>> eps(n_q);
+    std::vector<SymmetricTensor<2, dim>> sig(n_q);
     const bool finite = parts_.scene.material.kinematics == Material::Kinematics::finite;
-    mean_eps_p.assign(parts_.bodies.triangulation().n_active_cells(), SymmetricTensor<2, dim>());
     alpha_max.reinit(parts_.bodies.triangulation().n_active_cells());
     vm_max.reinit(parts_.bodies.triangulation().n_active_cells());
     const LinearElastic &C = parts_.material.elastic();
+    const FiniteElement<dim> &stress_fe = stress_dofs.get_fe();
+    std::vector<types::global_dof_index> stress_dof_indices(stress_fe.n_dofs_per_cell());
+    Vector<double> at_points(n_q);
+    std::array<Vector<double>, stress_components.size()> coefficients;
     for (const auto &cell : parts_.dofs.handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fv.reinit(cell);
           fv[u].get_function_gradients(parts_.state.u(), grad_u);
-          for (unsigned int q = 0; q < n_q; ++q)
-            eps[q] = strain_measure(grad_u[q], finite);
           const unsigned int c = cell->active_cell_index();
           const std::size_t first = std::size_t(c) * n_q;
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const SymmetricTensor<2, dim> ep = parts_.material.plastic_strain(first + q);
-              mean_eps_p[c] += ep / double(n_q);
+              const SymmetricTensor<2, dim> eps = strain_measure(grad_u[q], finite);
+              sig[q] = C.stress(eps - parts_.material.plastic_strain(first + q));
               alpha_max[c] =
                 std::max(alpha_max[c], float(parts_.material.equivalent_plastic_strain(first + q)));
-              vm_max[c] = std::max(vm_max[c], float(von_mises(C.stress(eps[q] - ep))));
+              vm_max[c] = std::max(vm_max[c], float(von_mises(sig[q])));
+            }
+          for (unsigned int k = 0; k < stress_components.size(); ++k)
+            {
+              for (unsigned int q = 0; q < n_q; ++q)
+                at_points[q] = sig[q][stress_components[k].first][stress_components[k].second];
+              projection.project(at_points, coefficients[k]);
+            }
+          // the same cell of the stress field's DoFHandler (same triangulation)
+          const typename DoFHandler<dim>::active_cell_iterator stress_cell(
+            &parts_.bodies.triangulation(), cell->level(), cell->index(), &stress_dofs);
+          stress_cell->get_dof_indices(stress_dof_indices);
+          for (unsigned int i = 0; i < stress_fe.n_dofs_per_cell(); ++i)
+            {
+              const auto [component, base] = stress_fe.system_to_component_index(i);
+              stress[stress_dof_indices[i]] = coefficients[component][base];
             }
         }
+    stress.compress(VectorOperation::insert);
   }
 
   FieldOutput::FieldOutput(const Parts &parts, const std::string &output_dir,
@@ -181,22 +254,36 @@ namespace clearjoint::fe::detail
     ff = ff_owned;
 
     // the law's history (the rolling study, the elastoplastic patch test): its own plastic
-    // zone; else the yield check's
+    // zone, and the stress of its material points; else the yield check's, and the stress from
+    // the displacement
     const bool plastic = parts_.material.has_history();
-    std::vector<SymmetricTensor<2, dim>> mean_eps_p;
+    const PointProjection projection(dofs.fe().degree);
+    DoFHandler<dim> stress_dofs(tria);
+    TrilinosWrappers::MPI::Vector stress;
     Vector<float> alpha_max, vm_max;
     if (plastic)
-      plastic_cell_fields(mean_eps_p, alpha_max, vm_max);
-    StressPostprocessor post(parts_.material.elastic(),
-                             parts_.scene.material.kinematics == Material::Kinematics::finite,
-                             plastic ? &mean_eps_p : nullptr);
+      {
+        stress_dofs.distribute_dofs(FESystem<dim>(projection.fe(), stress_components.size()));
+        IndexSet relevant;
+        DoFTools::extract_locally_relevant_dofs(stress_dofs, relevant);
+        TrilinosWrappers::MPI::Vector stress_owned(stress_dofs.locally_owned_dofs(), comm);
+        plastic_cell_fields(stress_dofs, projection, stress_owned, alpha_max, vm_max);
+        stress.reinit(stress_dofs.locally_owned_dofs(), relevant, comm);
+        stress = stress_owned;
+      }
+    StrainPostprocessor strains(parts_.material.elastic(),
+                                parts_.scene.material.kinematics == Material::Kinematics::finite,
+                                !plastic);
+    PointStressPostprocessor point_stress;
     DataOut<dim> out;
     out.attach_dof_handler(dofs.handler());
     std::vector<DataComponentInterpretation::DataComponentInterpretation> vec(
       dim, DataComponentInterpretation::component_is_part_of_vector);
     out.add_data_vector(parts_.state.u(), std::vector<std::string>(dim, "displacement"),
                         DataOut<dim>::type_dof_data, vec);
-    out.add_data_vector(parts_.state.u(), post);
+    out.add_data_vector(parts_.state.u(), strains);
+    if (plastic)
+      out.add_data_vector(stress_dofs, stress, point_stress);
     std::vector<DataComponentInterpretation::DataComponentInterpretation> sc(
       dim, DataComponentInterpretation::component_is_scalar);
     out.add_data_vector(cf,

@@ -11,9 +11,12 @@
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/material_law.h"
 #include "fe_stage/mesh/bodies.h"
+#include "fe_stage/results/point_projection.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/study_plan.h"
 
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
 #include <string>
@@ -46,11 +49,13 @@ namespace clearjoint::fe::detail
     /// <output_dir>/fields made (rank 0) before the first write.
     void create_directory() const;
     /// The fields of the current state as state `counter` at time (or push) `t`, and the PVD
-    /// written again to index it. Collective. Displacement, stress, strain, von Mises,
-    /// principal strains; contact pressure/gap/status/shear/slip as Abaqus's CPRESS/COPEN/
-    /// CSTATUS/CSHEAR/CSLIP; subdomain; with a material history (the law's has_history()) the
-    /// equivalent plastic strain and the largest von Mises of the committed states, else the
-    /// yield check's plastic_zone.
+    /// written again to index it. Collective. Displacement, strain, principal strains, stress
+    /// and von Mises; contact pressure/gap/status/shear/slip as Abaqus's CPRESS/COPEN/CSTATUS/
+    /// CSHEAR/CSLIP; subdomain. With a material history (the law's has_history()) the stress is
+    /// the material points' own, projected on each cell (results/point_projection.h), and the
+    /// cells carry the points' largest equivalent plastic strain and von Mises stress; without
+    /// one the stress comes from the displacement and the cells carry the yield check's
+    /// plastic_zone.
     void write(unsigned int counter, double t);
     /// The files written so far (rank 0's list); `with_pvd`: the PVD that indexes them too
     /// (a run that completed).
@@ -63,9 +68,12 @@ namespace clearjoint::fe::detail
     void log_yield_check(const YieldCheck &check) const;
 
   private:
-    /// Per cell: the points' mean plastic strain tensor, their largest equivalent plastic
-    /// strain and the largest von Mises stress of the committed states.
-    void plastic_cell_fields(std::vector<dealii::SymmetricTensor<2, 3>> &mean_eps_p,
+    /// The material points' stresses, each with its own plastic strain, projected on each cell
+    /// (`stress`, on `stress_dofs`); per cell, the points' largest equivalent plastic strain and
+    /// largest von Mises stress.
+    void plastic_cell_fields(const dealii::DoFHandler<3> &stress_dofs,
+                             const PointProjection &projection,
+                             dealii::TrilinosWrappers::MPI::Vector &stress,
                              dealii::Vector<float> &alpha_max, dealii::Vector<float> &vm_max) const;
 
     Parts parts_;
