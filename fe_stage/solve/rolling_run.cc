@@ -276,8 +276,7 @@ namespace clearjoint::fe::detail
           "fe_stage: the journal's spin: " +
           std::to_string(std::count_if(result.rolling_steps.begin(), result.rolling_steps.end(),
                                        [](const auto &r) { return r.spin_coupled; })) +
-          " of " + std::to_string(result.rolling_steps.size()) +
-          " steps by the " +
+          " of " + std::to_string(result.rolling_steps.size()) + " steps by the " +
           (scene.rolling.spin_solver == Rolling::SpinSolver::bordered ? "bordered" : "coupled") +
           " iteration, " + std::to_string(stepper.n_coupled_fallbacks()) +
           " attempts by the root finder after it failed");
@@ -452,6 +451,26 @@ namespace clearjoint::fe::detail
         const bool last = t1 >= t_end * (1.0 - 1e-12);
         if (parts_.fields.enabled() && (rec.step % R.field_stride == 0 || last))
           parts_.fields.write(field_counter++, t1);
+        if (motion.spin_ran_away(t1, rate_new))
+          {
+            // the step itself converged (its fields and row are written, to show it); the run
+            // stops here rather than follow the spin where no balance near rolling holds it
+            const RollingStepRecord &first = result.rolling_steps.front();
+            result.message =
+              "the journal's spin ran away: " + format_value(rate_new) +
+              " rad/s at t = " + format_value(t1) + " s, more than " +
+              format_value(rolling::Motion::runaway_factor) + " times the rolling rate " +
+              format_value(motion.rolling_rate(t1)) + " rad/s (it was " +
+              format_value(first.gamma_rate) + " rad/s at t = " + format_value(first.time) +
+              " s); the torque balance on the journal has no root " +
+              "near rolling any more (contact.mu " + format_value(parts_.scene.contact.mu) +
+              ", largest plastic strain " + format_value(rec.max_plastic_strain) + ", slip speed " +
+              format_value(rec.slip_speed) + " m/s); a finer mesh " +
+              "(mesh.contact_refinements) or a smaller contact.mu are what to try";
+            if (rank_ == 0)
+              log::error("fe_stage: " + result.message);
+            break;
+          }
       }
     if (result.message.empty() && stepper.time() < t_end * (1.0 - 1e-12))
       result.message = "the step limit (" + std::to_string(max_steps) +

@@ -6,6 +6,7 @@
 // unbounded (ctest's timeout, 1500 s, fails one that does). ω_B = 1e3 rad/s at these steps is
 // refused by the scene reader (a step may turn the bearing a quarter turn at most: FeScene test
 // RollingStepsMayTurnTheBearingAQuarterTurnAtMost).
+#include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_test_util.h"
 
 #include <gtest/gtest.h>
@@ -62,19 +63,32 @@ TEST(FeRollingExtremes, NoFrictionLeavesTheJournalAtRest)
 }
 
 // μ = 5: the contact sticks nearly everywhere; the semi-smooth Newton's stick/slip decisions of
-// a node can cycle. Measured: it stops at t = 0.168 s after its cuts (loading.max_cuts 10),
-// "active set did not settle", 80 s CPU. What is asserted: it completes sane, or it stops with
-// a reason that names what failed, having recorded only finite steps.
+// a node can cycle, and past ε_p ≈ 0.85 on this coarse ring the journal's spin leaves the
+// rolling rate (13 → −1 100 rad/s in 0.15 ms of cut steps) until a step fails. Measured: it
+// stops at t = 0.16077 s, its spin −170 rad/s past 10 times the rolling rate (rolling::Motion::
+// spin_ran_away), 42 s CPU; before the guard the same run went on to −1 100 rad/s and stopped at
+// t = 0.1608 s "active set did not settle". What is asserted: it completes sane, or it stops with
+// a reason that names what failed, having recorded only finite steps and no runaway spin before
+// the step that stopped it.
 TEST(FeRollingExtremes, FrictionCoefficientFiveFinishesOrStopsWithItsReason)
 {
-  const RunResult r = run(scene(paper_push("contact: {mu: 5}\nrolling: {n_steps: 32}\n")));
+  const FeScene sc = scene(paper_push("contact: {mu: 5}\nrolling: {n_steps: 32}\n"));
+  const RunResult r = run(sc);
   if (r.complete)
     expect_sane(r);
   else
     {
-      EXPECT_NE(r.message.find("failed after"), std::string::npos) << r.message;
+      const bool ran_away = r.message.find("spin ran away") != std::string::npos;
+      EXPECT_TRUE(ran_away || r.message.find("failed after") != std::string::npos) << r.message;
+      const rolling::Motion motion{sc.rolling.omega_B, sc.rolling.ramp_time, sc.loading.delta_max,
+                                   sc.geometry.c_r,    sc.geometry.R_B,      sc.geometry.R_J()};
       for (const auto &s : r.rolling_steps)
-        EXPECT_TRUE(std::isfinite(s.force_normal)) << "step " << s.step;
+        {
+          EXPECT_TRUE(std::isfinite(s.force_normal)) << "step " << s.step;
+          const bool last = &s == &r.rolling_steps.back();
+          EXPECT_EQ(motion.spin_ran_away(s.time, s.gamma_rate), ran_away && last)
+            << "step " << s.step << ": " << s.gamma_rate << " rad/s";
+        }
     }
 }
 

@@ -164,3 +164,19 @@ TEST(RollingKinematics, RigidSpinGivesNoStrainInTheCoRotatingFrame)
       EXPECT_NEAR(eps_fixed_xx, std::cos(phi) - 1.0, 1e-9) << "phi " << phi;
     }
 }
+
+TEST(RollingKinematics, SpinRunawayIsTenTimesTheRollingRateInEitherSense)
+{
+  const Motion m = spec_motion();
+  const double t = 0.1, roll = m.rolling_rate(t);  // 13.2… rad/s at δ(0.1 s)
+  EXPECT_FALSE(m.spin_ran_away(t, roll));
+  EXPECT_FALSE(m.spin_ran_away(t, 0.0));  // a frictionless journal's
+  EXPECT_FALSE(m.spin_ran_away(t, -9.9 * roll));
+  EXPECT_TRUE(m.spin_ran_away(t, 10.1 * roll));
+  EXPECT_FALSE(m.spin_ran_away(t, -90.7));  // μ = 5 on the coarse ring: ~6.5 times, not yet
+  EXPECT_TRUE(m.spin_ran_away(t, -170.4));  // its next step, where the run stops
+  Motion at_rest = m;
+  at_rest.omega_B = 1e-6;  // the bearing nearly at rest: the bound scales with it
+  EXPECT_TRUE(at_rest.spin_ran_away(t, 1e-3));
+  EXPECT_FALSE(at_rest.spin_ran_away(t, at_rest.rolling_rate(t)));
+}
