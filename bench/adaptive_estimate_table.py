@@ -81,18 +81,20 @@ def fitted_rate(N, F, first, k):
 
 
 def estimate(N, F, after):
-    """(relative error, 'extrapolated' | 'lower bound', rate fitted or None)."""
+    """(relative error, 'extrapolated' | 'last change', rate fitted or None). 'last change': the
+    change in the last cycle, not extrapolated and no bound either way (fe_stage's method
+    "change in the last cycle (not extrapolated; not a bound)")."""
     k = len(F) - 1
-    lower = (abs(F[k] - F[k - 1]) / abs(F[k]), "lower bound", None)
+    last = (abs(F[k] - F[k - 1]) / abs(F[k]), "last change", None)
     if len(F) < 3:
-        return lower
+        return last
     first = k - min(k, FIT_CHANGES)
     for j in range(first + 1, k + 1):
         if not N[j] > N[j - 1] or not (F[j - 1] - F[j]) * (F[k - 1] - F[k]) > 0:
-            return lower
+            return last
     q_fit = fitted_rate(N, F, first, k)
     if q_fit is None:
-        return lower
+        return last
     q = P_OVER_D if after else min(q_fit, P_OVER_D)
     tail = (F[k - 2] - F[k]) / ((N[k] / N[k - 2]) ** q - 1.0)
     return abs(tail) / abs(F[k] - tail), "extrapolated", q_fit
@@ -112,7 +114,7 @@ def references(seqs):
         if how == "extrapolated":
             line += f"estimate before, all meshes {F[-1] / (1 + e if F[-1] < F[-2] else 1 - e):.1f} N"
         else:
-            line += "estimate before: a lower bound"
+            line += "estimate before: the last change (not extrapolated)"
         line += "; last three {:.1f} N (q = {:.3g})".format(*richardson3(N, F, len(F) - 3, len(F) - 2, len(F) - 1))
         for i in (0, 1):
             if i + 4 < len(F):
@@ -139,17 +141,18 @@ def table(seqs):
                 r.append(e / far)
                 if checked:
                     ratios[which].append((e / far, how, m))
-                mark = "≥ " if how == "lower bound" else ""
+                mark = "≈ " if how == "last change" else ""
                 cells.append(f"{mark}{100 * e:.2f} %" + (f" (q fitted {q_fit:.2f})" if q_fit is not None and which == "before" else ""))
             print(f"| {s['name']}{'' if checked else ' (not checked)'} | {m} | {N[-1]:,.0f} "
                   f"| {100 * near:.2f}–{100 * far:.2f} % | {cells[0]} | {cells[1]} | {r[0]:.2f} | {r[1]:.2f} |")
     print()
     for which, rs in ratios.items():
         x = sorted(r for r, how, m in rs if how == "extrapolated")
-        lb = sorted(r for r, how, m in rs if how == "lower bound")
+        lc = sorted(r for r, how, m in rs if how == "last change")
         print(f"{which}: extrapolated {len(x)}: estimate / far-end error median {statistics.median(x):.2f}, "
-              f"lowest {x[0]:.2f}, highest {x[-1]:.2f}; lower bounds {len(lb)}: median {statistics.median(lb):.2f}, "
-              f"above the far-end error on {sum(r > 1 for r in lb)}")
+              f"lowest {x[0]:.2f}, highest {x[-1]:.2f}; last change (not extrapolated, no bound) {len(lc)}: "
+              f"median {statistics.median(lc):.2f}, lowest {lc[0]:.2f}, highest {lc[-1]:.2f}, "
+              f"above the far-end error on {sum(r > 1 for r in lc)}, below on {sum(r < 1 for r in lc)}")
 
 
 def main():

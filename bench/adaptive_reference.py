@@ -73,7 +73,7 @@ def main():
               f"{', '.join(f'{n / 1e3:.1f}k' for n in N)} DoFs")
         if ref is None:
             # No extrapolation: the last mesh is the reference and its own error is taken as its
-            # last change (what fe_stage reports as a lower bound); each mesh's error is stated
+            # last change (what fe_stage reports, not extrapolated); each mesh's error is stated
             # against the last mesh alone (a lower bound) and with that change added.
             own = abs(F[-1] - F[-2]) / abs(F[-1])
             print(f"  no extrapolation (the last changes turn or grow): against the last mesh, "
