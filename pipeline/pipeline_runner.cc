@@ -267,7 +267,7 @@ namespace clearjoint::pipeline
         if (const auto e = found->second.find(label); e != found->second.end())
           c["own_error_F_max"] = {{"value", e->second.relative},
                                   {"unit", "1"},
-                                  {"lower_bound", e->second.lower_bound}};
+                                  {"last_change", e->second.last_change}};
       }
     }
   }

@@ -124,7 +124,9 @@ namespace clearjoint::pipeline
     OwnErrorEstimate e;
     e.relative = a.at(nlohmann::json::json_pointer("/estimated_error_F_max/value")).get<double>();
     const auto method = a["estimated_error_F_max"].value("method", std::string());
-    e.lower_bound = method.find("lower bound") != std::string::npos;
+    // fe_stage's fallback, "change in the last cycle (not extrapolated; not a bound)" (before
+    // 2026-11-29 "... (a lower bound)", which it never was): the phrase both share
+    e.last_change = method.find("change in the last cycle") != std::string::npos;
     if (const auto c = a.find("cycles"); c != a.end() && c->is_array() && !c->empty())
     {
       e.n_meshes = static_cast<int>(c->size());
@@ -136,13 +138,12 @@ namespace clearjoint::pipeline
 
   std::string describe_own_estimate(const OwnErrorEstimate &e)
   {
-    char buf[96];
-    if (e.lower_bound)
-      std::snprintf(buf, sizeof(buf), ">= %.2g %% (a lower bound: the change in the last cycle)",
-                    100.0 * e.relative);
-    else
-      std::snprintf(buf, sizeof(buf), "%.2g %% (extrapolated)", 100.0 * e.relative);
-    return buf;
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.2g %%", 100.0 * e.relative);
+    if (e.last_change)
+      return std::string("~") + buf +
+             " (the change in the last cycle, not extrapolated: " + last_change_record + ")";
+    return std::string(buf) + " (extrapolated)";
   }
 
   std::string describe_own_estimates(const PipelineConfig &config, const std::string &sweep,

@@ -35,7 +35,7 @@ What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - missing geometry keys take the FE defaults (R_B 10, t_B 4, L_B 20, c_r 0.5, c_a 1 mm).
 - mesh.adaptive_cycles > 0 (radial): manifest.json's extra.adaptive as fe_stage writes it, one
   made-up mesh per cycle and the estimate of the error of F(delta_max) 0.02 / 2^cycles,
-  extrapolated from 2 cycles on, else a lower bound.
+  extrapolated from 2 cycles on, else the change in the last cycle (not extrapolated).
 - manifest.json carries extra.scene (the fit stage embeds it in the law file), with the
   geometry, loading.journal, contact.mu and material.yield_stress filled in as fe_stage does.
 Environment: CLEARJOINT_FAKE_SLEEP=<s> sleeps before writing (to be interrupted);
@@ -376,7 +376,7 @@ if cycles > 0:
         "fraction": 0.2, "marking_increments": 2,
         "estimated_error_F_max": {
             "value": 0.02 / 2 ** cycles, "unit": "1",
-            "method": "change in the last cycle (a lower bound)" if cycles < 2 else
+            "method": "change in the last cycle (not extrapolated; not a bound)" if cycles < 2 else
                       "last two cycles extrapolated with F = F_inf + C N^-q, q = 1"}}
 if os.environ.get("CLEARJOINT_FAKE_FIELDS") == "1":
     write_fields(out, g, scene.get("contact", {}).get("mu", 0.0), scene.get("fake_old_contact_fields", False))

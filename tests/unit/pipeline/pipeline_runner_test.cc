@@ -495,7 +495,7 @@ TEST(RunPipeline, PresetErrorReachesTheLawAndTheBandTasksAreCountedLogsNameFinal
 // Issue 32 item 4: every adaptive FE case's own estimate of the error of F(delta_max) (its
 // manifest's extra.adaptive) is logged as the case ends, again per sweep at the end beside the
 // preset's figure — here none, so it is named the figure to use —, reused cases too, and kept
-// in the summary per case.
+// in the summary per case, with whether it is only the last cycle's change (last_change).
 TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
 {
   test_support::ScratchDir dir("pipeline_own_estimate");
@@ -523,7 +523,28 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
     EXPECT_EQ(c["value"], 0.004);
     EXPECT_EQ(c["own_error_F_max"]["value"], 0.005);
     EXPECT_EQ(c["own_error_F_max"]["unit"], "1");
-    EXPECT_EQ(c["own_error_F_max"]["lower_bound"], false);
+    EXPECT_EQ(c["own_error_F_max"]["last_change"], false);
+    EXPECT_FALSE(c["own_error_F_max"].contains("lower_bound"));
+  }
+  // one adaptive cycle (two meshes): the last cycle's change, said so, flagged last_change
+  test_support::ScratchDir one("pipeline_own_estimate_one_cycle");
+  FakeBuild one_build(one);
+  test_support::write_text(one.file("p.yaml"),
+                           pipeline_yaml(one.path(), "[0.002, 0.004]",
+                                         ", \"mesh\": {\"adaptive_cycles\": 1}"));
+  {
+    const Outcome o = run(one, one_build);
+    ASSERT_EQ(o.exit_code, 0) << o.log;
+    EXPECT_NE(o.log.find("fe/thickness/t_B=0.002: own estimate of the error of F(delta_max) "
+                         "~1 % (the change in the last cycle, not extrapolated: on the recorded "
+                         "sequences it was 0.05-29x the error, median 1.13) on the last of 2 "
+                         "meshes, 2000 DoFs"),
+              std::string::npos)
+      << o.log;
+    const auto summary = read_json_file(one.file("out/r/pipeline_summary.json"));
+    const auto &c = summary["sweeps"][0]["cases"][1];
+    EXPECT_EQ(c["own_error_F_max"]["value"], 0.01);
+    EXPECT_EQ(c["own_error_F_max"]["last_change"], true);
   }
   // a sweep without adaptive cycles says nothing of it
   test_support::ScratchDir plain("pipeline_own_estimate_none");
