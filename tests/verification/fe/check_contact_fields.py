@@ -9,11 +9,11 @@ import json
 import os
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
 
 import numpy as np
-from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from vtu_readback import arrays, check, finish, last_grid
 
 MU = 0.1
 SCENE = """schema: clearjoint.fe/1
@@ -24,27 +24,10 @@ loading: {{delta_max: 5.0e-5, n_increments: 2}}
 mesh: {{n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 1, global_refinements: 0}}
 """
 
-failures = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        failures.append(what)
-
-
 def last_fields(out):
-    pvd = ET.parse(os.path.join(out, "fields", "solution.pvd")).getroot()
-    files = [d.get("file") for d in pvd.iter("DataSet")]
-    reader = vtkXMLPUnstructuredGridReader()
-    reader.SetFileName(os.path.join(out, "fields", files[-1]))
-    reader.Update()
-    grid = reader.GetOutput()
-    pd, cd = grid.GetPointData(), grid.GetCellData()
-    xyz = vtk_to_numpy(grid.GetPoints().GetData())
-    point = {pd.GetArrayName(i): vtk_to_numpy(pd.GetArray(i)) for i in range(pd.GetNumberOfArrays())}
-    cell = {cd.GetArrayName(i): vtk_to_numpy(cd.GetArray(i)) for i in range(cd.GetNumberOfArrays())}
-    point["xyz"] = xyz
+    grid = last_grid(out)
+    point, cell = arrays(grid.GetPointData()), arrays(grid.GetCellData())
+    point["xyz"] = vtk_to_numpy(grid.GetPoints().GetData())
     return point, cell
 
 
@@ -104,9 +87,7 @@ def main():
         check(y is not None and y["yield_stress"]["unit"] == "Pa"
               and y["exceeded"] == bool((zone > 0).any()),
               tag + "manifest yield_check agrees with the plastic_zone field")
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        sys.exit(1)
+    sys.exit(finish())
 
 
 if __name__ == "__main__":

@@ -19,11 +19,11 @@ import json
 import os
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
 
 import numpy as np
-from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from vtu_readback import check, finish, last_grid
 
 # The reduced rolling scene of the tests (tests/verification/fe/fe_test_util.h reduced_rolling),
 # 4 steps: the bore yields under the rigid journal, with a steep plastic strain across its cells.
@@ -37,24 +37,6 @@ material: {{kinematics: {kinematics}}}
 # The VTU stores float32 (7 significant digits): 1e-5 relative is well above its rounding and
 # far below the overshoot the check exists for (the old fields: up to 2× the yield stress).
 FLOAT_SLACK = 1e-5
-
-failures = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what)
-    if not ok:
-        failures.append(what)
-
-
-def last_grid(out):
-    pvd = ET.parse(os.path.join(out, "fields", "solution.pvd")).getroot()
-    files = [d.get("file") for d in pvd.iter("DataSet")]
-    reader = vtkXMLPUnstructuredGridReader()
-    reader.SetFileName(os.path.join(out, "fields", files[-1]))
-    reader.Update()
-    return reader.GetOutput()
-
 
 def von_mises(s):
     """Von Mises of row-major 3 × 3 stresses, shape (n, 9)."""
@@ -125,11 +107,7 @@ def main():
             abs(one_rank[k] - two_ranks[k]) <= FLOAT_SLACK * scale for k in one_rank)
         check(same, "np 2: the same cells' centres with the same von Mises as np 1 (%d centres)"
               % len(two_ranks))
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        return 1
-    print("all checks passed")
-    return 0
+    return finish()
 
 
 if __name__ == "__main__":
