@@ -1,13 +1,14 @@
 // VTU/PVTU/PVD fields for ParaView (results/field_output.h): displacement, stress, strain, von
 // Mises, principal strains, plastic_zone (the yield check) or the plastic history's fields (the
-// stress then the material points' own, projected on each cell: results/point_projection.h),
+// stress then the material points' own, on the cells' output points:
+// results/material_point_field.h),
 // contact pressure/gap/status/shear/slip as Abaqus's CPRESS/COPEN/CSTATUS/CSHEAR/CSLIP,
 // subdomain.
 #include "fe_stage/results/field_output.h"
 
 #include "fe_stage/contact/contact_node.h"
 #include "fe_stage/material/strain_measure.h"
-#include "fe_stage/results/point_projection.h"
+#include "fe_stage/results/material_point_field.h"
 #include "fe_stage/results/vtu_files.h"
 
 #include <deal.II/base/mpi.h>
@@ -103,9 +104,9 @@ namespace clearjoint::fe::detail
   constexpr std::array<std::pair<unsigned int, unsigned int>, 6> stress_components{
     {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
 
-  /// `stress` and `von_mises_stress` from the projected material-point stress
-  /// (results/point_projection.h): at a material point they are that point's own stress, with
-  /// its own plastic strain; the von Mises value is the projected tensor's.
+  /// `stress` and `von_mises_stress` from the material points' stress field
+  /// (results/material_point_field.h): at each output point the nearest material point's own
+  /// stress, with its own plastic strain, and its von Mises value.
   class PointStressPostprocessor : public DataPostprocessor<dim>
   {
   public:
@@ -144,15 +145,16 @@ namespace clearjoint::fe::detail
     UpdateFlags get_needed_update_flags() const override { return update_values; }
   };
 
-  /// The material points' stresses C (ε − ε_p), each with its own plastic strain, projected on
-  /// each cell (the `stress` field of `stress_dofs`: six components, stress_components' order);
+  /// The material points' stresses C (ε − ε_p), each with its own plastic strain, on the cells'
+  /// output points (the `stress` field of `stress_dofs`: six components, stress_components'
+  /// order);
   /// per cell, the points' largest equivalent plastic strain and largest von Mises stress.
   void FieldOutput::plastic_cell_fields(const DoFHandler<dim> &stress_dofs,
-                                        const PointProjection &projection,
+                                        const MaterialPointField &point_field,
                                         TrilinosWrappers::MPI::Vector &stress,
                                         Vector<float> &alpha_max, Vector<float> &vm_max) const
   {
-    const Quadrature<dim> &quadrature = projection.points();
+    const Quadrature<dim> &quadrature = point_field.points();
     FEValues<dim> fv(parts_.bodies.mapping(), parts_.dofs.fe(), quadrature, update_gradients);
     const unsigned int n_q = quadrature.size();
     const FEValuesExtractors::Vector u(0);
@@ -185,7 +187,7 @@ namespace clearjoint::fe::detail
             {
               for (unsigned int q = 0; q < n_q; ++q)
                 at_points[q] = sig[q][stress_components[k].first][stress_components[k].second];
-              projection.project(at_points, coefficients[k]);
+              point_field.place(at_points, coefficients[k]);
             }
           // the same cell of the stress field's DoFHandler (same triangulation)
           const typename DoFHandler<dim>::active_cell_iterator stress_cell(
@@ -257,17 +259,17 @@ namespace clearjoint::fe::detail
     // zone, and the stress of its material points; else the yield check's, and the stress from
     // the displacement
     const bool plastic = parts_.material.has_history();
-    const PointProjection projection(dofs.fe().degree);
+    const MaterialPointField point_field(dofs.fe().degree);
     DoFHandler<dim> stress_dofs(tria);
     TrilinosWrappers::MPI::Vector stress;
     Vector<float> alpha_max, vm_max;
     if (plastic)
       {
-        stress_dofs.distribute_dofs(FESystem<dim>(projection.fe(), stress_components.size()));
+        stress_dofs.distribute_dofs(FESystem<dim>(point_field.fe(), stress_components.size()));
         IndexSet relevant;
         DoFTools::extract_locally_relevant_dofs(stress_dofs, relevant);
         TrilinosWrappers::MPI::Vector stress_owned(stress_dofs.locally_owned_dofs(), comm);
-        plastic_cell_fields(stress_dofs, projection, stress_owned, alpha_max, vm_max);
+        plastic_cell_fields(stress_dofs, point_field, stress_owned, alpha_max, vm_max);
         stress.reinit(stress_dofs.locally_owned_dofs(), relevant, comm);
         stress = stress_owned;
       }

@@ -11,7 +11,7 @@
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/material_law.h"
 #include "fe_stage/mesh/bodies.h"
-#include "fe_stage/results/point_projection.h"
+#include "fe_stage/results/material_point_field.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/study_plan.h"
 
@@ -52,7 +52,8 @@ namespace clearjoint::fe::detail
     /// written again to index it. Collective. Displacement, strain, principal strains, stress
     /// and von Mises; contact pressure/gap/status/shear/slip as Abaqus's CPRESS/COPEN/CSTATUS/
     /// CSHEAR/CSLIP; subdomain. With a material history (the law's has_history()) the stress is
-    /// the material points' own, projected on each cell (results/point_projection.h), and the
+    /// the material points' own, each output point the nearest's (results/
+    /// material_point_field.h), and the
     /// cells carry the points' largest equivalent plastic strain and von Mises stress; without
     /// one the stress comes from the displacement and the cells carry the yield check's
     /// plastic_zone.
@@ -68,11 +69,11 @@ namespace clearjoint::fe::detail
     void log_yield_check(const YieldCheck &check) const;
 
   private:
-    /// The material points' stresses, each with its own plastic strain, projected on each cell
-    /// (`stress`, on `stress_dofs`); per cell, the points' largest equivalent plastic strain and
+    /// The material points' stresses, each with its own plastic strain, on the cells' output
+    /// points (`stress`, on `stress_dofs`); per cell, the points' largest equivalent plastic strain and
     /// largest von Mises stress.
     void plastic_cell_fields(const dealii::DoFHandler<3> &stress_dofs,
-                             const PointProjection &projection,
+                             const MaterialPointField &point_field,
                              dealii::TrilinosWrappers::MPI::Vector &stress,
                              dealii::Vector<float> &alpha_max, dealii::Vector<float> &vm_max) const;
 
