@@ -52,8 +52,8 @@ namespace clearjoint::fe::rolling
     /// A spin more than `runaway_factor` times the rolling rate, in either sense: the torque
     /// balance has no root near rolling any more, and the steps after it would record a
     /// journal whirling at hundreds of rad/s while its surface slides at metres per second
-    /// (μ = 5 on the coarse ring: the spin fell from 13 to −1 100 rad/s in 0.15 ms of steps
-    /// that kept being cut, until a step failed to converge at all). The paper's case at
+    /// (μ = 5 on the coarse ring: the spin fell from 13 rad/s at t = 0.15 s to −1 100 rad/s at
+    /// t = 0.1608 s in steps cut down to 7.6 µs, until a step failed to converge at all). The paper's case at
     /// μ = 0.3 ends at 0.89 (rigid journal) to 1.00 (deformable) of the rolling rate.
     static constexpr double runaway_factor = 10.0;
     bool spin_ran_away(double t, double gamma_rate) const
