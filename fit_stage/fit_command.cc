@@ -10,6 +10,7 @@
 #include "common/strict_reader.h"
 #include "common/units.h"
 #include "laws/law_family.h"
+#include "laws/own_error_estimate.h"
 
 #include <ceres/version.h>
 
@@ -45,6 +46,38 @@ namespace clearjoint::fit
       throw InputError("", "--range", text, "A:B in metres with 0 <= A < B, e.g. 0:5e-5");
     options.range_min = a;
     options.range_max = b;
+  }
+
+  std::optional<laws::DiscretisationError> own_estimate_error(
+    const std::vector<std::string> &manifests, const bool skip_missing)
+  {
+    std::optional<laws::OwnErrorEstimate> largest;
+    std::string largest_path;
+    std::size_t n_read = 0;
+    for (const auto &path : manifests)
+    {
+      if (skip_missing && !std::filesystem::exists(path))
+        continue;
+      const auto e = laws::read_own_error_estimate(read_json_file(path));
+      if (!e)
+        throw InputError(path, "extra.adaptive.estimated_error_F_max", "(missing)",
+                         "the manifest of an fe_stage run on adaptive meshes "
+                         "(mesh.adaptive_cycles >= 1)",
+                         "given with --discretisation-error-from");
+      if (!(e->relative >= 0.0 && e->relative < 1.0))
+        throw InputError(path, "extra.adaptive.estimated_error_F_max.value",
+                         format_value(e->relative), "[0, 1)");
+      ++n_read;
+      if (!largest || e->relative > largest->relative)
+        largest = e, largest_path = path;
+    }
+    if (!largest)
+      return std::nullopt;
+    std::string source = "the FE run's own estimate, " + laws::describe_own_estimate(*largest) +
+                         " (fe_stage: " + largest->method + "), " + largest_path;
+    if (n_read > 1)
+      source += ", the largest of " + std::to_string(n_read) + " cases' estimates";
+    return laws::DiscretisationError{largest->relative, source};
   }
 
   std::pair<double, double> parse_start(const std::string &text)

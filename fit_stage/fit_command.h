@@ -32,6 +32,14 @@ namespace clearjoint::fit
   /// Parses "K,n"; throws InputError naming --start.
   std::pair<double, double> parse_start(const std::string &text);
 
+  /// --discretisation-error-from: the largest of fe_stage's own error estimates of F(delta_max)
+  /// in these manifests of adaptive runs (laws/own_error_estimate.h), with its source. Throws
+  /// InputError naming a manifest that is unreadable or has no estimate, or an estimate outside
+  /// [0, 100) %. `skip_missing` (--check before the FE cases ran): manifests that do not exist
+  /// are skipped, and nullopt when none does.
+  std::optional<laws::DiscretisationError> own_estimate_error(
+    const std::vector<std::string> &manifests, bool skip_missing);
+
   /// Fits one CSV file into a law (does not write it). `scene` is embedded as given.
   laws::LawFile fit_csv_file(const std::string &csv_path, const FitOptions &options,
                              const nlohmann::json &scene, std::optional<double> delta_ref);

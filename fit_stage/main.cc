@@ -18,7 +18,8 @@ int main(int argc, char **argv)
     "\n"
     "  fit_stage DATA.csv --output LAW.json [--range A:B] [--weighting absolute|relative]\n"
     "            [--start K,n] [--delta-ref D] [--scene SCENE.yaml] [--no-plots]\n"
-    "            [--discretisation-error PERCENT [--discretisation-error-source TEXT]]\n"
+    "            [--discretisation-error PERCENT [--discretisation-error-source TEXT]\n"
+    "             | --discretisation-error-from FE_MANIFEST.json...]\n"
     "  fit_stage --family PARAM FILE1.csv=VALUE1 FILE2.csv=VALUE2 ... --output FAMILY.json\n"
     "            [--parameter-unit UNIT] [--family-out-of-range error|clamp|extend]\n"
     "\n"
@@ -52,6 +53,11 @@ int main(int argc, char **argv)
     "the preset's); recorded in the law, widens the MBD band");
   app.add_option("--discretisation-error-source", discretisation_source,
                  "where that error was measured (recorded beside it)");
+  std::vector<std::string> estimate_manifests;
+  app.add_option("--discretisation-error-from", estimate_manifests,
+                 "fe_stage manifest(s) of adaptive runs: the law's discretisation error is their "
+                 "own estimate of the error of F(delta_max), the largest of them (run_pipeline "
+                 "passes the cases' where the preset has no measured figure)");
   app.add_option("--family", family, "write a law family over parameter PARAM (e.g. theta)");
   app.add_option("--parameter-unit", command.family_unit,
                  "unit of the family parameter (default: rad for theta, m for t_B)");
@@ -103,6 +109,14 @@ int main(int argc, char **argv)
     else if (!discretisation_source.empty())
       throw InputError("", "--discretisation-error-source", discretisation_source,
                        "only together with --discretisation-error");
+    if (!estimate_manifests.empty())
+    {
+      if (disc->count() > 0)
+        throw InputError("", "--discretisation-error-from", estimate_manifests.front(),
+                         "not together with --discretisation-error (one source of the error)");
+      // (--check before the FE cases ran: the manifests that exist are read, the rest skipped)
+      command.discretisation_error = fit::own_estimate_error(estimate_manifests, check);
+    }
     if (!family.empty())
     {
       command.family_parameter = family;

@@ -137,9 +137,15 @@ namespace clearjoint::pipeline
     for (const auto &m : config_.mbd_runs)
     {
       n["mbd_stage"] += 1;
-      // laws/confidence_band.h: 4 regression variants, 2 more with a measured mesh error
+      // laws/confidence_band.h: 4 regression variants, 2 more with a mesh error (the preset's
+      // figure, or the cases' own estimate on adaptive meshes)
       if (m.band && !m.laws.empty() && m.laws.front().sweep)
-        n["mbd_stage"] += 4 + (discretisation_error_args(*m.laws.front().sweep).empty() ? 0 : 2);
+      {
+        const std::string &sweep = *m.laws.front().sweep;
+        const bool mesh_error =
+          !discretisation_error_args(sweep).empty() || adaptive_sweeps_.count(sweep) > 0;
+        n["mbd_stage"] += 4 + (mesh_error ? 2 : 0);
+      }
     }
     return n;
   }
@@ -209,6 +215,14 @@ namespace clearjoint::pipeline
 
   namespace
   {
+    /// An FE scene that refines adaptively (mesh.adaptive_cycles >= 1): its manifest carries
+    /// fe_stage's own estimate of the error of F(delta_max).
+    bool has_adaptive_cycles(const nlohmann::json &scene)
+    {
+      const nlohmann::json *cycles = find_key_path(scene, "mesh.adaptive_cycles");
+      return cycles && cycles->is_number() && cycles->get<double>() >= 1;
+    }
+
     /// An FE case's name within its sweep ("t_B=0.004"): its task and folder names, and the
     /// key its own error estimate is kept under until the summary takes it.
     std::string fe_case_label(const std::string &parameter, const double value)
@@ -489,7 +503,8 @@ namespace clearjoint::pipeline
       for (const double value : sweep.values)
       {
         std::vector<int> unused;
-        fe_case_scene(sweep, value, true, unused);
+        if (has_adaptive_cycles(fe_case_scene(sweep, value, true, unused)))
+          adaptive_sweeps_.insert(sweep.name);
       }
   }
 
@@ -513,6 +528,9 @@ namespace clearjoint::pipeline
     const std::vector<std::string> mesh_error_args = discretisation_error_args(sweep.name);
     std::vector<std::string> family_inputs;
     std::vector<int> family_deps;
+    // Without the preset's figure, an adaptive case's own estimate is its laws' error, and the
+    // family's the largest of its cases' (fit_stage --discretisation-error-from)
+    std::vector<std::string> family_error_args = mesh_error_args;
     for (std::size_t i = 0; i < sweep.values.size(); ++i)
     {
       const FeCase c = add_fe_case(sweep, i, mesh_error_args, fitted);
@@ -520,11 +538,17 @@ namespace clearjoint::pipeline
       family_args.push_back(c.csv + "=" + value_label(to_si(sweep.values[i], sweep.unit).value));
       family_inputs.push_back(c.csv);
       family_deps.push_back(c.fe_node);
+      if (!c.own_estimate_manifest.empty())
+      {
+        family_error_args.insert(family_error_args.end(),
+                                 {"--discretisation-error-from", c.own_estimate_manifest});
+        family_inputs.push_back(c.own_estimate_manifest);
+      }
     }
     if (sweep.values.size() >= 2)
     {
       const Done family =
-        add_family_fit(sweep, family_unit, family_args, mesh_error_args, family_inputs,
+        add_family_fit(sweep, family_unit, family_args, family_error_args, family_inputs,
                        family_deps);
       fitted.families[sweep.name] = family;
       s["family"] = family.path;
@@ -555,9 +579,15 @@ namespace clearjoint::pipeline
     fit.executable = stage_executable("fit_stage");
     fit.args = {c.csv, "--output", "{out}/law.json", "--weighting", config_.fit_weighting};
     fit.args.insert(fit.args.end(), mesh_error_args.begin(), mesh_error_args.end());
+    fit.input_files = {c.csv};
+    if (mesh_error_args.empty() && has_adaptive_cycles(scene_json))
+    {
+      c.own_estimate_manifest = fe.output_dir + "/manifest.json";
+      fit.args.insert(fit.args.end(), {"--discretisation-error-from", c.own_estimate_manifest});
+      fit.input_files.push_back(c.own_estimate_manifest);
+    }
     if (!options_.plots)
       fit.args.push_back("--no-plots");
-    fit.input_files = {c.csv};
     fit.output_dir = run + "/fit/" + sweep.name + "/" + label;
     fitted.laws[sweep.name][value_label(value)] = {fit.output_dir + "/law.json",
                                                    add(fit, "fit", {c.fe_node})};

@@ -61,6 +61,9 @@ namespace clearjoint::pipeline
     {
       int fe_node;           ///< its fe_stage task
       std::string csv;       ///< the force–penetration curve it writes
+      /// its manifest, whose own error estimate becomes its laws' discretisation error where the
+      /// preset has no measured figure for the sweep (adaptive meshes only; else empty)
+      std::string own_estimate_manifest;
       nlohmann::json summary;  ///< its entry in the summary's sweep
     };
 
@@ -158,6 +161,9 @@ namespace clearjoint::pipeline
     TaskGraph graph_;
     std::map<std::string, Done> meshes_;  ///< mesh task output folder → its .msh
     std::set<std::string> planned_meshes_;  ///< mesh task folders found by the dry run
+    /// sweeps whose cases run adaptive meshes (the dry run): their laws carry the cases' own
+    /// error estimate where the preset has no figure
+    std::set<std::string> adaptive_sweeps_;
     std::unique_ptr<RunEta> eta_;
     /// Sweep name → value label → fe_stage's own estimate of the error of F(delta_max), from
     /// each adaptive case's manifest as its task ends (watch_own_estimate).

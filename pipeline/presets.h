@@ -2,6 +2,7 @@
 // at the start and end of a run and for the report's table.
 #pragma once
 
+#include "laws/own_error_estimate.h"
 #include "pipeline/pipeline_config.h"
 
 #include <nlohmann/json.hpp>
@@ -22,32 +23,12 @@ namespace clearjoint::pipeline
   /// measurements and whether it is the chosen one (pipeline_summary.json "presets").
   nlohmann::json presets_summary(const PipelineConfig &config);
 
-  /// fe_stage's own estimate of the relative error of F(delta_max) on an adaptive case's last
-  /// mesh (its manifest's extra.adaptive.estimated_error_F_max; docs/fe.md "The error
-  /// estimate"): the figure to use where the preset's measured one does not apply (a Gmsh
-  /// bearing without a convergence study).
-  struct OwnErrorEstimate
-  {
-    double relative = 0.0;     ///< [1]
-    bool last_change = false;  ///< the last cycle's change: not extrapolated, not a bound
-    int n_meshes = 0;          ///< meshes in the sequence
-    std::optional<double> n_dofs;  ///< [1] of the last mesh
-  };
-
-  /// The estimate in an fe_stage manifest; nullopt for a case without adaptive cycles (or one
-  /// whose manifest is not of that shape).
-  std::optional<OwnErrorEstimate> read_own_error_estimate(const nlohmann::json &fe_manifest);
-
-  /// How the last cycle's change compared with the error on the recorded adaptive sequences
-  /// (bench/adaptive_estimate_table.py: the 23 prefixes where it is fe_stage's estimate, against
-  /// the far end of each reference): from 0.05 to 29 times it, median 1.13, above it on 16. So
-  /// it is no bound either way, only an indication; the words below quote these figures.
-  inline constexpr const char *last_change_record =
-    "on the recorded sequences it was 0.05-29x the error, median 1.13";
-
-  /// "0.85 % (extrapolated)" or "~3.3 % (the change in the last cycle, not extrapolated: on the
-  /// recorded sequences it was 0.05-29x the error, median 1.13)".
-  std::string describe_own_estimate(const OwnErrorEstimate &e);
+  // fe_stage's own error estimate of an adaptive case (laws/own_error_estimate.h), as the run
+  // and its report read it
+  using laws::describe_own_estimate;
+  using laws::last_change_record;
+  using laws::OwnErrorEstimate;
+  using laws::read_own_error_estimate;
 
   /// The run's own estimates of one FE sweep (value label → estimate) beside the chosen
   /// preset's measured figure for it: "own estimate of the error of F(delta_max): t_B=0.004

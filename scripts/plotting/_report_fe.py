@@ -185,9 +185,9 @@ def own_estimate_section(fs, preset_error=None):
                       "(mesh.adaptive_cycles) for an extrapolated estimate."
                       if any(own_estimate(m) and own_estimate(m)["last_change"]
                              for _, _, m in fs.cases) else "")
-                   + " The fitted laws carry no mesh error (their law files' "
-                     "discretisation_error is null): add this estimate to their uncertainty by "
-                     "hand.</p>")
+                   + " The fitted laws carry it as their mesh error (their law files' "
+                     "discretisation_error: each law its case's estimate, the family the "
+                     "largest of its cases'), so the MBD band's mesh variants use it.</p>")
     return "".join(out)
 
 

@@ -135,3 +135,67 @@ TEST(FitStageCommand, DiscretisationErrorIsRecordedAndChecked)
   for (const auto &m : family.members())
     EXPECT_EQ(m.law.discretisation_error->F_relative, 0.048);
 }
+
+// Issue 32 item 4: where no preset figure applies, the law's discretisation error is fe_stage's
+// own estimate from the FE run's manifest (--discretisation-error-from), the largest of several
+// for a family; a manifest without one, or both sources at once, is an input error naming it.
+TEST(FitStageCommand, DiscretisationErrorFromTheFeRunsOwnEstimate)
+{
+  test_support::ScratchDir dir("fit_cli_own_estimate");
+  test_support::write_text(dir.file("data.csv"), good_csv());
+  const auto manifest = [&](const std::string &name, const std::string &adaptive) {
+    test_support::write_text(dir.file(name),
+                             "{\"schema\": \"clearjoint.manifest/1\", \"extra\": {" + adaptive + "}}");
+    return dir.file(name);
+  };
+  const std::string a = manifest(
+    "a.json", "\"adaptive\": {\"estimated_error_F_max\": {\"value\": 0.0085, \"unit\": \"1\", "
+              "\"method\": \"last two cycles extrapolated\"}, \"cycles\": [{}, {}, {}]}");
+  const std::string b = manifest(
+    "b.json", "\"adaptive\": {\"estimated_error_F_max\": {\"value\": 0.033, \"unit\": \"1\", "
+              "\"method\": \"change in the last cycle (not extrapolated; not a bound)\"}}");
+  const std::string none = manifest("none.json", "\"mesh\": {}");
+  const std::string base = dir.file("data.csv") + " --output " + dir.file("law.json");
+
+  const CommandRun one = fit(dir, base + " --discretisation-error-from " + a);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const auto law = laws::read_law_file(dir.file("law.json"));
+  ASSERT_TRUE(law.discretisation_error.has_value());
+  EXPECT_EQ(law.discretisation_error->F_relative, 0.0085);
+  EXPECT_NE(law.discretisation_error->description.find("own estimate, 0.85 % (extrapolated)"),
+            std::string::npos)
+    << law.discretisation_error->description;
+  EXPECT_NE(law.discretisation_error->description.find(a), std::string::npos);
+
+  const CommandRun fam = fit(dir, "--family t_B " + dir.file("data.csv") + "=0.004 " +
+                                    dir.file("data.csv") + "=0.006 --output " +
+                                    dir.file("family.json") + " --discretisation-error-from " + a +
+                                    " --discretisation-error-from " + b);
+  ASSERT_EQ(fam.exit_code, 0) << fam.output;
+  const auto family = laws::read_law_family(dir.file("family.json"));
+  for (const auto &m : family.members())
+  {
+    EXPECT_EQ(m.law.discretisation_error->F_relative, 0.033) << "the largest";
+    EXPECT_NE(m.law.discretisation_error->description.find("~3.3 % (the change in the last cycle"),
+              std::string::npos)
+      << m.law.discretisation_error->description;
+    EXPECT_NE(m.law.discretisation_error->description.find("the largest of 2 cases"),
+              std::string::npos);
+  }
+
+  fs::remove(dir.file("law.json"));
+  const CommandRun missing = fit(dir, base + " --discretisation-error-from " + none);
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.output.find("extra.adaptive.estimated_error_F_max"), std::string::npos)
+    << missing.output;
+  EXPECT_NE(missing.output.find("none.json"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir.file("law.json")));
+  const CommandRun both =
+    fit(dir, base + " --discretisation-error 2 --discretisation-error-from " + a);
+  EXPECT_EQ(both.exit_code, 1);
+  EXPECT_NE(both.output.find("--discretisation-error-from"), std::string::npos) << both.output;
+  // --check before the FE runs: a manifest not written yet is skipped
+  EXPECT_EQ(fit(dir, base + " --check --discretisation-error-from " + dir.file("later.json"))
+              .exit_code,
+            0);
+}

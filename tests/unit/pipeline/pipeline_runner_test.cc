@@ -507,7 +507,9 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
   {
     const Outcome o = run(dir, build);
     ASSERT_EQ(o.exit_code, 0) << o.log;
-    EXPECT_EQ(with(o, reused ? "reused" : "ran").size(), 12u) << o.log;
+    // 12 tasks, and the MBD band's two mesh variants: the laws carry the cases' own estimate
+    EXPECT_EQ(with(o, reused ? "reused" : "ran").size(), 14u) << o.log;
+    EXPECT_NE(o.log.find("mbd/fitted/band/mesh_high"), std::string::npos) << o.log;
     EXPECT_NE(o.log.find("fe/thickness/t_B=0.002: own estimate of the error of F(delta_max) "
                          "0.5 % (extrapolated) on the last of 3 meshes, 4000 DoFs"),
               std::string::npos)
@@ -525,6 +527,26 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
     EXPECT_EQ(c["own_error_F_max"]["unit"], "1");
     EXPECT_EQ(c["own_error_F_max"]["last_change"], false);
     EXPECT_FALSE(c["own_error_F_max"].contains("lower_bound"));
+    // no preset figure: each law carries its case's own estimate as its discretisation error
+    // (fit_stage --discretisation-error-from), the family the largest of its cases'
+    const auto law = laws::read_law_file(dir.file("out/r/fit/thickness/t_B=0.004/law.json"));
+    ASSERT_TRUE(law.discretisation_error.has_value()) << "reused " << reused;
+    EXPECT_EQ(law.discretisation_error->F_relative, 0.005);
+    EXPECT_NE(law.discretisation_error->description.find("own estimate, 0.5 % (extrapolated)"),
+              std::string::npos)
+      << law.discretisation_error->description;
+    EXPECT_NE(law.discretisation_error->description.find("fe/thickness/t_B=0.004/manifest.json"),
+              std::string::npos)
+      << law.discretisation_error->description;
+    const auto family = laws::read_law_family(dir.file("out/r/fit/thickness/family/family.json"));
+    for (const auto &m : family.members())
+    {
+      ASSERT_TRUE(m.law.discretisation_error.has_value());
+      EXPECT_EQ(m.law.discretisation_error->F_relative, 0.005);
+      EXPECT_NE(m.law.discretisation_error->description.find("the largest of 2 cases"),
+                std::string::npos)
+        << m.law.discretisation_error->description;
+    }
   }
   // one adaptive cycle (two meshes): the last cycle's change, said so, flagged last_change
   test_support::ScratchDir one("pipeline_own_estimate_one_cycle");
@@ -545,6 +567,12 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
     const auto &c = summary["sweeps"][0]["cases"][1];
     EXPECT_EQ(c["own_error_F_max"]["value"], 0.01);
     EXPECT_EQ(c["own_error_F_max"]["last_change"], true);
+    const auto law = laws::read_law_file(one.file("out/r/fit/thickness/t_B=0.004/law.json"));
+    ASSERT_TRUE(law.discretisation_error.has_value());
+    EXPECT_EQ(law.discretisation_error->F_relative, 0.01);
+    EXPECT_NE(law.discretisation_error->description.find("~1 % (the change in the last cycle"),
+              std::string::npos)
+      << law.discretisation_error->description;
   }
   // a sweep without adaptive cycles says nothing of it
   test_support::ScratchDir plain("pipeline_own_estimate_none");
@@ -553,6 +581,9 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
   const Outcome o = run(plain, plain_build);
   ASSERT_EQ(o.exit_code, 0) << o.log;
   EXPECT_EQ(o.log.find("own estimate"), std::string::npos) << o.log;
+  EXPECT_FALSE(laws::read_law_file(plain.file("out/r/fit/thickness/t_B=0.004/law.json"))
+                 .discretisation_error.has_value())
+    << "no estimate, no preset figure: the law says null";
 }
 
 // Issue 13 item 5: the rolling study is one fe_stage task, fe/rolling, with the preset's `fe`
