@@ -12,11 +12,10 @@
 #include "fe_stage/mesh/bodies.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/study/study.h"
+#include "tests/verification/fe/contact_free_body.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <gtest/gtest.h>
@@ -59,30 +58,12 @@ namespace
   };
 
   /// The patch test's block (quarter model, 2 × 2 × 2 Q2 cells) with the model's owners.
-  struct Block
+  struct Block : test::ContactFreeBody
   {
-    FeScene scene = block_scene();
-    StudyPlan plan = plan_study(scene);
-    MPI_Comm comm = MPI_COMM_WORLD;
-    Bodies bodies{scene, plan, comm};
-    DofSpace dofs{scene, plan, bodies, comm};
-    Assembler system{scene, bodies, dofs, comm};
-    std::unique_ptr<MaterialLaw> law;
-
     Block()
+      : ContactFreeBody(block_scene())
     {
-      bodies.build();
-      dofs.distribute(true);
-      dealii::DynamicSparsityPattern dsp(dofs.relevant());
-      dealii::DoFTools::make_sparsity_pattern(dofs.handler(), dsp);
-      dealii::SparsityTools::distribute_sparsity_pattern(dsp, dofs.owned(), comm,
-                                                          dofs.relevant());
-      system.reinit(dsp);
-      const unsigned int n_cells = bodies.triangulation().n_active_cells();
-      system.set_contact_cells(std::vector<int>(n_cells, -1), 0);  // no contact cells
       system.use_tangent();  // the operator is the tangent, with its load
-      law = make_material(scene, true);
-      law->resize(std::size_t(n_cells) * system.n_q_points());
     }
 
     dealii::TrilinosWrappers::MPI::Vector interpolate(const Displacement &u) const

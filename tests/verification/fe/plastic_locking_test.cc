@@ -17,15 +17,14 @@
 #include "fe_stage/mesh/boundary_ids.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/study/study.h"
+#include "tests/verification/fe/contact_free_body.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -88,15 +87,8 @@ namespace
   };
 
   /// The bearing ring with the model's owners, pushed open at its bore.
-  struct Cylinder
+  struct Cylinder : test::ContactFreeBody
   {
-    FeScene scene;
-    StudyPlan plan = plan_study(scene);
-    MPI_Comm comm = MPI_COMM_WORLD;
-    Bodies bodies{scene, plan, comm};
-    DofSpace dofs{scene, plan, bodies, comm};
-    Assembler system{scene, bodies, dofs, comm};
-    std::unique_ptr<MaterialLaw> law;
     TrilinosWrappers::MPI::Vector u;
     /// the held DoFs besides the bore: plane strain (every u_z) and the symmetry plane x = 0
     std::map<types::global_dof_index, double> held;
@@ -106,20 +98,10 @@ namespace
     double a = 0.0, b = 0.0;
 
     Cylinder(const unsigned int degree, const unsigned int n_radial, const bool finite)
-      : scene(cylinder_scene(degree, n_radial, finite))
+      : ContactFreeBody(cylinder_scene(degree, n_radial, finite))
     {
       a = scene.geometry.R_B;
       b = scene.geometry.R_B + scene.geometry.t_B;
-      bodies.build();
-      dofs.distribute(true);
-      DynamicSparsityPattern dsp(dofs.relevant());
-      DoFTools::make_sparsity_pattern(dofs.handler(), dsp);
-      SparsityTools::distribute_sparsity_pattern(dsp, dofs.owned(), comm, dofs.relevant());
-      system.reinit(dsp);
-      const unsigned int n_cells = bodies.triangulation().n_active_cells();
-      system.set_contact_cells(std::vector<int>(n_cells, -1), 0);  // no contact cells
-      law = make_material(scene, true);
-      law->resize(std::size_t(n_cells) * system.n_q_points());
       system.assemble_static(law->elastic(), {});
       system.use_tangent();
       u.reinit(dofs.owned(), comm);
