@@ -49,19 +49,18 @@ namespace clearjoint::fe::detail
           for (unsigned int i = 0; i < dim; ++i)
             grad[i] = in.solution_gradients[q][i];
           const SymmetricTensor<2, dim> eps = strain_measure(grad, finite_);
+          const SymmetricTensor<2, dim> sig =
+            with_stress_ ? material_.stress(eps) : SymmetricTensor<2, dim>();
           unsigned int k = 0;
           if (with_stress_)
-            {
-              const SymmetricTensor<2, dim> sig = material_.stress(eps);
-              for (unsigned int i = 0; i < dim; ++i)
-                for (unsigned int j = 0; j < dim; ++j)
-                  out[q][k++] = sig[i][j];
-            }
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                out[q][k++] = sig[i][j];
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
               out[q][k++] = eps[i][j];
           if (with_stress_)
-            out[q][k++] = von_mises(material_.stress(eps));
+            out[q][k++] = von_mises(sig);
           const auto ev = eigenvalues(eps);  // descending
           for (unsigned int i = 0; i < dim; ++i)
             out[q][k++] = ev[i];
