@@ -31,10 +31,11 @@ namespace clearjoint::fe::detail
     tangential_scale_ = scene_.contact.tangential_scale;
   }
 
-  bool ContactProblem::soften_tangential_scale(const unsigned int iteration)
+  bool ContactProblem::soften_tangential_scale(const unsigned int iteration, const bool cycles)
   {
     constexpr unsigned int patient = 12, every = 8;
-    if (friction_ && iteration >= patient && (iteration - patient) % every == 0 &&
+    const bool unsettled = iteration >= patient && (iteration - patient) % every == 0;
+    if (friction_ && (unsettled || cycles) &&
         tangential_scale_ > 1.001e-3 * scene_.contact.tangential_scale)
       {
         tangential_scale_ *= 0.3;

@@ -47,9 +47,10 @@ namespace clearjoint::fe::detail
     /// c_T / c of this increment's iterations: contact.tangential_scale at its start.
     double tangential_scale() const { return tangential_scale_; }
     void reset_tangential_scale();
-    /// Lowers c_T when the stick/slip decisions have not settled by `iteration` (0-based);
-    /// true when it did (friction only).
-    bool soften_tangential_scale(unsigned int iteration);
+    /// Lowers c_T when the stick/slip decisions have not settled by `iteration` (0-based), or
+    /// at once when the slip law's iteration `cycles` (the sets unchanged, its residual not
+    /// falling); true when it did (friction only).
+    bool soften_tangential_scale(unsigned int iteration, bool cycles);
 
     /// The nodes that slip in this iteration (active, not sticking) and their DoFs; returns
     /// whether any rank has one (the system is then nonsymmetric; collective).

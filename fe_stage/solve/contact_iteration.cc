@@ -3,6 +3,7 @@
 // directions settle.
 #include "fe_stage/solve/contact_solve.h"
 
+#include "fe_stage/contact/stick_slip_progress.h"
 #include "fe_stage/core/step_failure.h"
 
 #include "common/error.h"
@@ -95,13 +96,21 @@ namespace clearjoint::fe::detail
     const double loose_tolerance = std::max(scene_.solver.tolerance, 1e-6);
     bool loose = !solver_.direct() && scene_.contact.max_iterations > 1;  // (MUMPS: exact anyway)
 
+    // (a stick/slip iteration that cycles lowers c_T at once, contact/stick_slip_progress.h)
+    StickSlipProgress progress;
+    bool cycles = false;
     unsigned int it = 0;
     for (; it < scene_.contact.max_iterations; ++it)
       {
-        if (contact_.soften_tangential_scale(it) && log::level() <= log::Level::debug)
-          log::debug("  delta " + format_value(delta) +
-                     " m: the stick/slip decisions have not settled in " + std::to_string(it) +
-                     " iterations; c_T now " + format_value(contact_.tangential_scale()) + " c");
+        if (contact_.soften_tangential_scale(it, cycles))
+          {
+            if (log::level() <= log::Level::debug)
+              log::debug("  delta " + format_value(delta) + " m: the stick/slip decisions " +
+                         (cycles ? "cycle" : "have not settled") + " after " +
+                         std::to_string(it) + " iterations; c_T now " +
+                         format_value(contact_.tangential_scale()) + " c");
+            progress.restart();
+          }
         build_contact_constraints(delta);
         assemble_system(delta, c);
 
@@ -140,6 +149,7 @@ namespace clearjoint::fe::detail
           }
         const auto change = contact_.update_active_set(c, eps_g);
         const bool slip_settled = change.slip_residual <= slip_tolerance * change.force_scale;
+        cycles = progress.record(change.slip_residual, slip_settled);
         if (log::level() <= log::Level::debug)
           log::debug("  delta " + format_value(delta) + " m, iteration " + std::to_string(it + 1) +
                      ": " + std::to_string(change.n_changed) +
