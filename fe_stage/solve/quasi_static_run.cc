@@ -92,8 +92,8 @@ namespace clearjoint::fe::detail
               estimate_adaptive_error(result.adaptive_cycles, parts_.dofs.fe().degree);
             if (rank_ == 0 && e.error >= 0.0)
               log::info("fe_stage: estimated error of F(delta_max) " +
-                        format_value(100.0 * e.error) + " % (" + e.method + "), target " +
-                        format_value(100.0 * target) + " %");
+                        format_value(100.0 * e.error) + " %, target " +
+                        format_value(100.0 * target) + " %; method: " + e.method);
             if (adaptive_target_met(e, target))
               {
                 last_mesh_marked = true;
@@ -129,8 +129,8 @@ namespace clearjoint::fe::detail
     result.adaptive_target_reached = adaptive_target_met(e, target);
     if (rank_ == 0 && result.adaptive_error >= 0.0)
       log::info("fe_stage: estimated error of F(delta_max) on the final mesh " +
-                format_value(100.0 * result.adaptive_error) + " % (" +
-                result.adaptive_error_method + ")");
+                format_value(100.0 * result.adaptive_error) +
+                " %; method: " + result.adaptive_error_method);
     if (rank_ == 0 && target > 0.0 && !result.adaptive_target_reached)
       log::warning("fe_stage: the target error " + format_value(100.0 * target) +
                    " % (mesh.adaptive_target_error) was not reached in " +
