@@ -3,6 +3,7 @@
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/solve/root_finder.h"
+#include "fe_stage/solve/spin_balance_iteration.h"
 
 #include "common/error.h"
 #include "common/log.h"
@@ -266,9 +267,8 @@ namespace clearjoint::fe::detail
     // the balance's scale: the attempt's (from the last step), else (bordered's first step)
     // from the first iteration's force and torque, as the root finder's first evaluation
     double scale = a.torque_scale;
-    const double slope_last =
-      bordered ? 0.0 : (inertia_ / a.dt - torque_rate_slope_) / scale;  // [s/rad]
-    double slope = slope_last;
+    SpinBalanceIteration balance(bordered ? 0.0 :
+                                            (inertia_ / a.dt - torque_rate_slope_) / scale);
     // the turn the sensitivity is taken over: 1 % of the rolling rate's over the step. The
     // linearised state is linear in it but for the rotation's curvature (a relative error of
     // dψ/2 ~ 1e-4 of the column) and the solves' round-off (1e-10 of |b|), which this keeps
@@ -281,13 +281,12 @@ namespace clearjoint::fe::detail
     // 381 N — where this start is the exact root. (Extrapolated in time instead, the reduced
     // scenes' spin-up steps overshot the root twofold and hold steps kept a spin off by 5e-4.)
     double rate = gamma_rate_;
-    double rate_before = 0.0, g_before = 0.0, last_correction = 0.0;
-    std::vector<double> balances;  // |g| of each iteration, for the stall test
     double rate_searched = std::numeric_limits<double>::quiet_NaN();
-    // the slope is this attempt's own (the iterates' secant, or the bordered column's), not the
-    // last step's: only then does a small γ̇ step say the root is near
-    bool secant_taken = false;
-    unsigned int growths = 0;
+    const auto hand_over = [&](const std::string &why) {
+      if (rank_ == 0)
+        log::debug(" the coupled iteration " + why + "; the root finder takes the step");
+      return false;
+    };
     try
       {
         for (unsigned int k = 0; k < max_it; ++k)
@@ -311,44 +310,18 @@ namespace clearjoint::fe::detail
             if (scale == 0.0)
               scale = torque_scale(std::abs(it.record.force), torque, t_ + a.dt, a.dt);
             const double g = (inertia_ * (rate - gamma_rate_) / a.dt - torque) / scale;
-            if (bordered)
-              {
-                // the linearised total slope; M falls as γ̇ rises, so it is positive — where the
-                // linearisation says otherwise (a pathological active set) the last one is kept,
-                // and without one the root finder takes the step
-                const double bordered_slope =
-                  (inertia_ / a.dt - sensitivity.d_torque / rate_perturbation) / scale;
-                if (bordered_slope > 0.0 && std::isfinite(bordered_slope))
-                  slope = bordered_slope, secant_taken = true;
-                else if (!secant_taken)
-                  {
-                    if (rank_ == 0)
-                      log::debug(" the bordered iteration's balance does not rise with the "
-                                 "spin; the root finder takes the step");
-                    return false;
-                  }
-              }
-            else if (k > 0 && rate != rate_before)
-              {
-                const double secant = (g - g_before) / (rate - rate_before);
-                if (secant > 0.0 && ((secant > 0.2 * slope_last && secant < 5.0 * slope_last) ||
-                                     it.correction <= 100.0 * tolerance))
-                  slope = secant, secant_taken = true;
-              }
-            // (at most half the rolling rate a step: a secant over nearly equal balances —
-            // slip under a small force — can send γ̇ to thousands of rad/s)
-            const double rate_step =
-              std::abs(g) <= 1e-6 ? 0.0 : std::clamp(-g / slope, -0.5 * roll, 0.5 * roll);
+            if (!bordered)
+              balance.take_secant(rate, g, it.correction, tolerance);
+            else if (!balance.take_bordered_slope(
+                       (inertia_ / a.dt - sensitivity.d_torque / rate_perturbation) / scale))
+              return hand_over("finds a balance that does not rise with the spin");
+            const double rate_step = balance.step(g, roll);
             if (log::level() <= log::Level::debug && rank_ == 0)
               log::debug("  coupled iteration " + std::to_string(k + 1) + ": spin " +
                          format_value(rate) + " rad/s, balance " + format_value(g) +
                          ", correction " + format_value(it.correction) + " m, " +
                          std::to_string(it.n_plastic_points) + " quadrature points yielding");
-            // the bodies converged, and the balance holds or γ̇ is within 1e-10 of the rolling
-            // rate of its root by the iterates' own slope (the root finder's two tolerances; a
-            // step by the last step's slope says nothing about the distance to the root)
-            if (it.correction <= tolerance &&
-                (rate_step == 0.0 || (secant_taken && std::abs(rate_step) <= 1e-10 * roll)))
+            if (balance.converged(it.correction, tolerance, rate_step, roll))
               {
                 step.rate = rate;
                 step.spin_evaluations = k + 1;
@@ -358,34 +331,22 @@ namespace clearjoint::fe::detail
                 step.state.newton_iterations = k + 1;
                 step.state.contact_iterations = step.contact_iterations;
                 step.state.linear_iterations = step.linear_iterations;
-                if (secant_taken)
-                  torque_rate_slope_ = inertia_ / a.dt - slope * scale;
+                if (balance.own_slope())
+                  torque_rate_slope_ = inertia_ / a.dt - balance.slope() * scale;
                 last_force_ = std::abs(it.record.force);
                 last_torque_ = torque;
                 return true;
               }
-            growths = k > 0 && it.correction > last_correction ? growths + 1 : 0;
-            last_correction = it.correction;
-            if (growths >= 3)
+            switch (balance.trend(it.correction, g))
               {
-                if (rank_ == 0)
-                  log::debug(" the coupled iteration diverges; the root finder takes the step");
-                return false;
+                case SpinBalanceIteration::Trend::diverges:
+                  return hand_over("diverges");
+                case SpinBalanceIteration::Trend::stalls:
+                  return hand_over("stalls on the torque balance");
+                case SpinBalanceIteration::Trend::continues:
+                  break;
               }
-            // stalled: the balance did not halve over the last four iterations (a slope far
-            // from the balance's: a first version's spin-up step crept 25 iterations at g ≈
-            // 3.25); the root finder brackets instead
-            balances.push_back(std::abs(g));
-            if (balances.size() > 4 && std::abs(g) > 1e-6 &&
-                std::abs(g) > 0.5 * balances[balances.size() - 5])
-              {
-                if (rank_ == 0)
-                  log::debug(" the coupled iteration stalls on the torque balance; the root "
-                             "finder takes the step");
-                return false;
-              }
-            rate_before = rate;
-            g_before = g;
+            balance.advance(rate, g);
             rate += rate_step;
             if (bordered && rate_step != 0.0)
               {
@@ -397,15 +358,9 @@ namespace clearjoint::fe::detail
       }
     catch (const StepFailure &f)
       {
-        if (rank_ == 0)
-          log::debug(" the coupled iteration failed (" + f.reason +
-                     "); the root finder takes the step");
-        return false;
+        return hand_over("failed (" + f.reason + ")");
       }
-    if (rank_ == 0)
-      log::debug(" the coupled iteration did not converge in " + std::to_string(max_it) +
-                 " iterations; the root finder takes the step");
-    return false;
+    return hand_over("did not converge in " + std::to_string(max_it) + " iterations");
   }
 
   /// After a failed attempt at Δt (the state restored): an attempt that started from the state
