@@ -294,7 +294,8 @@ namespace clearjoint::fe::detail
                 " s, delta " + format_value(rec.delta) + " m, F " + format_value(rec.force_normal) +
                 " N, spin " + format_value(rec.gamma_rate) + " rad/s (slip " +
                 format_value(rec.slip_speed) + " m/s), eps_p max " +
-                format_value(rec.max_plastic_strain) + ", " + std::to_string(rec.spin_iterations) +
+                format_value(rec.max_plastic_strain) + ", D_p " +
+                format_value(rec.plastic_dissipation) + " J, " + std::to_string(rec.spin_iterations) +
                 " spin / " + std::to_string(rec.contact_iterations) + " contact iterations" +
                 (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") + ", ETA " +
                 log::format_duration(seconds_left));
