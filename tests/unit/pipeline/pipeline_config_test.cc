@@ -297,7 +297,10 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
   ASSERT_EQ(mis->values.size(), 5u);
   EXPECT_EQ(mis->values.back(), geometry::degrees(*geometry::theta_max(geometry::JointGeometry{})));
   // Issue 31 item 5: the deformable core-loaded journal, on the sweep's own adaptive meshes for
-  // every preset (from the coarse base level, more cycles for the finer presets).
+  // every preset (from the coarse base level, more cycles for the finer presets). Since
+  // 2026-11-29 the standard preset has four cycles (issue 32's 1 % at theta_max) and the accurate
+  // one no more until a finer mesh is measured at every theta (docs/benchmarks.md "The standard
+  // presets within 1 %"): standard more than fast, accurate not fewer than standard.
   const auto mis_scene =
     read_yaml_file((std::filesystem::path(CLEARJOINT_SOURCE_DIR) / mis->scene).string());
   EXPECT_EQ(mis_scene["loading"]["journal"], "core") << mis->scene;
@@ -310,7 +313,10 @@ TEST(PipelineConfig, TheCommittedPipelineFilesReadAndResolve)
       set[k] = v;
     EXPECT_EQ(set.at("mesh.global_refinements"), 0) << p;
     const int cycles = set.at("mesh.adaptive_cycles").get<int>();
-    EXPECT_GT(cycles, previous_cycles) << p;
+    if (p == "accurate")
+      EXPECT_GE(cycles, previous_cycles) << p;
+    else
+      EXPECT_GT(cycles, previous_cycles) << p;
     previous_cycles = cycles;
   }
   EXPECT_EQ(c.family_out_of_range, "clamp");
