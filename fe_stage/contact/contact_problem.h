@@ -48,8 +48,8 @@ namespace clearjoint::fe::detail
     double tangential_scale() const { return tangential_scale_; }
     void reset_tangential_scale();
     /// Lowers c_T when the stick/slip decisions have not settled by `iteration` (0-based), or
-    /// at once when the slip law's iteration `cycles` (the sets unchanged, its residual not
-    /// falling); true when it did (friction only).
+    /// at once when the stick/slip iteration `cycles` (its slip-law residual not halving:
+    /// contact/stick_slip_progress.h); true when it did (friction only).
     bool soften_tangential_scale(unsigned int iteration, bool cycles);
 
     /// The nodes that slip in this iteration (active, not sticking) and their DoFs; returns

@@ -5,8 +5,8 @@
 // slip law's residual alternated between 319 and 326 N for ten iterations with the sets
 // unchanged, or rose from 480 to 3 200 N over twelve iterations of nodes flipping between
 // stick, slip and open, until a softening after 12 iterations lowered c_T. This says so after
-// two iterations, so that c_T is lowered then (docs/benchmarks.md "The stick/slip iteration's
-// cycles").
+// two iterations, so that c_T is lowered then (docs/benchmarks.md "The direct solver without
+// scaling, and the stick/slip iteration's cycles").
 #pragma once
 
 #include <limits>
