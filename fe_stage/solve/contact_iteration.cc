@@ -106,9 +106,9 @@ namespace clearjoint::fe::detail
           {
             if (log::level() <= log::Level::debug)
               log::debug("  delta " + format_value(delta) + " m: the stick/slip decisions " +
-                         (cycles ? "cycle" : "have not settled") + " after " +
-                         std::to_string(it) + " iterations; c_T now " +
-                         format_value(contact_.tangential_scale()) + " c");
+                         (cycles ? "cycle" : "have not settled") + " after " + std::to_string(it) +
+                         " iterations; c_T now " + format_value(contact_.tangential_scale()) +
+                         " c");
             progress.restart();
           }
         build_contact_constraints(delta);

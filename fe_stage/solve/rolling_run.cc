@@ -290,15 +290,15 @@ namespace clearjoint::fe::detail
     /// The progress line of a converged step, with the time left [s] at this step's pace.
     void log_step(const RollingStepRecord &rec, const double seconds_left)
     {
-      log::info("fe_stage: step " + std::to_string(rec.step) + " t " + format_value(rec.time) +
-                " s, delta " + format_value(rec.delta) + " m, F " + format_value(rec.force_normal) +
-                " N, spin " + format_value(rec.gamma_rate) + " rad/s (slip " +
-                format_value(rec.slip_speed) + " m/s), eps_p max " +
-                format_value(rec.max_plastic_strain) + ", D_p " +
-                format_value(rec.plastic_dissipation) + " J, " + std::to_string(rec.spin_iterations) +
-                " spin / " + std::to_string(rec.contact_iterations) + " contact iterations" +
-                (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") + ", ETA " +
-                log::format_duration(seconds_left));
+      log::info(
+        "fe_stage: step " + std::to_string(rec.step) + " t " + format_value(rec.time) +
+        " s, delta " + format_value(rec.delta) + " m, F " + format_value(rec.force_normal) +
+        " N, spin " + format_value(rec.gamma_rate) + " rad/s (slip " +
+        format_value(rec.slip_speed) + " m/s), eps_p max " + format_value(rec.max_plastic_strain) +
+        ", D_p " + format_value(rec.plastic_dissipation) + " J, " +
+        std::to_string(rec.spin_iterations) + " spin / " + std::to_string(rec.contact_iterations) +
+        " contact iterations" + (rec.cuts ? ", " + std::to_string(rec.cuts) + " cuts" : "") +
+        ", ETA " + log::format_duration(seconds_left));
     }
 
     /// The run's summary from its steps: the slip stages (rolling::slip_stages on the slip

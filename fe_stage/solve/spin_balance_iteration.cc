@@ -1,3 +1,4 @@
+// The spin's Newton iteration on the journal's torque balance (solve/spin_balance_iteration.h).
 #include "fe_stage/solve/spin_balance_iteration.h"
 
 #include <algorithm>
@@ -20,8 +21,8 @@ namespace clearjoint::fe
     return own_slope_;
   }
 
-  void SpinBalanceIteration::take_secant(const double rate, const double g,
-                                         const double correction, const double tolerance)
+  void SpinBalanceIteration::take_secant(const double rate, const double g, const double correction,
+                                         const double tolerance)
   {
     if (!have_previous_ || rate == rate_before_)
       return;
