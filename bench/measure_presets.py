@@ -237,21 +237,25 @@ def sweep_cases(study, entry, pipeline):
     if entry.get("kind") != "fe_sweep":
         raise MeasureError(f"{key}.reference.recorded: only for kind fe_sweep, not '{entry.get('kind')}'")
     if len(ref) != 1:
-        raise MeasureError(f"{key}.reference: 'recorded' alone, not with {', '.join(k for k in ref if k != 'recorded')}")
+        others = ", ".join(k for k in ref if k != "recorded")
+        raise MeasureError(f"{key}.reference: 'recorded' alone, not with {others}")
     rec = ref["recorded"]
     if not isinstance(rec, dict):
         raise MeasureError(f"{key}.reference.recorded: a mapping with keys {', '.join(RECORDED_KEYS)}")
     for k in rec:
         if k not in RECORDED_KEYS:
-            raise MeasureError(f"{key}.reference.recorded.{k}: unknown key (allowed: {', '.join(RECORDED_KEYS)})")
+            raise MeasureError(f"{key}.reference.recorded.{k}: unknown key "
+                               f"(allowed: {', '.join(RECORDED_KEYS)})")
     for k in ("file", "journal", "sequences"):
         if k not in rec:
             raise MeasureError(f"{key}.reference.recorded.{k}: missing")
     if rec["journal"] not in JOURNALS:
         raise MeasureError(f"{key}.reference.recorded.journal: '{rec['journal']}' (allowed: "
                            f"{', '.join(JOURNALS)}, the runs' loading.journal)")
-    if "mu" in rec and not (isinstance(rec["mu"], (int, float)) and rec["mu"] >= 0):
-        raise MeasureError(f"{key}.reference.recorded.mu: '{rec['mu']}' (a number >= 0, the runs' contact.mu)")
+    if "mu" in rec and (isinstance(rec["mu"], bool) or not isinstance(rec["mu"], (int, float))
+                        or not rec["mu"] >= 0):
+        raise MeasureError(f"{key}.reference.recorded.mu: '{rec['mu']}' (a number >= 0, the runs' "
+                           f"contact.mu)")
     if not isinstance(rec["sequences"], dict) or not rec["sequences"]:
         raise MeasureError(f"{key}.reference.recorded.sequences: a mapping of sweep value to "
                            f"sequence name, not '{rec['sequences']}'")
