@@ -26,6 +26,14 @@ preset sets — uniform levels, adaptive cycles, a target error — is what gets
   written out with the values, the order p and the date. Reference runs are reused from --work
   when their inputs are unchanged (run_pipeline's reuse), so a second preset costs only its own
   run. A reference that does not converge (not monotone) gives percent: null and says why;
+  or, for an FE sweep (reference: recorded), the largest error over the sweep, the figure a
+  preset quotes: the preset's own run at every sweep value the plan's `values` asks for (all,
+  or a list) against that value's reference interval [F_low, F_high], recorded in a file of
+  adaptive sequences (tests/data/fe/adaptive_sequences.txt; the plan names each value's
+  sequence) — the upper figure against the far end, the lower against the near end (0 inside
+  it) — its `where` listing each value's range and naming the values with no sequence (not
+  run), the file, the journal and mu of the runs (checked against the plan's), the date and
+  this command. `value` stays the case whose time and DoFs are written;
 - machine (CPU model, cores), date and the load average before and after, in the block.
 
 Only the asked presets' blocks change, and in them only the figures measured (the rest is kept
@@ -48,6 +56,7 @@ import json
 import math
 import os
 import resource
+import shlex
 import subprocess
 import sys
 import time
@@ -132,6 +141,166 @@ def fe_sweeps(pipeline):
     return pipeline.get("fe_sweeps") or pipeline.get("fe_studies") or []
 
 
+# --- recorded references: an interval per sweep value, from a file of adaptive sequences -----
+
+RECORDED_KEYS = ("file", "journal", "mu", "sequences")
+# fe_stage's loading.journal values; a sequence's `journal` line says rigid or deformable only
+JOURNALS = ("rigid", "end_faces", "axis_line", "core")
+SEQUENCE_KEYS = ("sequence", "journal", "source", "reference", "checked", "mesh", "end")
+
+
+def read_sequences(path):
+    """The blocks of a file of adaptive sequences (tests/data/fe/adaptive_sequences.txt; its
+    header gives the format): name → {name, line, journal, reference: (F_low, F_high), ...}.
+    Strict: the figures quoted come from here, so a malformed line is an error naming the file
+    and the line, not a block skipped."""
+    seqs, cur = {}, None
+    with open(path) as f:
+        for number, raw in enumerate(f, 1):
+            line = raw.strip()
+            if not line or line.startswith("#"):
+                continue
+            key, _, rest = line.partition(" ")
+            rest = rest.strip()
+            at = f"{path}:{number}"
+            if key not in SEQUENCE_KEYS:
+                raise MeasureError(f"{at}: unknown key '{key}' (allowed: {', '.join(SEQUENCE_KEYS)})")
+            if key == "sequence":
+                if cur is not None:
+                    raise MeasureError(f"{at}: 'sequence' before the 'end' of '{cur['name']}' "
+                                       f"(line {cur['line']})")
+                if not rest:
+                    raise MeasureError(f"{at}: 'sequence' without a name")
+                cur = {"name": rest, "line": number}
+                continue
+            if cur is None:
+                raise MeasureError(f"{at}: '{key}' outside a sequence block")
+            if key == "end":
+                if "reference" not in cur:
+                    raise MeasureError(f"{path}: sequence '{cur['name']}' (line {cur['line']}) "
+                                       f"has no 'reference F_low F_high' line")
+                if cur["name"] in seqs:
+                    raise MeasureError(f"{path}: sequence '{cur['name']}' (line {cur['line']}) "
+                                       f"twice (first at line {seqs[cur['name']]['line']})")
+                seqs[cur["name"]] = cur
+                cur = None
+            elif key == "reference":
+                try:
+                    lo, hi = (float(x) for x in rest.split())
+                except ValueError:
+                    raise MeasureError(f"{at}: 'reference {rest}': expected two numbers, F_low F_high [N]")
+                if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
+                    raise MeasureError(f"{at}: 'reference {rest}': expected 0 < F_low <= F_high [N]")
+                cur["reference"] = (lo, hi)
+            elif key == "journal":
+                if rest not in ("rigid", "deformable"):
+                    raise MeasureError(f"{at}: journal '{rest}' (allowed: rigid, deformable)")
+                cur["journal"] = rest
+            else:  # source, checked, mesh: not read here
+                cur.setdefault(key, []).append(rest)
+    if cur is not None:
+        raise MeasureError(f"{path}: sequence '{cur['name']}' (line {cur['line']}) has no 'end'")
+    return seqs
+
+
+def same_value(a, b):
+    """Sweep values as the plan and the pipeline write them: numbers to round-off (a YAML key
+    0.010 is the pipeline's 0.01), names (theta_max) exactly."""
+    number = lambda x: isinstance(x, (int, float)) and not isinstance(x, bool)  # noqa: E731
+    if number(a) and number(b):
+        return abs(a - b) <= 1e-9 * max(1.0, abs(a), abs(b))
+    return a == b
+
+
+def value_text(v, unit, resolved=None):
+    """A sweep value as the docs write it: t_B in mm; a name with what it resolved to."""
+    if isinstance(v, str):
+        return v + (f" ({resolved:.6g} {unit})" if isinstance(resolved, (int, float)) else "")
+    if unit == "m":
+        return f"{v * 1e3:g} mm"
+    return f"{v:g} {unit}"
+
+
+def sweep_cases(study, entry, pipeline):
+    """For an fe_sweep study whose reference is `recorded`: (recorded block, path of its file,
+    [(sweep value, its sequence or None)]) over the values the study's `values` asks for. For
+    any other study: None, after checking that it has no `values` (they need a recorded
+    reference). Read before any run, so that a bad plan costs no run; every error names the
+    plan's key and what it allows."""
+    key = f"studies.{study}"
+    ref = entry.get("reference") or {}
+    if "recorded" not in ref:
+        if "values" in entry:
+            raise MeasureError(f"{key}.values: only with reference.recorded (the other references "
+                               f"measure the error at the study's one `value`)")
+        return None
+    if entry.get("kind") != "fe_sweep":
+        raise MeasureError(f"{key}.reference.recorded: only for kind fe_sweep, not '{entry.get('kind')}'")
+    if len(ref) != 1:
+        others = ", ".join(k for k in ref if k != "recorded")
+        raise MeasureError(f"{key}.reference: 'recorded' alone, not with {others}")
+    rec = ref["recorded"]
+    if not isinstance(rec, dict):
+        raise MeasureError(f"{key}.reference.recorded: a mapping with keys {', '.join(RECORDED_KEYS)}")
+    for k in rec:
+        if k not in RECORDED_KEYS:
+            raise MeasureError(f"{key}.reference.recorded.{k}: unknown key "
+                               f"(allowed: {', '.join(RECORDED_KEYS)})")
+    for k in ("file", "journal", "sequences"):
+        if k not in rec:
+            raise MeasureError(f"{key}.reference.recorded.{k}: missing")
+    if rec["journal"] not in JOURNALS:
+        raise MeasureError(f"{key}.reference.recorded.journal: '{rec['journal']}' (allowed: "
+                           f"{', '.join(JOURNALS)}, the runs' loading.journal)")
+    if "mu" in rec and (isinstance(rec["mu"], bool) or not isinstance(rec["mu"], (int, float))
+                        or not rec["mu"] >= 0):
+        raise MeasureError(f"{key}.reference.recorded.mu: '{rec['mu']}' (a number >= 0, the runs' "
+                           f"contact.mu)")
+    if not isinstance(rec["sequences"], dict) or not rec["sequences"]:
+        raise MeasureError(f"{key}.reference.recorded.sequences: a mapping of sweep value to "
+                           f"sequence name, not '{rec['sequences']}'")
+    path = rec["file"] if os.path.isabs(str(rec["file"])) else os.path.join(ROOT, str(rec["file"]))
+    try:
+        seqs = read_sequences(path)
+    except OSError as e:
+        raise MeasureError(f"{key}.reference.recorded.file: cannot read '{rec['file']}' ({e.strerror})")
+    matching = [s for s in fe_sweeps(pipeline) if s["name"] == study]
+    if not matching:
+        raise MeasureError(f"{key}: the pipeline has no FE sweep '{study}'")
+    swept = list(matching[0].get("values") or [])
+    allowed = ", ".join(str(v) for v in swept)
+    values = entry.get("values", [entry.get("value")])
+    if values == "all":
+        values = swept
+    elif not isinstance(values, list) or not values:
+        raise MeasureError(f"{key}.values: '{values}' (allowed: all, or a list of the sweep's "
+                           f"values: {allowed})")
+    for v in values:
+        if not any(same_value(v, s) for s in swept):
+            raise MeasureError(f"{key}.values: {v} is not a value of the pipeline's sweep ({allowed})")
+    want = "rigid" if rec["journal"] == "rigid" else "deformable"
+    named = []
+    for v, name in rec["sequences"].items():
+        at = f"{key}.reference.recorded.sequences.{v}"
+        # a value the sweep does not have is a stale or mistyped key (a quoted "1.0" is no 1.0):
+        # left alone, it would turn a measured value into "no reference" without a word
+        if not any(same_value(v, s) for s in swept):
+            raise MeasureError(f"{at}: {v} is not a value of the pipeline's sweep ({allowed})")
+        if name not in seqs:
+            raise MeasureError(f"{at}: '{name}' is no sequence of {rec['file']} (its sequences: "
+                               + "; ".join(f"'{n}'" for n in seqs) + ")")
+        journal = seqs[name].get("journal")
+        if journal != want:
+            raise MeasureError(f"{at}: '{name}' is a sequence of a {journal or 'unstated'} journal; "
+                               f"reference.recorded.journal {rec['journal']} is a {want} one")
+        named.append((v, seqs[name]))
+    cases = []
+    for v in values:
+        seq = next((s for k, s in named if same_value(k, v)), None)
+        cases.append((v, seq))
+    return rec, path, cases
+
+
 class Measurer:
     def __init__(self, args, pipeline, plan):
         self.args, self.pipeline, self.plan = args, pipeline, plan
@@ -157,6 +326,8 @@ class Measurer:
     @staticmethod
     def describe(spec):
         s = spec["preset"]
+        if "value" in spec:  # a sweep value other than the study's `value` (recorded references)
+            s += f" at {spec['value']}"
         if spec.get("set"):
             s += " with " + ", ".join(f"{k} = {json.dumps(v)}" for k, v in spec["set"].items())
         return s
@@ -176,7 +347,8 @@ class Measurer:
             if not matching:
                 raise MeasureError(f"the pipeline has no FE sweep '{study}'")
             s = json.loads(json.dumps(matching[0]))
-            s["values"] = [entry["value"]]
+            # one case: the study's `value`, or another sweep value a recorded reference asks for
+            s["values"] = [spec.get("value", entry["value"])]
             s["overrides"] = {**(s.get("overrides") or {}), **extra}
             # a sweep's own preset settings come after its overrides: `set` must win there too
             for name, own in (s.get("presets") or {}).items():
@@ -267,7 +439,8 @@ class Measurer:
             result = {"seconds": cpu if self.args.cpu_time else t["wall_time"]["value"],
                       "wall": t["wall_time"]["value"], "cpu": cpu, "outcome": t["outcome"],
                       "value": self.quantity(study, t["output_dir"]),
-                      "dofs": self.dofs(t["output_dir"]), "name": name}
+                      "dofs": self.dofs(t["output_dir"]), "name": name,
+                      "out": t["output_dir"]}
         except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
             raise MeasureError(f"{name}: cannot read the result in {t['output_dir']}: {e!r}")
         print(f"        {t['outcome']} in {result['wall']:.1f} s (run_pipeline's CPU {cpu:.1f} s): "
@@ -372,6 +545,77 @@ class Measurer:
         return significant(total), (f"{what}, {case}preset {preset}: " + " plus ".join(texts) +
                                     f"; bench/measure_presets.py, {self.date}")
 
+    def recorded_error(self, study, preset, own):
+        """(percent, where): the largest error over the sweep values with a recorded reference
+        interval [F_low, F_high] (plan: reference.recorded), each the preset's own run at that
+        value against the interval — the upper figure against the far end, the lower against
+        the near end (0 inside it) — as the figure quoted is the largest over the sweep."""
+        entry = self.plan["studies"][study]
+        rec, _, cases = sweep_cases(study, entry, self.pipeline)
+        sweep = [x for x in fe_sweeps(self.pipeline) if x["name"] == study][0]
+        pname, punit = sweep["parameter"]["name"], sweep["parameter"]["unit"]
+        what, unit = QUANTITY_TEXT[entry["quantity"]]
+        rows, missing, scenes = [], [], []
+        for v, seq in cases:
+            if seq is None:
+                missing.append(value_text(v, punit))
+                continue
+            r = own if same_value(v, entry["value"]) else \
+                self.run(study, {"preset": preset, "set": {}, "value": v}, False)
+            scene = self.run_scene(study, r, rec)
+            scenes.append(scene)
+            resolved = scene
+            for k in str(sweep["parameter"].get("key", "")).split("."):  # e.g. theta_max's degrees
+                resolved = resolved.get(k) if isinstance(resolved, dict) else None
+            q, (lo, hi) = r["value"], seq["reference"]
+            e_lo, e_hi = 100.0 * abs(q - lo) / abs(lo), 100.0 * abs(q - hi) / abs(hi)
+            lower = 0.0 if lo <= q <= hi else min(e_lo, e_hi)
+            rows.append({"text": value_text(v, punit, resolved), "short": value_text(v, punit),
+                         "q": q, "lo": lo, "hi": hi,
+                         "lower": lower, "upper": max(e_lo, e_hi), "name": seq["name"]})
+        if not rows:
+            raise MeasureError(f"studies.{study}: none of the values measured has a sequence in "
+                               f"reference.recorded.sequences")
+        worst = max(rows, key=lambda x: x["upper"])
+        journal = scenes[0].get("loading", {}).get("journal")
+        mu = scenes[0].get("contact", {}).get("mu")
+        text = (f"{what}, preset {preset}, the largest over {pname} (at {worst['short']}): "
+                + ", ".join(f"{significant(x['lower']) or 0}-{significant(x['upper'])} % at {x['text']} "
+                            f"({x['q']:.6g} {unit})" for x in rows)
+                + (f"; {pname} = {', '.join(missing)}: no reference (not measured)" if missing else "")
+                + f"; against each value's reference interval [F_low, F_high] in {rec['file']} "
+                  f"(the lower figure against its near end, 0 inside it; the upper, the one quoted, "
+                  f"against its far end): "
+                + "; ".join(f"{x['short']} [{x['lo']:.6g}, {x['hi']:.6g}] {unit} \"{x['name']}\""
+                            for x in rows)
+                + f"; the preset's own run at each value, loading.journal {journal}, contact.mu {mu}; "
+                  f"{self.command}, {self.date}")
+        if worst["upper"] >= 100.0:
+            return None, f"{worst['upper']:.3g} % — 100 % or more is no estimate; " + text
+        return significant(worst["upper"]), text
+
+    def run_scene(self, study, result, rec):
+        """The scene a run used (its manifest's extra.scene), checked against the journal and
+        mu the recorded sequences were run with: another journal's interval is another
+        quantity's (the end-face-loaded journal's F is not the core-loaded one's)."""
+        try:
+            with open(os.path.join(result["out"], "manifest.json")) as f:
+                scene = json.load(f)["extra"]["scene"]
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            raise MeasureError(f"{result['name']}: no extra.scene in its manifest ({e!r}): cannot "
+                               f"check its journal against reference.recorded.journal")
+        journal = (scene.get("loading") or {}).get("journal")
+        if journal != rec["journal"]:
+            raise MeasureError(f"studies.{study}.reference.recorded.journal is {rec['journal']}, but "
+                               f"the run {result['name']} loaded its journal by '{journal}' (its "
+                               f"manifest's extra.scene.loading.journal): the recorded sequences "
+                               f"are of another journal")
+        mu = (scene.get("contact") or {}).get("mu")
+        if "mu" in rec and not (isinstance(mu, (int, float)) and same_value(float(mu), float(rec["mu"]))):
+            raise MeasureError(f"studies.{study}.reference.recorded.mu is {rec['mu']}, but the run "
+                               f"{result['name']} has contact.mu {mu} (its manifest's extra.scene)")
+        return scene
+
     def measure(self, preset, study, block, wrote):
         entry = self.plan["studies"][study]
         print(f"{preset} / {study}", flush=True)
@@ -387,7 +631,10 @@ class Measurer:
             set_key(block, entry["dofs_key"], own["dofs"])
             wrote.append(entry["dofs_key"])
         if not self.args.times_only:
-            percent, where = self.error(study, preset, own["value"])
+            if "recorded" in (entry.get("reference") or {}):
+                percent, where = self.recorded_error(study, preset, own)
+            else:
+                percent, where = self.error(study, preset, own["value"])
             block.setdefault("error_F_max", {})[study] = {"percent": percent, "where": where}
             wrote.append("error_F_max." + study)
 
@@ -625,8 +872,17 @@ def main(argv=None):
                    and "deformable" in (pipeline.get("impact") or {}))
                or (plan["studies"][s]["kind"] != "fe_sweep" and plan["studies"][s]["kind"] in pipeline)]
 
+    for s in studies:  # a recorded reference's plan, checked before any run
+        try:
+            sweep_cases(s, plan["studies"][s], pipeline)
+        except MeasureError as e:
+            raise SystemExit(f"measure_presets: {plan_path}: {e}")
+
     m = Measurer(args, pipeline, plan)
     m.studies = studies
+    # the command, as a recorded error's `where` quotes it (how to measure it again)
+    m.command = " ".join(["bench/measure_presets.py"] + [shlex.quote(a) for a in
+                                                         (sys.argv[1:] if argv is None else argv)])
     now = datetime.datetime.now(datetime.timezone.utc)
     m.date = now.strftime("%Y-%m-%d %H:%M UTC")
     where_machine = machine()
