@@ -322,6 +322,103 @@ namespace clearjoint::fe::detail
             work_in > 0.0 ? std::abs(last.energy_balance_error) / work_in : 0.0;
         }
     }
+
+    /// Closes each converged step into its record: what it reads, and the ledgers it carries
+    /// from step to step (the bearing frame's work, the energy balance).
+    struct StepCloser
+    {
+      const RollingRun::Parts &parts;
+      StudyModel &model;
+      const rolling::Motion &motion;
+      const PaperNodes &paper;
+      const double inertia;
+      FrameWork frame_work;
+      RollingBalance ledger;
+
+      /// Step `step` (0-based) as `solved` left it: friction's slip work, the contact forces
+      /// (frame → fixed), the torques, the energies and the paper's angles; the material and
+      /// the contact's reference state committed. Before stepper.accept(solved).
+      RollingStepRecord close(const unsigned int step, const SpinStepper &stepper,
+                              const SpinStepper::Step &solved, const RollingStepRecord *previous)
+      {
+        const auto &R = parts.scene.rolling;
+        const auto &G = parts.scene.geometry;
+        const double t = stepper.time(), dt = solved.dt, rate_new = solved.rate;
+        const double t1 = t + dt;
+        const double gamma = stepper.gamma();
+        const RollingSolve &rs = solved.state;
+        // the converged step: friction's slip work, the contact forces (frame → fixed), the
+        // torques; then commit the material and the contact's reference state
+        const ContactStep cs =
+          close_contact_step(parts.contact, parts.state.u(), parts.bodies.symmetry_factor(),
+                             frame_work, parts.comm);
+        const auto on_journal =
+          rolling::rotate_z({-cs.force_frame[0], -cs.force_frame[1], 0.0}, motion.phi(t1));
+        const Vec3 u_tracked =
+          tracked_displacement(paper.bore, paper.bore_dofs, parts.state.u(), parts.comm);
+        // in the journal's frame (0: rigid)
+        const Vec3 u_journal =
+          tracked_displacement(paper.journal, paper.journal_dofs, parts.state.u(), parts.comm);
+        parts.frame.psi_converged += parts.frame.delta_psi;
+        parts.frame.delta_psi = 0.0;
+        const PlasticEnergies pe = model.commit_plasticity();
+
+        RollingStepRecord rec;
+        rec.step = step + 1;
+        rec.time = t1;
+        rec.delta = motion.delta(t1);
+        // (+ 0.0: a step without contact sums no force, and −0 would be written "-0")
+        rec.force_normal = parts.bodies.symmetry_factor() * on_journal[1] + 0.0;
+        rec.force_tangential = parts.bodies.symmetry_factor() * on_journal[0] + 0.0;
+        rec.phi = motion.phi(t1);
+        rec.phi_rate = R.omega_B;
+        rec.gamma_rate = rate_new;
+        rec.gamma = gamma + rate_new * dt;
+        rec.slip_speed = motion.slip_speed(t1, rate_new);
+        double r_bearing = 0.0, r_journal = 0.0;  // ω_B r_B − γ̇ r_J where both give way
+        if (model.journal_turns_deformable() &&
+            contact_radii(parts.contact, parts.state.u(), parts.frame.centre, r_bearing, r_journal,
+                          parts.comm))
+          rec.slip_speed = R.omega_B * r_bearing - rate_new * r_journal;
+        rec.torque_journal = rs.torque_journal;
+        rec.torque_drive = -cs.torque_bearing;
+        ledger.close_step(rec, motion.phi(t), motion.delta(t), pe.plastic_work_step,
+                          pe.bearing_plastic_work_step, pe.elastic_energy,
+                          pe.bearing_elastic_energy, cs.friction_work, frame_work.work,
+                          0.5 * inertia * rate_new * rate_new);
+        rec.max_plastic_strain = pe.max_plastic_strain;
+        rec.max_strain = pe.max_strain;
+        rec.plastic_volume = pe.plastic_volume;
+        rec.n_active = Utilities::MPI::sum(cs.n_active, parts.comm);
+        rec.n_slip = Utilities::MPI::sum(cs.n_slip, parts.comm);
+        rec.spin_iterations = solved.spin_evaluations;
+        rec.newton_iterations = solved.newton_iterations;
+        rec.line_search_steps = solved.line_search_steps;
+        rec.contact_iterations = solved.contact_iterations;
+        rec.linear_iterations = solved.linear_iterations;
+        rec.spin_coupled = solved.coupled;
+        rec.cuts = solved.cuts;
+        set_paper_angles(rec, G, motion, u_tracked, u_journal, previous);
+        rec.wall_time = model.elapsed();
+        return rec;
+      }
+    };
+
+    /// Why a run whose journal's spin ran away stops (`rec`: the step where it did).
+    std::string runaway_message(const FeScene &scene, const rolling::Motion &motion,
+                                const RollingStepRecord &first, const RollingStepRecord &rec)
+    {
+      return "the journal's spin ran away: " + format_value(rec.gamma_rate) +
+             " rad/s at t = " + format_value(rec.time) + " s, more than " +
+             format_value(rolling::Motion::runaway_factor) + " times the rolling rate " +
+             format_value(motion.rolling_rate(rec.time)) + " rad/s (it was " +
+             format_value(first.gamma_rate) + " rad/s at t = " + format_value(first.time) +
+             " s); the torque balance on the journal has no root near rolling any more " +
+             "(contact.mu " + format_value(scene.contact.mu) + ", largest plastic strain " +
+             format_value(rec.max_plastic_strain) + ", slip speed " + format_value(rec.slip_speed) +
+             " m/s); a finer mesh (mesh.contact_refinements) " +
+             "or a smaller contact.mu are what to try";
+    }
   }  // namespace
 
   RollingRun::RollingRun(StudyModel &model, const Parts &parts)
@@ -365,8 +462,7 @@ namespace clearjoint::fe::detail
         parts_.fields.write(field_counter++, 0.0);
       }
 
-    FrameWork frame_work;
-    RollingBalance ledger;
+    StepCloser closer{parts_, model_, motion, paper, inertia, {}, {}};
     std::vector<double> times, slips;
     const double wall_steps_start = model_.elapsed();
     unsigned int step = 0;
@@ -377,71 +473,16 @@ namespace clearjoint::fe::detail
         SpinStepper::Step solved;
         if (!stepper.solve(solved, result.message))
           break;
-        const double t = stepper.time(), dt = solved.dt, rate_new = solved.rate;
-        const double gamma = stepper.gamma();
-        const RollingSolve &rs = solved.state;
-
-        // the converged step: friction's slip work, the contact forces (frame → fixed), the
-        // torques; then commit the material and the contact's reference state
-        const double t1 = t + dt;
-        const ContactStep cs =
-          close_contact_step(parts_.contact, parts_.state.u(), parts_.bodies.symmetry_factor(),
-                             frame_work, parts_.comm);
-        const auto on_journal =
-          rolling::rotate_z({-cs.force_frame[0], -cs.force_frame[1], 0.0}, motion.phi(t1));
-        const Vec3 u_tracked =
-          tracked_displacement(paper.bore, paper.bore_dofs, parts_.state.u(), parts_.comm);
-        // in the journal's frame (0: rigid)
-        const Vec3 u_journal =
-          tracked_displacement(paper.journal, paper.journal_dofs, parts_.state.u(), parts_.comm);
-        parts_.frame.psi_converged += parts_.frame.delta_psi;
-        parts_.frame.delta_psi = 0.0;
-        const PlasticEnergies pe = model_.commit_plasticity();
-
-        RollingStepRecord rec;
-        rec.step = step + 1;
-        rec.time = t1;
-        rec.delta = motion.delta(t1);
-        // (+ 0.0: a step without contact sums no force, and −0 would be written "-0")
-        rec.force_normal = parts_.bodies.symmetry_factor() * on_journal[1] + 0.0;
-        rec.force_tangential = parts_.bodies.symmetry_factor() * on_journal[0] + 0.0;
-        rec.phi = motion.phi(t1);
-        rec.phi_rate = R.omega_B;
-        rec.gamma_rate = rate_new;
-        rec.gamma = gamma + rate_new * dt;
-        rec.slip_speed = motion.slip_speed(t1, rate_new);
-        double r_bearing = 0.0, r_journal = 0.0;  // ω_B r_B − γ̇ r_J where both give way
-        if (model_.journal_turns_deformable() &&
-            contact_radii(parts_.contact, parts_.state.u(), parts_.frame.centre, r_bearing,
-                          r_journal, parts_.comm))
-          rec.slip_speed = R.omega_B * r_bearing - rate_new * r_journal;
-        rec.torque_journal = rs.torque_journal;
-        rec.torque_drive = -cs.torque_bearing;
-        ledger.close_step(rec, motion.phi(t), motion.delta(t), pe.plastic_work_step,
-                          pe.bearing_plastic_work_step, pe.elastic_energy,
-                          pe.bearing_elastic_energy, cs.friction_work, frame_work.work,
-                          0.5 * inertia * rate_new * rate_new);
-        rec.max_plastic_strain = pe.max_plastic_strain;
-        rec.max_strain = pe.max_strain;
-        rec.plastic_volume = pe.plastic_volume;
-        rec.n_active = Utilities::MPI::sum(cs.n_active, parts_.comm);
-        rec.n_slip = Utilities::MPI::sum(cs.n_slip, parts_.comm);
-        rec.spin_iterations = solved.spin_evaluations;
-        rec.newton_iterations = solved.newton_iterations;
-        rec.line_search_steps = solved.line_search_steps;
-        rec.contact_iterations = solved.contact_iterations;
-        rec.linear_iterations = solved.linear_iterations;
-        rec.spin_coupled = solved.coupled;
-        rec.cuts = solved.cuts;
-        set_paper_angles(rec, G, motion, u_tracked, u_journal,
-                         result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
-        rec.wall_time = model_.elapsed();
+        const RollingStepRecord rec =
+          closer.close(step, stepper, solved,
+                       result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
+        const double t1 = rec.time;
         stepper.accept(solved);
         times.push_back(t1);
         slips.push_back(rec.slip_speed);
         result.rolling_steps.push_back(rec);
 
-        const IncrementRecord inc = increment_of(rec, rs.record);
+        const IncrementRecord inc = increment_of(rec, solved.state.record);
         result.increments.push_back(inc);
         if (rank_ == 0)
           log_step(rec, (model_.elapsed() - wall_steps_start) / t1 * (t_end - t1));
@@ -452,22 +493,12 @@ namespace clearjoint::fe::detail
         const bool last = t1 >= t_end * (1.0 - 1e-12);
         if (parts_.fields.enabled() && (rec.step % R.field_stride == 0 || last))
           parts_.fields.write(field_counter++, t1);
-        if (motion.spin_ran_away(t1, rate_new))
+        if (motion.spin_ran_away(t1, rec.gamma_rate))
           {
             // the step itself converged (its fields and row are written, to show it); the run
             // stops here rather than follow the spin where no balance near rolling holds it
-            const RollingStepRecord &first = result.rolling_steps.front();
             result.message =
-              "the journal's spin ran away: " + format_value(rate_new) +
-              " rad/s at t = " + format_value(t1) + " s, more than " +
-              format_value(rolling::Motion::runaway_factor) + " times the rolling rate " +
-              format_value(motion.rolling_rate(t1)) + " rad/s (it was " +
-              format_value(first.gamma_rate) + " rad/s at t = " + format_value(first.time) +
-              " s); the torque balance on the journal has no root " +
-              "near rolling any more (contact.mu " + format_value(parts_.scene.contact.mu) +
-              ", largest plastic strain " + format_value(rec.max_plastic_strain) + ", slip speed " +
-              format_value(rec.slip_speed) + " m/s); a finer mesh " +
-              "(mesh.contact_refinements) or a smaller contact.mu are what to try";
+              runaway_message(parts_.scene, motion, result.rolling_steps.front(), rec);
             if (rank_ == 0)
               log::error("fe_stage: " + result.message);
             break;
