@@ -227,7 +227,7 @@ namespace clearjoint::fe::detail
     pattern_.make_matrices();
     state_.reinit(dofs_, comm_);
     solver_.configure(direct_solve(scene_.solver, dofs_.handler().n_dofs()),
-                      scene_.solver.tolerance, scene_.solver.max_linear_iterations);
+                      scene_.solver.max_linear_iterations);
     system_.assemble_static(material_.law().elastic(), massless_dofs(system_.kind()));
     contact_solve_.compute_nodal_weights();
   }

@@ -2,13 +2,13 @@
 // (DirectSolver, solve/direct_solver.h: it keeps its factorization while the matrix repeats), else CG
 // (GMRES where friction makes the operator non-symmetric) preconditioned by ML's AMG on the six
 // rigid-body modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
-// (invalidate()), again when a solve fails with the reused one, and when a solve to the full
-// tolerance takes more than twice the first one's iterations (+10) — reuse only while it stays
-// effective. A Krylov solve that fails even with a fresh AMG is solved by MUMPS where the
+// (invalidate()), again when a solve fails with the reused one, and when the iterations its
+// staleness has cost since its build outweigh a new build (solve/amg_staleness.h). A Krylov solve that fails even with a fresh AMG is solved by MUMPS where the
 // system is small enough.
 #pragma once
 
 #include "fe_stage/core/dim.h"
+#include "fe_stage/solve/amg_staleness.h"
 #include "fe_stage/solve/direct_solver.h"
 
 #include <deal.II/dofs/dof_handler.h>
@@ -28,10 +28,8 @@ namespace clearjoint::fe::detail
   class SystemSolver
   {
   public:
-    /// What it solves with: MUMPS (`direct`), else the Krylov method to `tolerance` × |b| at
-    /// most (the scene's solver.tolerance: the AMG's effectiveness is judged on such solves)
-    /// within `max_iterations`.
-    void configure(bool direct, double tolerance, unsigned int max_iterations);
+    /// What it solves with: MUMPS (`direct`), else the Krylov method within `max_iterations`.
+    void configure(bool direct, unsigned int max_iterations);
     bool direct() const { return direct_; }
 
     /// The operator changed its pattern or the mesh changed: the AMG is built again at the
@@ -50,8 +48,9 @@ namespace clearjoint::fe::detail
                        TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b,
                        double relative_tolerance);
 
-    /// [s] spent building the AMG so far.
+    /// [s] spent building the AMG so far, and how many times it was built.
     double amg_setup_time() const { return t_amg_; }
+    unsigned int n_amg_builds() const { return n_amg_builds_; }
     /// Krylov solves that failed after the AMG was rebuilt and were solved by MUMPS instead.
     unsigned int n_direct_fallbacks() const { return n_direct_fallbacks_; }
     /// The direct solver's numeric factorizations, and its solves that reused the last one.
@@ -63,12 +62,12 @@ namespace clearjoint::fe::detail
                    const Mapping<dim> &mapping);
 
     bool direct_ = false;
-    double tolerance_ = 1e-10;
     unsigned int max_iterations_ = 1000;
     DirectSolver direct_solver_;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
     std::unique_ptr<Epetra_MultiVector> null_space_;  // the AMG reads it: kept alive with it
-    unsigned int amg_reference_iterations_ = 0;
+    AmgStaleness staleness_;                          // when the AMG is worth building again
+    unsigned int n_amg_builds_ = 0;
     double t_amg_ = 0.0;
     unsigned int n_direct_fallbacks_ = 0;
     /// A failed Krylov solve of a system up to this size is solved by MUMPS instead (its fill
