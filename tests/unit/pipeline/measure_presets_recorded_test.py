@@ -25,6 +25,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 import measure_presets  # noqa: E402
+from fake_build import make_fake_build, write_scenes  # noqa: E402
 
 PIPELINE = """schema: clearjoint.pipeline/1
 run: r
@@ -132,18 +133,8 @@ def main():
         except measure_presets.MeasureError as e:
             expect(f"{broken}:3" in str(e) and "F_low F_high" in str(e), f"the bad line named: {e}")
 
-        build = os.path.join(d, "build")
-        fakes = os.path.join(ROOT, "tests", "data", "fake_stages")
-        for link, target in [("fe_stage/fe_stage", os.path.join(fakes, "fake_fe_stage.py")),
-                             ("mbd_stage/mbd_stage", os.path.join(fakes, "fake_mbd_stage.py")),
-                             ("mbd_stage/impact_compare", "/bin/true"),
-                             ("fit_stage/fit_stage", fit_stage),
-                             ("geometry/msh_check", msh_check)]:
-            os.makedirs(os.path.dirname(os.path.join(build, link)), exist_ok=True)
-            os.symlink(target, os.path.join(build, link))
-        for name, scene in SCENES.items():
-            with open(os.path.join(d, name), "w") as f:
-                json.dump(scene, f)
+        build = make_fake_build(d, fit_stage, msh_check)
+        write_scenes(d, SCENES)
         sequences = os.path.join(d, "sequences.txt")
         with open(sequences, "w") as f:
             f.write(SEQUENCES)

@@ -22,6 +22,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 import measure_presets  # noqa: E402
+from fake_build import make_fake_build, write_scenes  # noqa: E402
 
 PIPELINE = """# A test pipeline: comments and layout outside the measured blocks must survive.
 schema: clearjoint.pipeline/1
@@ -160,18 +161,8 @@ def main():
                "the accurate preset's mesh part compares its own run")
         expect(m.run_key("impact", m.spec(of, "standard")) != m.run_key("impact", m.spec(finest, "standard")),
                "the standard preset's mesh part compares two meshes")
-        build = os.path.join(d, "build")
-        fakes = os.path.join(ROOT, "tests", "data", "fake_stages")
-        for link, target in [("fe_stage/fe_stage", os.path.join(fakes, "fake_fe_stage.py")),
-                             ("mbd_stage/mbd_stage", os.path.join(fakes, "fake_mbd_stage.py")),
-                             ("mbd_stage/impact_compare", "/bin/true"),
-                             ("fit_stage/fit_stage", fit_stage),
-                             ("geometry/msh_check", msh_check)]:
-            os.makedirs(os.path.dirname(os.path.join(build, link)), exist_ok=True)
-            os.symlink(target, os.path.join(build, link))
-        for name, scene in SCENES.items():
-            with open(os.path.join(d, name), "w") as f:
-                json.dump(scene, f)
+        build = make_fake_build(d, fit_stage, msh_check)
+        write_scenes(d, SCENES)
         shutil.copy(os.path.join(ROOT, "laws", "paper_tB4.json"), os.path.join(d, "law.json"))
         p = os.path.join(d, "p.yaml")
         with open(p, "w") as f:
