@@ -43,7 +43,7 @@ namespace clearjoint::fe::detail
     // every connection strong: coarser aggregates, a cheaper setup and V-cycle than 0.02 for
     // the more iterations they take (t_B = 8 mm, standard: 3 557 iterations against 3 291,
     // 230 s against 257 s of CPU; 1.5 GB against 1.8 GB), and with rebuilds when stale the
-    // cheaper setup is what pays (159 s against 187 s; docs/benchmarks.md "The AMG rebuilt
+    // cheaper setup is what pays (156 s against 187 s; docs/benchmarks.md "The AMG rebuilt
     // when stale")
     data.aggregation_threshold = 0.0;
     data.n_cycles = 1;

@@ -3,8 +3,8 @@
 // (GMRES where friction makes the operator non-symmetric) preconditioned by ML's AMG on the six
 // rigid-body modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
 // (invalidate()), again when a solve fails with the reused one, and when the iterations its
-// staleness has cost since its build outweigh a new build (solve/amg_staleness.h). A Krylov solve that fails even with a fresh AMG is solved by MUMPS where the
-// system is small enough.
+// staleness has cost since its build outweigh a new build (solve/amg_staleness.h). A Krylov
+// solve that fails even with a fresh AMG is solved by MUMPS where the system is small enough.
 #pragma once
 
 #include "fe_stage/core/dim.h"

@@ -347,8 +347,6 @@ namespace clearjoint::fe::detail
         const double t1 = t + dt;
         const double gamma = stepper.gamma();
         const RollingSolve &rs = solved.state;
-        // the converged step: friction's slip work, the contact forces (frame → fixed), the
-        // torques; then commit the material and the contact's reference state
         const ContactStep cs =
           close_contact_step(parts.contact, parts.state.u(), parts.bodies.symmetry_factor(),
                              frame_work, parts.comm);
