@@ -23,34 +23,10 @@ import os
 import statistics
 
 from adaptive_reference import three_mesh_rate  # (bench/ is this script's own folder)
+from adaptive_sequences import read_sequences
 
 P_OVER_D = 2.0 / 3.0  # Q2 elements in 3D: fe_stage's default
 FIT_CHANGES = 4  # adaptive_fit_changes
-
-
-def read_sequences(path):
-    seqs, cur = [], None
-    with open(path) as f:
-        for line in f:
-            line = line.strip()
-            if not line or line.startswith("#"):
-                continue
-            key, _, rest = line.partition(" ")
-            if key == "sequence":
-                cur = {"name": rest, "N": [], "F": []}
-            elif key == "end":
-                seqs.append(cur)
-            elif key == "mesh":
-                n, F = rest.split()
-                cur["N"].append(float(n))
-                cur["F"].append(float(F))
-            elif key == "reference":
-                cur["ref"] = tuple(float(x) for x in rest.split())
-            elif key == "checked":
-                cur["checked"] = int(rest)
-            else:
-                cur[key] = rest
-    return seqs
 
 
 def fitted_rate(N, F, first, k):
@@ -119,7 +95,7 @@ def references(seqs):
         for i in (0, 1):
             if i + 4 < len(F):
                 line += "; {}-{}-{} {:.1f} N (q = {:.3g})".format(i, i + 2, i + 4, *richardson3(N, F, i, i + 2, i + 4))
-        print(line + f"; the data file's interval {s['ref'][0]:.1f}-{s['ref'][1]:.1f} N")
+        print(line + f"; the data file's interval {s['reference'][0]:.1f}-{s['reference'][1]:.1f} N")
 
 
 def table(seqs):
@@ -127,7 +103,7 @@ def table(seqs):
     print("|---|---|---|---|---|---|---|---|")
     ratios = {"before": [], "after": []}
     for s in seqs:
-        lo, hi = s["ref"]
+        lo, hi = s["reference"]
         # a sequence the test does not check (its reference is doubtful) is listed, every
         # prefix, but left out of the summary
         checked = s["checked"] > 0
@@ -161,7 +137,7 @@ def main():
     ap.add_argument("--data", default=os.path.join(here, "..", "tests", "data", "fe", "adaptive_sequences.txt"))
     ap.add_argument("--references", action="store_true")
     a = ap.parse_args()
-    seqs = read_sequences(a.data)
+    seqs = list(read_sequences(a.data).values())  # in the file's order
     if a.references:
         references(seqs)
     else:

@@ -63,6 +63,8 @@ import time
 
 import yaml
 
+import adaptive_sequences  # (bench/ is this script's own folder)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRESETS = ["fast", "standard", "accurate"]
 QUANTITY_TEXT = {"force_at_delta_max": ("F(δ_max)", "N"), "peak_force": ("peak force", "N"),
@@ -146,61 +148,13 @@ def fe_sweeps(pipeline):
 RECORDED_KEYS = ("file", "journal", "mu", "sequences")
 # fe_stage's loading.journal values; a sequence's `journal` line says rigid or deformable only
 JOURNALS = ("rigid", "end_faces", "axis_line", "core")
-SEQUENCE_KEYS = ("sequence", "journal", "source", "reference", "checked", "mesh", "end")
-
-
 def read_sequences(path):
-    """The blocks of a file of adaptive sequences (tests/data/fe/adaptive_sequences.txt; its
-    header gives the format): name → {name, line, journal, reference: (F_low, F_high), ...}.
-    Strict: the figures quoted come from here, so a malformed line is an error naming the file
-    and the line, not a block skipped."""
-    seqs, cur = {}, None
-    with open(path) as f:
-        for number, raw in enumerate(f, 1):
-            line = raw.strip()
-            if not line or line.startswith("#"):
-                continue
-            key, _, rest = line.partition(" ")
-            rest = rest.strip()
-            at = f"{path}:{number}"
-            if key not in SEQUENCE_KEYS:
-                raise MeasureError(f"{at}: unknown key '{key}' (allowed: {', '.join(SEQUENCE_KEYS)})")
-            if key == "sequence":
-                if cur is not None:
-                    raise MeasureError(f"{at}: 'sequence' before the 'end' of '{cur['name']}' "
-                                       f"(line {cur['line']})")
-                if not rest:
-                    raise MeasureError(f"{at}: 'sequence' without a name")
-                cur = {"name": rest, "line": number}
-                continue
-            if cur is None:
-                raise MeasureError(f"{at}: '{key}' outside a sequence block")
-            if key == "end":
-                if "reference" not in cur:
-                    raise MeasureError(f"{path}: sequence '{cur['name']}' (line {cur['line']}) "
-                                       f"has no 'reference F_low F_high' line")
-                if cur["name"] in seqs:
-                    raise MeasureError(f"{path}: sequence '{cur['name']}' (line {cur['line']}) "
-                                       f"twice (first at line {seqs[cur['name']]['line']})")
-                seqs[cur["name"]] = cur
-                cur = None
-            elif key == "reference":
-                try:
-                    lo, hi = (float(x) for x in rest.split())
-                except ValueError:
-                    raise MeasureError(f"{at}: 'reference {rest}': expected two numbers, F_low F_high [N]")
-                if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
-                    raise MeasureError(f"{at}: 'reference {rest}': expected 0 < F_low <= F_high [N]")
-                cur["reference"] = (lo, hi)
-            elif key == "journal":
-                if rest not in ("rigid", "deformable"):
-                    raise MeasureError(f"{at}: journal '{rest}' (allowed: rigid, deformable)")
-                cur["journal"] = rest
-            else:  # source, checked, mesh: not read here
-                cur.setdefault(key, []).append(rest)
-    if cur is not None:
-        raise MeasureError(f"{path}: sequence '{cur['name']}' (line {cur['line']}) has no 'end'")
-    return seqs
+    """tests/data/fe/adaptive_sequences.txt's blocks (bench/adaptive_sequences.py), its errors
+    as this command's."""
+    try:
+        return adaptive_sequences.read_sequences(path)
+    except adaptive_sequences.SequenceFileError as e:
+        raise MeasureError(str(e))
 
 
 def same_value(a, b):
