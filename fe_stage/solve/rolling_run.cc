@@ -303,9 +303,14 @@ namespace clearjoint::fe::detail
 
     /// The run's summary from its steps: the slip stages (rolling::slip_stages on the slip
     /// speed's history), the largest strains and the balance's error at the end.
-    void summarise(RollingSummary &S, const std::vector<double> &times,
-                   const std::vector<double> &slips, const std::vector<RollingStepRecord> &steps)
+    void summarise(RollingSummary &S, const std::vector<RollingStepRecord> &steps)
     {
+      std::vector<double> times, slips;
+      for (const auto &rec : steps)
+        {
+          times.push_back(rec.time);
+          slips.push_back(rec.slip_speed);
+        }
       const auto stages = rolling::slip_stages(times, slips);
       S.stages_found = stages.found;
       S.slip_speed_max = stages.v_max;
@@ -461,7 +466,6 @@ namespace clearjoint::fe::detail
       }
 
     StepCloser closer{parts_, model_, motion, paper, inertia, {}, {}};
-    std::vector<double> times, slips;
     const double wall_steps_start = model_.elapsed();
     unsigned int step = 0;
     SpinStepper stepper = model_.spin_stepper(motion, t_end, R.n_steps, L.max_cuts, inertia);
@@ -476,8 +480,6 @@ namespace clearjoint::fe::detail
                        result.rolling_steps.empty() ? nullptr : &result.rolling_steps.back());
         const double t1 = rec.time;
         stepper.accept(solved);
-        times.push_back(t1);
-        slips.push_back(rec.slip_speed);
         result.rolling_steps.push_back(rec);
 
         const IncrementRecord inc = increment_of(rec, solved.state.record);
@@ -505,7 +507,7 @@ namespace clearjoint::fe::detail
     if (result.message.empty() && stepper.time() < t_end * (1.0 - 1e-12))
       result.message = "the step limit (" + std::to_string(max_steps) +
                        ") was reached at t = " + format_value(stepper.time()) + " s";
-    finish(result, stepper, motion, times, slips);
+    finish(result, stepper, motion);
     return result;
   }
 
@@ -527,15 +529,14 @@ namespace clearjoint::fe::detail
   /// The end state (the strains across the contact zone), the slip stages, the solver's
   /// summary; the result closed.
   void RollingRun::finish(RunResult &result, const SpinStepper &stepper,
-                          const rolling::Motion &motion, const std::vector<double> &times,
-                          const std::vector<double> &slips)
+                          const rolling::Motion &motion)
   {
     const double t = stepper.time();
     result.strain_profile = model_.strain_profile(0, motion.phi(t), 30.0 * units::deg);
     if (model_.journal_turns_deformable())
       for (const auto &p : model_.strain_profile(1, stepper.gamma(), 30.0 * units::deg))
         result.strain_profile.push_back(p);
-    summarise(result.rolling, times, slips, result.rolling_steps);
+    summarise(result.rolling, result.rolling_steps);
     result.sliding_rebuilds = model_.sliding_rebuilds();
     if (rank_ == 0)
       log_solver_summary(parts_.scene, result, stepper, model_.journal_turns_deformable(),

@@ -51,8 +51,7 @@ namespace clearjoint::fe::detail
     void begin(RunResult &result);
     /// The end state (the strains across the contact zone), the slip stages, the solver's
     /// summary; the result closed.
-    void finish(RunResult &result, const SpinStepper &stepper, const rolling::Motion &motion,
-                const std::vector<double> &times, const std::vector<double> &slips);
+    void finish(RunResult &result, const SpinStepper &stepper, const rolling::Motion &motion);
 
     StudyModel &model_;
     Parts parts_;
