@@ -132,6 +132,7 @@ namespace clearjoint::fe::detail
     }
     bool journal_turns_deformable() const override { return plan_.journal_turns_deformable(); }
     unsigned int sliding_rebuilds() const override { return pattern_.rebuilds(); }
+    std::string solver_summary() const override { return solver_.summary(); }
 
     // ---- the steppers over the model's parts, the start and the rollback (model.cc)
     QuasiStaticStepper quasi_static_stepper() override;

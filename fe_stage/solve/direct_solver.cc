@@ -2,6 +2,7 @@
 #include "fe_stage/solve/direct_solver.h"
 
 #include "fe_stage/core/step_failure.h"
+#include "fe_stage/solve/mumps_statistics.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -28,21 +29,32 @@ namespace clearjoint::fe::detail
     factored_values_.clear();
   }
 
-  bool DirectSolver::same_values(const Epetra_CrsMatrix &A, const MPI_Comm comm) const
+  bool DirectSolver::holds_pattern_of(const dealii::TrilinosWrappers::SparseMatrix &A) const
   {
-    // (solve() calls this only for the analysed matrix with the factored pattern's size)
+    // the analysis belongs to one matrix object and its pattern: a reallocated or re-patterned
+    // matrix is analysed again (every rank holds the same matrix object's part, so the test
+    // agrees across ranks except for the pattern's size, hence the collective minimum)
+    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
+    const bool held = &matrix == analysed_ && factored_ &&
+                      std::size_t(matrix.NumMyNonzeros()) == factored_values_.size();
+    return dealii::Utilities::MPI::min(held ? 1 : 0, A.get_mpi_communicator()) == 1;
+  }
+
+  bool DirectSolver::holds_values_of(const dealii::TrilinosWrappers::SparseMatrix &A) const
+  {
+    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
     bool same = true;
     std::size_t k = 0;
-    for (int row = 0; same && row < A.NumMyRows(); ++row)
+    for (int row = 0; same && row < matrix.NumMyRows(); ++row)
       {
         int n = 0;
         double *values = nullptr;
-        A.ExtractMyRowView(row, n, values);
+        matrix.ExtractMyRowView(row, n, values);
         same = std::equal(values, values + n, factored_values_.begin() + k);
         k += n;
       }
     // one rank's change refactors on all (MUMPS factors collectively)
-    return dealii::Utilities::MPI::min(same ? 1 : 0, comm) == 1;
+    return dealii::Utilities::MPI::min(same ? 1 : 0, A.get_mpi_communicator()) == 1;
   }
 
   void DirectSolver::keep_values(const Epetra_CrsMatrix &A)
@@ -59,28 +71,21 @@ namespace clearjoint::fe::detail
       }
   }
 
-  void DirectSolver::solve(const dealii::TrilinosWrappers::SparseMatrix &A,
-                           dealii::TrilinosWrappers::MPI::Vector &x,
-                           const dealii::TrilinosWrappers::MPI::Vector &b)
+  namespace
   {
-    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
-    const MPI_Comm comm = A.get_mpi_communicator();
-    const auto check = [](const int status, const char *what) {
+    void check(const int status, const char *what)
+    {
       if (status != 0)
         throw StepFailure{std::string("direct solver (MUMPS through Amesos): ") + what +
                           " failed, status " + std::to_string(status) +
                           " (a singular system, or too little memory)"};
-    };
-    // the analysis belongs to one matrix object and its pattern: a reallocated or re-patterned
-    // matrix is analysed again (every rank holds the same matrix object's part, so the test
-    // agrees across ranks except for the pattern's size, hence the collective minimum)
-    const bool same_matrix = dealii::Utilities::MPI::min(&matrix == analysed_ && factored_ &&
-                                                             std::size_t(matrix.NumMyNonzeros()) ==
-                                                               factored_values_.size() ?
-                                                           1 :
-                                                           0,
-                                                         comm) == 1;
-    if (!same_matrix)
+    }
+  }  // namespace
+
+  void DirectSolver::factor(const dealii::TrilinosWrappers::SparseMatrix &A)
+  {
+    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
+    if (!holds_pattern_of(A))
       {
         invalidate();
         problem_ = std::make_unique<Epetra_LinearProblem>();
@@ -102,18 +107,32 @@ namespace clearjoint::fe::detail
         check(solver_->SymbolicFactorization(), "the symbolic analysis");
         analysed_ = &matrix;
       }
-    if (same_matrix && same_values(matrix, comm))
-      ++n_reuses_;
-    else
-      {
-        check(solver_->NumericFactorization(), "the factorization");
-        keep_values(matrix);
-        factored_ = true;
-        ++n_factorizations_;
-      }
+    check(solver_->NumericFactorization(), "the factorization");
+    keep_values(matrix);
+    factored_ = true;
+    ++n_factorizations_;
+    const MumpsStatistics statistics = mumps_statistics(*solver_);
+    factorization_flops_ = statistics.factorization_flops;
+    factor_entries_ = statistics.factor_entries;
+  }
+
+  void DirectSolver::apply(dealii::TrilinosWrappers::MPI::Vector &x,
+                           const dealii::TrilinosWrappers::MPI::Vector &b) const
+  {
     problem_->SetLHS(&x.trilinos_vector());
     problem_->SetRHS(const_cast<Epetra_MultiVector *>(
       static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
     check(solver_->Solve(), "the solve");
+  }
+
+  void DirectSolver::solve(const dealii::TrilinosWrappers::SparseMatrix &A,
+                           dealii::TrilinosWrappers::MPI::Vector &x,
+                           const dealii::TrilinosWrappers::MPI::Vector &b)
+  {
+    if (holds_pattern_of(A) && holds_values_of(A))
+      ++n_reuses_;
+    else
+      factor(A);
+    apply(x, b);
   }
 }  // namespace clearjoint::fe::detail

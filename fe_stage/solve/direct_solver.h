@@ -39,20 +39,34 @@ namespace clearjoint::fe::detail
     /// The matrix's sparsity pattern changed (a new mesh or operator): analyse it again.
     void invalidate();
 
+    /// Whether the kept factorization is of A's matrix object with its pattern (collective).
+    bool holds_pattern_of(const dealii::TrilinosWrappers::SparseMatrix &A) const;
+    /// Whether A's values are the factored ones (collective; A as in holds_pattern_of).
+    bool holds_values_of(const dealii::TrilinosWrappers::SparseMatrix &A) const;
+    /// Factors A, analysing its pattern first unless the kept factorization has it. Throws
+    /// StepFailure with MUMPS's reason.
+    void factor(const dealii::TrilinosWrappers::SparseMatrix &A);
+    /// x = M⁻¹ b with M the matrix of the kept factorization (two triangular solves; A's
+    /// values may have moved on since: a stale factorization preconditions a Krylov method).
+    void apply(dealii::TrilinosWrappers::MPI::Vector &x,
+               const dealii::TrilinosWrappers::MPI::Vector &b) const;
+    /// [flops] MUMPS's count for the last factorization, and the entries of its factors
+    /// (summed over the ranks): what one factorization and one apply() cost.
+    double factorization_flops() const { return factorization_flops_; }
+    double factor_entries() const { return factor_entries_; }
+
     /// Numeric factorizations, and solves that reused the last one.
     unsigned int n_factorizations() const { return n_factorizations_; }
     unsigned int n_reuses() const { return n_reuses_; }
 
   private:
-    /// Whether A's locally owned values equal the factored ones (collective: every rank
-    /// learns whether all ranks' values are equal).
-    bool same_values(const Epetra_CrsMatrix &A, MPI_Comm comm) const;
     void keep_values(const Epetra_CrsMatrix &A);
 
     std::unique_ptr<Epetra_LinearProblem> problem_;
     std::unique_ptr<Amesos_BaseSolver> solver_;
     const Epetra_CrsMatrix *analysed_ = nullptr;  // the matrix the symbolic analysis is of
     bool factored_ = false;
+    double factorization_flops_ = 0.0, factor_entries_ = 0.0;
     std::vector<double> factored_values_;  // this rank's rows, in storage order
     unsigned int n_factorizations_ = 0;
     unsigned int n_reuses_ = 0;

@@ -108,16 +108,13 @@ namespace clearjoint::fe::detail
     const double b_norm = b.l2_norm();
     if (!std::isfinite(b_norm))
       throw StepFailure{"non-finite right-hand side"};
-    if (direct_)
-      {
-        direct_solver_.solve(A, x, b);
-        return 1;
-      }
     if (b_norm == 0.0)
       {
         x = 0.0;
         return 0;
       }
+    if (direct_)
+      return solve_direct(A, x, b, relative_tolerance * b_norm);
     if (amg_ && staleness_.stale())
       amg_.reset();  // the iterations it has lost since its build outweigh a new one
     for (unsigned int attempt = 0; attempt < 2; ++attempt)
@@ -167,4 +164,90 @@ namespace clearjoint::fe::detail
     throw StepFailure{"linear solver failed"};
   }
 
+  std::string SystemSolver::summary() const
+  {
+    if (!direct_)
+      return "AMG setup " + log::format_duration(t_amg_) + " in " + std::to_string(n_amg_builds_) +
+             " builds";
+    return "MUMPS: " + std::to_string(direct_solver_.n_factorizations()) + " factorizations, " +
+           std::to_string(n_same_matrix_solves_) + " solves of the factored matrix, " +
+           std::to_string(n_gmres_on_kept_factors_) +
+           " by GMRES on the kept factors of an earlier one (" +
+           std::to_string(n_factorization_reuse_failures_) + " such tries gave up)";
+  }
+
+  namespace
+  {
+    /// The kept factorization as a preconditioner (deal.II's solvers call vmult).
+    struct KeptFactorization
+    {
+      const DirectSolver &lu;
+      void vmult(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src) const
+      {
+        lu.apply(dst, src);
+      }
+    };
+
+    /// GMRES's control with the kept factors: it gives up as soon as the residual's mean rate
+    /// over the iterations so far would need more than the allowed ones, so that a
+    /// factorization too far from the matrix costs a few iterations, not all of them.
+    class ForecastControl : public SolverControl
+    {
+    public:
+      ForecastControl(const unsigned int max_steps, const double tolerance)
+        : SolverControl(max_steps, tolerance, false, false)
+      {}
+      State check(const unsigned int step, const double value) override
+      {
+        const State state = SolverControl::check(step, value);
+        if (state == iterate && FactorizationReuse::forecast_exceeds(step, initial_value(), value,
+                                                                     tolerance(), max_steps()))
+          lcheck = failure;
+        return lcheck;
+      }
+    };
+  }  // namespace
+
+  unsigned int SystemSolver::solve_direct(const TrilinosWrappers::SparseMatrix &A,
+                                          TrilinosWrappers::MPI::Vector &x,
+                                          const TrilinosWrappers::MPI::Vector &b,
+                                          const double tolerance)
+  {
+    if (direct_solver_.holds_pattern_of(A))
+      {
+        if (direct_solver_.holds_values_of(A))
+          {
+            direct_solver_.apply(x, b);
+            ++n_same_matrix_solves_;
+            return 1;
+          }
+        if (reuse_.worth_reusing())
+          {
+            // GMRES on A with the factorization of an earlier matrix of this pattern: the
+            // matrix moved by a few contact rows or a plastic tangent's update, so a few
+            // iterations replace a factorization (solve/factorization_reuse.h)
+            ForecastControl control(FactorizationReuse::max_iterations_per_solve, tolerance);
+            SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+              control,  // right preconditioning: the tolerance applies to the true residual
+              SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+                FactorizationReuse::max_iterations_per_solve + 2, true));
+            try
+              {
+                gmres.solve(A, x, b, KeptFactorization{direct_solver_});
+                reuse_.record(control.last_step());
+                ++n_gmres_on_kept_factors_;
+                return control.last_step();
+              }
+            catch (const SolverControl::NoConvergence &)
+              {
+                ++n_factorization_reuse_failures_;  // factored afresh below (x is overwritten)
+              }
+          }
+      }
+    direct_solver_.factor(A);
+    reuse_.factored(direct_solver_.factorization_flops(), direct_solver_.factor_entries(),
+                    double(A.n_nonzero_elements()));
+    direct_solver_.apply(x, b);
+    return 1;
+  }
 }  // namespace clearjoint::fe::detail

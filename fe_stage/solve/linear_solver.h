@@ -1,5 +1,7 @@
 // The linear solver (SystemSolver) of the contact model's systems: MUMPS below a size
-// (DirectSolver, solve/direct_solver.h: it keeps its factorization while the matrix repeats), else CG
+// (DirectSolver, solve/direct_solver.h: it keeps its factorization while the matrix repeats,
+// and for a changed matrix of the same pattern the kept factors precondition GMRES while that
+// costs less than a new factorization, solve/factorization_reuse.h), else CG
 // (GMRES where friction makes the operator non-symmetric) preconditioned by ML's AMG on the six
 // rigid-body modes. It owns the AMG and decides when to rebuild it: once per new operator pattern or mesh
 // (invalidate()), again when a solve fails with the reused one, and when the iterations its
@@ -10,6 +12,7 @@
 #include "fe_stage/core/dim.h"
 #include "fe_stage/solve/amg_staleness.h"
 #include "fe_stage/solve/direct_solver.h"
+#include "fe_stage/solve/factorization_reuse.h"
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
@@ -20,6 +23,7 @@
 #include <Epetra_MultiVector.h>
 
 #include <memory>
+#include <string>
 
 namespace clearjoint::fe::detail
 {
@@ -53,17 +57,28 @@ namespace clearjoint::fe::detail
     unsigned int n_amg_builds() const { return n_amg_builds_; }
     /// Krylov solves that failed after the AMG was rebuilt and were solved by MUMPS instead.
     unsigned int n_direct_fallbacks() const { return n_direct_fallbacks_; }
-    /// The direct solver's numeric factorizations, and its solves that reused the last one.
-    unsigned int n_factorizations() const { return direct_solver_.n_factorizations(); }
-    unsigned int n_factorization_reuses() const { return direct_solver_.n_reuses(); }
+    /// What the solves cost, for the run's summary: the AMG's builds, or MUMPS's
+    /// factorizations and reuses.
+    std::string summary() const;
 
   private:
+    /// The direct mode's solve: the kept factorization for the same matrix; for a changed one
+    /// of the same pattern, GMRES preconditioned by it (to the residual `tolerance`) while
+    /// that is cheaper than factoring again (FactorizationReuse); else a new factorization.
+    unsigned int solve_direct(const TrilinosWrappers::SparseMatrix &A,
+                              TrilinosWrappers::MPI::Vector &x,
+                              const TrilinosWrappers::MPI::Vector &b, double tolerance);
     void build_amg(const TrilinosWrappers::SparseMatrix &A, const DoFHandler<dim> &dofs,
                    const Mapping<dim> &mapping);
 
     bool direct_ = false;
     unsigned int max_iterations_ = 1000;
     DirectSolver direct_solver_;
+    FactorizationReuse reuse_;  // when the kept factorization still pays as a preconditioner
+    // the direct mode's solves: of the factored matrix itself; of a changed one by GMRES on
+    // the kept factors; such tries that gave up
+    unsigned int n_same_matrix_solves_ = 0, n_gmres_on_kept_factors_ = 0,
+                 n_factorization_reuse_failures_ = 0;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
     std::unique_ptr<Epetra_MultiVector> null_space_;  // the AMG reads it: kept alive with it
     AmgStaleness staleness_;                          // when the AMG is worth building again

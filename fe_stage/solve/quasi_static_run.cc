@@ -246,9 +246,7 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log::info("fe_stage: time in contact assembly " +
                 log::format_duration(parts_.contact_solve.assembly_time()) + ", linear solves " +
-                log::format_duration(parts_.contact_solve.solve_time()) + " (of which AMG setup " +
-                log::format_duration(parts_.solver.amg_setup_time()) + " in " +
-                std::to_string(parts_.solver.n_amg_builds()) + " builds), contact evaluation " +
+                log::format_duration(parts_.contact_solve.solve_time()) + " (" + parts_.solver.summary() + "), contact evaluation " +
                 log::format_duration(parts_.contact_solve.evaluation_time()));
     result.field_files = parts_.fields.files(true);
     return result;

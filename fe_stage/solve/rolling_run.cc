@@ -539,8 +539,11 @@ namespace clearjoint::fe::detail
     summarise(result.rolling, result.rolling_steps);
     result.sliding_rebuilds = model_.sliding_rebuilds();
     if (rank_ == 0)
-      log_solver_summary(parts_.scene, result, stepper, model_.journal_turns_deformable(),
-                         model_.sliding_rebuilds());
+      {
+        log_solver_summary(parts_.scene, result, stepper, model_.journal_turns_deformable(),
+                           model_.sliding_rebuilds());
+        log::info("fe_stage: linear solves: " + model_.solver_summary());
+      }
     result.complete = result.message.empty();
     // the PVD that indexes the fields with them, as the other studies list it
     result.field_files = parts_.fields.files(result.complete);

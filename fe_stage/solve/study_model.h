@@ -15,6 +15,7 @@
 #include "fe_stage/solve/rolling_kinematics.h"
 #include "fe_stage/solve/spin_stepper.h"
 
+#include <string>
 #include <vector>
 
 namespace clearjoint::fe::detail
@@ -65,6 +66,8 @@ namespace clearjoint::fe::detail
     virtual unsigned int sliding_rebuilds() const = 0;
     /// [s] since the model was made (the runs' set-up and wall times).
     virtual double elapsed() const = 0;
+    /// What the linear solves cost (SystemSolver::summary), for the run's summary.
+    virtual std::string solver_summary() const = 0;
 
   protected:
     ~StudyModel() = default;
