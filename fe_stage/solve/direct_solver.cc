@@ -43,7 +43,7 @@ namespace clearjoint::fe::detail
   bool DirectSolver::holds_values_of(const dealii::TrilinosWrappers::SparseMatrix &A) const
   {
     const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
-    bool same = true;
+    bool same = std::size_t(matrix.NumMyNonzeros()) == factored_values_.size();
     std::size_t k = 0;
     for (int row = 0; same && row < matrix.NumMyRows(); ++row)
       {

@@ -41,7 +41,7 @@ namespace clearjoint::fe::detail
 
     /// Whether the kept factorization is of A's matrix object with its pattern (collective).
     bool holds_pattern_of(const dealii::TrilinosWrappers::SparseMatrix &A) const;
-    /// Whether A's values are the factored ones (collective; A as in holds_pattern_of).
+    /// Whether A's values are the factored ones (collective).
     bool holds_values_of(const dealii::TrilinosWrappers::SparseMatrix &A) const;
     /// Factors A, analysing its pattern first unless the kept factorization has it. Throws
     /// StepFailure with MUMPS's reason.
