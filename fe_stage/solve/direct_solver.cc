@@ -13,6 +13,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 namespace clearjoint::fe::detail
@@ -111,9 +112,15 @@ namespace clearjoint::fe::detail
     keep_values(matrix);
     factored_ = true;
     ++n_factorizations_;
+    // MUMPS's global counts are certain on its host, rank 0; every rank takes them from there,
+    // so that the ranks' choices between reusing the factors and factoring agree (a rank that
+    // factors while another runs GMRES deadlocks the collectives; a two-rank run did)
     const MumpsStatistics statistics = mumps_statistics(*solver_);
-    factorization_flops_ = statistics.factorization_flops;
-    factor_entries_ = statistics.factor_entries;
+    const std::array<double, 2> counts = dealii::Utilities::MPI::broadcast(
+      A.get_mpi_communicator(),
+      std::array<double, 2>{statistics.factorization_flops, statistics.factor_entries}, 0);
+    factorization_flops_ = counts[0];
+    factor_entries_ = counts[1];
   }
 
   void DirectSolver::apply(dealii::TrilinosWrappers::MPI::Vector &x,
