@@ -4,7 +4,7 @@
 // active-set and material iteration, but by little: a few contact rows, the plastic tangent at
 // the yielding points. A factorization of an earlier matrix is then a preconditioner that
 // leaves GMRES a few iterations, each two triangular solves with the kept factors — on the
-// rolling study's finest ring (83 k DoFs) a factorization cost ~2.8 s, most of the run.
+// rolling study's finest ring (83 k DoFs) a factorization cost ~2.9 s, most of the run.
 //
 // The rule counts in flops, so that the solver's path does not depend on timing: one
 // factorization's flops (MUMPS's own count) against one GMRES iteration's (the factors'
@@ -26,7 +26,7 @@ namespace clearjoint::fe
     /// factors are too far from the matrix.
     static constexpr unsigned int max_iterations_per_solve = 30;
     /// The factorization's dense kernels run this much faster per flop than an iteration's
-    /// sparse ones (measured, docs/benchmarks.md "The kept factorization as a preconditioner").
+    /// sparse ones (measured, docs/benchmarks.md "The kept factors as GMRES's preconditioner").
     static constexpr double dense_speedup = 15.0;
 
     /// A new factorization of `factorization_flops`, with `factor_entries` entries in its factors,
@@ -44,8 +44,8 @@ namespace clearjoint::fe
     void record(const unsigned int iterations) { spent_ += iterations; }
 
     /// A try fits into what is left of one factorization's cost: at least the iterations the
-    /// forecast needs to judge it (a system of a few thousand DoFs, whose factorization costs
-    /// a few iterations, is always factored).
+    /// forecast needs to judge it (the rolling study's coarsest ring, 2 745 DoFs, whose
+    /// factorization costs a few iterations, is always factored).
     bool worth_reusing() const { return budget_ - spent_ >= min_steps_for_forecast; }
 
     /// Whether a solve whose residual fell from `initial` to `now` in `step` iterations would,
