@@ -32,6 +32,10 @@ namespace clearjoint::fe::detail
     , solver_(parts.solver)
     , comm_(parts.comm)
     , rank_(Utilities::MPI::this_mpi_process(parts.comm))
+    // only rank 0 logs at the debug level (-v), but the check's maximum is collective: every
+    // rank must take part (a two-rank run with -v stopped with MPI_ERR_TRUNCATE without this)
+    , check_friction_rows_(
+        Utilities::MPI::max(log::level() <= log::Level::debug ? 1 : 0, parts.comm) == 1)
   {}
 
   /// The condensed system of this iteration: the static part, plus the contact cells condensed
@@ -126,7 +130,7 @@ namespace clearjoint::fe::detail
         constraints_.distribute(state_.u_owned());
         state_.publish();
         evaluate_contact(delta);
-        if (contact_.friction() && log::level() <= log::Level::debug)
+        if (contact_.friction() && check_friction_rows_)
           {
             // the friction rows' own check: at a node that slipped in this solve the solved
             // tangential force must be the linearised slip law it was given (round-off)

@@ -134,6 +134,7 @@ namespace clearjoint::fe::detail
     SystemSolver &solver_;
     MPI_Comm comm_;
     unsigned int rank_;
+    bool check_friction_rows_;  // the debug check of the slip law's rows (-v on any rank)
 
     AffineConstraints<double> constraints_;  // the fixed ones at δ + the active set's lines
     double t_assemble_ = 0, t_solve_ = 0, t_evaluate_ = 0;

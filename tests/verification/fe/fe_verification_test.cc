@@ -2,6 +2,8 @@
 // item 7). Tolerances carry their reason beside them.
 #include "fe_test_util.h"
 
+#include "common/log.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,9 +24,10 @@ namespace
   {
     return "contact: {mu: 0}\n"
            "mesh: {n_circumferential: 16, n_axial: 3, contact_refinements: 0}\n"
-           "loading: {journal: " + journal + ", n_increments: 3}\n";
+           "loading: {journal: " +
+           journal + ", n_increments: 3}\n";
   }
-} // namespace
+}  // namespace
 
 namespace
 {
@@ -52,7 +55,7 @@ namespace
     EXPECT_NEAR(K_ratio, 1.0, 0.03);
     return r;
   }
-} // namespace
+}  // namespace
 
 // Rigid sphere on an elastic block (quarter model): Hertz, F = (4/3) E* √R δ^{3/2} with
 // 1/E* = (1 − ν²)/E (only the block deforms). Issue 3: fitted n within 0.03 of 1.5, K (at
@@ -78,8 +81,9 @@ TEST(FeHertz, SameMaterialTwoBodiesOnNonMatchingMeshesMatchHertz)
                           "loading: {delta_max: 1.0e-5, n_increments: 4}\n"
                           "verification: {n_cells: 6, contact_refinements: 5, "
                           "refine_radius: 0.5e-3, indenter: deformable, indenter_n_cells: 5}\n");
-  const RunResult r = run_and_check_hertz(
-    s, s.material.E / (2.0 * (1.0 - s.material.nu * s.material.nu)), "two-body Hertz");
+  const RunResult r =
+    run_and_check_hertz(s, s.material.E / (2.0 * (1.0 - s.material.nu * s.material.nu)),
+                        "two-body Hertz");
   for (const auto &inc : r.increments)
     {
       // equilibrium: contact force = support reaction = reaction on the pushed top (CG 1e-10,
@@ -172,7 +176,7 @@ namespace
         EXPECT_LE(f.friction_direction_error, 1e-6);
       }
   }
-} // namespace
+}  // namespace
 
 // Coulomb friction μ = 0.1 between journal and bore (two bodies, end_faces): the push makes
 // the journal's surface and the bore slide against each other, friction resists it, so the
@@ -323,7 +327,7 @@ TEST(FeMortarJoint, MatchesNodeToNodeOnTheRayMatchedMesh)
                       f.force / a.increments[i].force - 1.0, a.increments[i].contact_iterations,
                       f.contact_iterations);
           EXPECT_NEAR(f.force / a.increments[i].force, 1.0, 5e-4);  // issue 11: 0.05 %
-          EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);  // CG/GMRES to 1e-10
+          EXPECT_NEAR(f.force_support / f.force, 1.0, 1e-6);        // CG/GMRES to 1e-10
           EXPECT_NEAR(f.force_load / f.force, 1.0, 1e-6);
           EXPECT_LT(f.max_penetration, 1e-9 * mortar.loading.delta_max);
         }
@@ -359,7 +363,7 @@ namespace
     EXPECT_LE(previous_error, r.adaptive_error);  // the estimate bounds the error here
     EXPECT_LT(previous_error, limit);
   }
-} // namespace
+}  // namespace
 
 // Adaptive refinement (mesh.adaptive_cycles): Kelly's indicator refines the rigid journal's
 // joint (frictionless, the fast preset's base mesh) in 3 cycles; the force must approach the
@@ -376,7 +380,7 @@ TEST(FeAdaptive, CyclesApproachTheUniformRichardsonValueWithinTheirEstimate)
   const double F_ref = 22060.9;  // [N] printed to 0.1 N: 5e-6 of F, far below what is tested
   const RunResult r = run(s);
   ASSERT_TRUE(r.complete) << r.message;
-  ASSERT_EQ(r.adaptive_cycles.size(), 4u);  // 3 cycles + the recorded curve's mesh
+  ASSERT_EQ(r.adaptive_cycles.size(), 4u);   // 3 cycles + the recorded curve's mesh
   expect_cycles_approach(r, F_ref, 0.0028);  // better than uniform level 2 (0.28 %)
   for (const auto &f : r.increments)
     {
@@ -557,8 +561,8 @@ TEST(FeTwoBody, RigidStifferThanEndFacesOrCoreStifferThanAxisLine)
   ASSERT_TRUE(rigid.complete && core.complete && ends.complete && axis.complete);
   const double Fr = rigid.increments.back().force, Fc = core.increments.back().force,
                Fe = ends.increments.back().force, Fa = axis.increments.back().force;
-  std::printf("F(delta_max): rigid %.1f N, core %.1f N, end_faces %.1f N, axis_line %.1f N\n",
-              Fr, Fc, Fe, Fa);
+  std::printf("F(delta_max): rigid %.1f N, core %.1f N, end_faces %.1f N, axis_line %.1f N\n", Fr,
+              Fc, Fe, Fa);
   EXPECT_GT(Fr, Fe);
   EXPECT_GT(Fe, Fa);
   EXPECT_GT(Fr, Fc);
@@ -591,11 +595,13 @@ namespace
   std::string coarse_misaligned(const double theta_deg)
   {
     return "study: misalignment\ncontact: {mu: 0}\n"
-           "misalignment: {theta_deg: " + std::to_string(theta_deg) + "}\n"
+           "misalignment: {theta_deg: " +
+           std::to_string(theta_deg) +
+           "}\n"
            "mesh: {n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 2}\n"
            "loading: {n_increments: 4}\n";
   }
-} // namespace
+}  // namespace
 
 namespace
 {
@@ -604,11 +610,13 @@ namespace
   // contact.sliding.
   std::string coarse_axial(const std::string &loading, const std::string &sliding)
   {
-    return "contact: {mu: 0, sliding: " + sliding + "}\n"
+    return "contact: {mu: 0, sliding: " + sliding +
+           "}\n"
            "mesh: {n_circumferential: 8, n_axial: 2, n_radial: 1, contact_refinements: 1}\n"
-           "loading: {journal: core, n_increments: 2, " + loading + "}\n";
+           "loading: {journal: core, n_increments: 2, " +
+           loading + "}\n";
   }
-} // namespace
+}  // namespace
 
 // Issue 3 item 6: two MPI ranks give F within 1e-6 relative of one rank. Run under
 // `mpirun -np 2` by ctest (fe_mpi_np2_matches_np1); with one rank it compares a run with
@@ -644,11 +652,10 @@ namespace
                     (s.study == Study::radial ? to_string(s.loading.journal) + " journal" :
                                                 to_string(s.study) + " study")
                       .c_str(),
-                    serial.increments.back().force, size,
-                    parallel.increments.back().force);
+                    serial.increments.back().force, size, parallel.increments.back().force);
       }
   }
-} // namespace
+}  // namespace
 
 // Results do not depend on the number of ranks: the rigid journal, and the deformable journal
 // whose contact partners (journal nodes facing each bearing node) may live on another rank.
@@ -774,9 +781,8 @@ TEST(FeMisalignment, DeformableCoreJournalAtZeroTiltEqualsAlignedCoreJournal)
   tilted.loading.journal = JournalLoading::core;
   const FeScene aligned =
     scene("contact: {mu: 0}\n" + mesh + "loading: {journal: core, n_increments: 4}\n");
-  const FeScene aligned_journal_slave =
-    scene("contact: {mu: 0, mortar_slave: journal}\n" + mesh +
-          "loading: {journal: core, n_increments: 4}\n");
+  const FeScene aligned_journal_slave = scene("contact: {mu: 0, mortar_slave: journal}\n" + mesh +
+                                              "loading: {journal: core, n_increments: 4}\n");
   const RunResult t = run(tilted), a = run(aligned), j = run(aligned_journal_slave);
   ASSERT_TRUE(t.complete && a.complete && j.complete) << t.message << a.message << j.message;
   EXPECT_DOUBLE_EQ(t.symmetry_factor, 2.0);
@@ -864,4 +870,22 @@ TEST(FeTwoBody, AnUnsettledActiveSetNamesItsNodes)
   EXPECT_NE(r.message.find("active set did not settle in 1 iterations"), std::string::npos)
     << r.message;
   EXPECT_NE(r.message.find(" mm open -> closed"), std::string::npos) << r.message;
+}
+
+// `-v` sets the debug level on rank 0 only (fe_stage/main.cc): a debug-only check that is
+// collective must still run on every rank. A frictional case with rank 0 at the debug level and
+// the others at the error level, as fe_stage runs them: before the friction rows' check was
+// made collective on every rank, a two-rank rolling run with -v stopped with MPI_ERR_TRUNCATE
+// (its maximum met another collective on the other rank).
+TEST(FeMpi, VerboseOnRankZeroOnlyRunsAndMatches)
+{
+  if (world_size() < 2)
+    GTEST_SKIP() << "needs mpirun -np 2";
+  const clearjoint::log::Level before = clearjoint::log::level();
+  clearjoint::log::set_level(rank() == 0 ? clearjoint::log::Level::debug :
+                                           clearjoint::log::Level::error);
+  FeScene friction = scene(coarse_two_body("end_faces"));
+  friction.contact.mu = 0.1;
+  expect_ranks_agree(friction);
+  clearjoint::log::set_level(before);
 }
