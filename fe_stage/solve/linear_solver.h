@@ -52,11 +52,6 @@ namespace clearjoint::fe::detail
                        TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b,
                        double relative_tolerance);
 
-    /// [s] spent building the AMG so far, and how many times it was built.
-    double amg_setup_time() const { return t_amg_; }
-    unsigned int n_amg_builds() const { return n_amg_builds_; }
-    /// Krylov solves that failed after the AMG was rebuilt and were solved by MUMPS instead.
-    unsigned int n_direct_fallbacks() const { return n_direct_fallbacks_; }
     /// What the solves cost, for the run's summary: the AMG's builds, or MUMPS's
     /// factorizations and reuses.
     std::string summary() const;

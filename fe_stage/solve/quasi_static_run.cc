@@ -246,7 +246,8 @@ namespace clearjoint::fe::detail
     if (rank_ == 0)
       log::info("fe_stage: time in contact assembly " +
                 log::format_duration(parts_.contact_solve.assembly_time()) + ", linear solves " +
-                log::format_duration(parts_.contact_solve.solve_time()) + " (" + parts_.solver.summary() + "), contact evaluation " +
+                log::format_duration(parts_.contact_solve.solve_time()) + " (" +
+                parts_.solver.summary() + "), contact evaluation " +
                 log::format_duration(parts_.contact_solve.evaluation_time()));
     result.field_files = parts_.fields.files(true);
     return result;
