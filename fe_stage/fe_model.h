@@ -253,6 +253,16 @@ namespace clearjoint::fe
     std::function<void(const DynamicStepRecord &)> on_dynamic_step;
     /// Study rolling: called on every rank after each converged time step.
     std::function<void(const RollingStepRecord &)> on_rolling_step;
+    /// Study rolling: restart files (solve/rolling_restart.h). `write_dir`: the state written
+    /// there after every `every` converged steps and the last (empty: none); `resume_dir`: the
+    /// run continues from the state there (empty: from rest), its steps' records replayed
+    /// through the callbacks above first.
+    struct Restart
+    {
+      std::string write_dir;
+      unsigned int every = 1;
+      std::string resume_dir;
+    } restart;
   };
 
   /// Runs one scene (no sweep). Throws InputError for scene problems found late; numerical

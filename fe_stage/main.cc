@@ -4,6 +4,8 @@
 //            [--no-fields] [--no-plots]
 //   fe_stage --print-defaults
 //   fe_stage SCENE.yaml --check      (read and validate the scene and its mesh only)
+//   fe_stage ROLLING.yaml --output DIR --write-restart RDIR [--restart-every N]
+//   fe_stage ROLLING.yaml --output DIR --resume RDIR   (continue a run cut short)
 //
 // Writes DIR/force_penetration.csv (delta, force, solver statistics per increment),
 // DIR/fields/ (VTU/PVTU + PVD), DIR/force_penetration.png and DIR/manifest.json; with a `sweep`
@@ -40,6 +42,7 @@
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -164,7 +167,7 @@ namespace
   /// if complete.
   bool run_case(const fe::FeScene &scene, const std::string &dir, int argc, char **argv,
                 const bool plots, const fe::PresetUse &preset, double &force_at_max,
-                fe::ImpactSummary *impact = nullptr)
+                fe::ImpactSummary *impact = nullptr, const fe::RunOptions::Restart &restart = {})
   {
     const bool root = rank_of(MPI_COMM_WORLD) == 0;
     // What rank 0 writes, every rank learns about (a full disk: all ranks stop together).
@@ -180,6 +183,7 @@ namespace
       output = std::make_unique<fe::CaseOutput>(scene, dir, argc, argv, preset);
     });
     fe::RunOptions options;
+    options.restart = restart;
     options.output_dir = dir;
     options.write_fields = scene.output.fields;
     options.on_increment = [&](const fe::IncrementRecord &r) {
@@ -214,6 +218,7 @@ namespace
     bool print_defaults = false, full_model = false, no_fields = false, no_plots = false,
          quiet = false, verbose = false, check = false;
     fe::PresetUse preset;
+    fe::RunOptions::Restart restart;  ///< --write-restart, --restart-every, --resume
   };
 
   void add_options(CLI::App &app, CommandLine &cl)
@@ -239,6 +244,61 @@ namespace
     app.add_flag("--check", cl.check,
                  "read and validate the scene (and its mesh) and exit: 0 valid, 1 input error; "
                  "writes nothing");
+    app.add_option("--write-restart", cl.restart.write_dir,
+                   "study rolling: write the run's state to this folder after every converged "
+                   "step (--restart-every), so that --resume can continue it; outside --output");
+    app.add_option("--restart-every", cl.restart.every,
+                   "with --write-restart: every how many steps (>= 1; default 1; the last "
+                   "step's state is always written)");
+    app.add_option("--resume", cl.restart.resume_dir,
+                   "study rolling: continue the run whose state --write-restart wrote to this "
+                   "folder (the same scene, output.* aside, and the same number of MPI ranks); "
+                   "its state is written there again unless --write-restart names another");
+  }
+
+  /// A folder as an absolute path without . and .. (it need not exist).
+  std::filesystem::path absolute_folder(const std::string &dir)
+  {
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(dir));
+  }
+
+  /// Whether `inner` is `outer` or a folder below it.
+  bool folder_within(const std::filesystem::path &inner, const std::filesystem::path &outer)
+  {
+    const auto mismatch = std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end());
+    return mismatch.first == outer.end();
+  }
+
+  /// The restart options against the scene and --output: the rolling study only, a folder
+  /// apart from the outputs (which a run replaces as a whole).
+  void check_restart_options(CommandLine &cl, const fe::FeScene &scene)
+  {
+    auto &r = cl.restart;
+    if (r.every == 0)
+      throw InputError("", "--restart-every", "0", ">= 1 steps");
+    if (r.write_dir.empty() && r.resume_dir.empty())
+      return;
+    const std::string flag = r.resume_dir.empty() ? "--write-restart" : "--resume";
+    if (scene.study != fe::Study::rolling)
+      throw InputError("", flag, r.resume_dir.empty() ? r.write_dir : r.resume_dir,
+                       "only with study: rolling (the other studies run in minutes)");
+    if (!r.resume_dir.empty() && !std::filesystem::is_directory(r.resume_dir + "/state") &&
+        !std::filesystem::is_directory(r.resume_dir + "/previous"))
+      throw InputError("", "--resume", r.resume_dir,
+                       "a folder that fe_stage --write-restart wrote a state to",
+                       "it has no state/ (nor previous/) folder");
+    if (r.write_dir.empty())
+      r.write_dir = r.resume_dir;  // a chain of runs keeps one folder
+    if (!cl.output_dir.empty())
+      for (const std::string *dir : {&r.write_dir, &r.resume_dir})
+        if (!dir->empty())
+          {
+            const auto a = absolute_folder(*dir), b = absolute_folder(cl.output_dir);
+            if (folder_within(a, b) || folder_within(b, a))
+              throw InputError("", dir == &r.write_dir ? "--write-restart" : "--resume", *dir,
+                               "a folder apart from --output " + cl.output_dir,
+                               "a run replaces its output folder as a whole");
+          }
   }
 
   /// --preset: the preset's keys set on the scene document as run_pipeline sets them.
@@ -293,6 +353,7 @@ namespace
     if (cl.no_fields)
       scene.output.fields = false;
     fe::validate_scene(scene);
+    check_restart_options(cl, scene);
     return scene;
   }
 
@@ -431,7 +492,8 @@ namespace
     if (!fe::has_sweep(scene))
       {
         double f;
-        complete = run_case(scene, cl.output_dir, argc, argv, !cl.no_plots, cl.preset, f);
+        complete = run_case(scene, cl.output_dir, argc, argv, !cl.no_plots, cl.preset, f, nullptr,
+                            cl.restart);
       }
     else
       complete = run_sweep(scene, cl, argc, argv, root);

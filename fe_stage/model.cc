@@ -5,6 +5,7 @@
 #include "fe_stage/model.h"
 
 #include "fe_stage/contact/contact_node.h"
+#include "fe_stage/core/restart_values.h"
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/solve/impact_run.h"
 #include "fe_stage/solve/quasi_static_run.h"
@@ -19,6 +20,8 @@
 #include <deal.II/numerics/error_estimator.h>
 
 #include <chrono>
+#include <cstdint>
+#include <map>
 #include <set>
 
 namespace clearjoint::fe::detail
@@ -205,6 +208,57 @@ namespace clearjoint::fe::detail
     state_.publish();
     contact_.nodes() = s.nodes;
     pattern_.pair_restored(s.u, s.sliding_rebuilds);
+  }
+
+  void Model::write_restart(RestartWriter &out) const
+  {
+    out.section("displacement");
+    put_owned(out, state_.u_owned());
+    out.section("material history");
+    material_.law().write_history(out);
+    out.section("contact nodes");
+    out.put<std::uint64_t>(contact_.nodes().size());
+    for (const auto &cn : contact_.nodes())
+      {
+        out.put(cn.dofs[0]);
+        out.put(cn.active);
+        out.put(cn.stick);
+        out.put(cn.lambda);
+        for (const auto *t :
+             {&cn.relative, &cn.relative_converged, &cn.obstacle_u, &cn.obstacle_u_converged})
+          put_tensor(out, *t);
+      }
+  }
+
+  /// The nodes are matched by their first DoF: a deformable journal's search rebuilds the
+  /// node list at every step, so a node the restart file has and this mesh's first pairing
+  /// has not starts open (the next step's search pairs it again).
+  void Model::read_restart(RestartReader &in)
+  {
+    newton_.forget_tangent();
+    in.section("displacement");
+    get_owned(in, state_.u_owned(), "the displacement");
+    state_.publish();
+    in.section("material history");
+    material_.law().read_history(in);
+    in.section("contact nodes");
+    std::map<types::global_dof_index, ContactNode *> by_key;
+    for (auto &cn : contact_.nodes())
+      by_key[cn.dofs[0]] = &cn;
+    const auto n = in.get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < n; ++k)
+      {
+        const auto key = in.get<types::global_dof_index>();
+        ContactNode scratch;
+        const auto it = by_key.find(key);
+        ContactNode &cn = it != by_key.end() ? *it->second : scratch;
+        cn.active = in.get<bool>() && cn.candidate;
+        cn.stick = in.get<bool>();
+        cn.lambda = in.get<double>();
+        for (auto *t :
+             {&cn.relative, &cn.relative_converged, &cn.obstacle_u, &cn.obstacle_u_converged})
+          *t = get_tensor(in);
+      }
   }
 
   /// The mesh the study runs on (DoFs, cells, symmetry factor, h_min) and the set-up time.

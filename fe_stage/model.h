@@ -149,6 +149,9 @@ namespace clearjoint::fe::detail
       return {state_.u_owned(), contact_.nodes(), pattern_.rebuilds()};
     }
     void restore_state(const Snapshot &s) override;
+    /// The converged state into a restart file and back (StudyModel says what).
+    void write_restart(RestartWriter &out) const override;
+    void read_restart(RestartReader &in) override;
     /// Switches the assembled operator to c_m M + c_k K and reassembles (the solver's AMG is
     /// built again).
     void set_dynamic_operator(const MatrixCoefficients &c) override;

@@ -3,6 +3,9 @@
 #include "fe_stage/material/hardening_table.h"
 #include "fe_stage/scene.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace clearjoint::fe::detail
 {
   namespace
@@ -48,6 +51,38 @@ namespace clearjoint::fe::detail
   {}
 
   void J2Law::resize(const std::size_t n_points) { history_.assign(n_points, J2History()); }
+
+  /// Per point: the plastic strain's nine entries, then α.
+  void J2Law::write_history(RestartWriter &out) const
+  {
+    std::vector<double> values;
+    values.reserve(10 * history_.size());
+    for (const auto &h : history_)
+      {
+        values.insert(values.end(), h.committed.eps_p.data(), h.committed.eps_p.data() + 9);
+        values.push_back(h.committed.alpha);
+      }
+    out.put<std::uint64_t>(history_.size());
+    out.put_vector(values);
+  }
+
+  void J2Law::read_history(RestartReader &in)
+  {
+    const auto n = in.get<std::uint64_t>();
+    if (n != history_.size())
+      in.damaged("its material history has " + std::to_string(n) + " points, this mesh " +
+                 std::to_string(history_.size()));
+    const std::vector<double> values = in.get_vector<double>();
+    if (values.size() != 10 * n)
+      in.damaged("its material history's values do not match its points");
+    for (std::size_t p = 0; p < n; ++p)
+      {
+        J2State &s = history_[p].committed;
+        std::copy(values.begin() + 10 * p, values.begin() + 10 * p + 9, s.eps_p.data());
+        s.alpha = values[10 * p + 9];
+        history_[p].trial = s;
+      }
+  }
 
   MaterialResponse J2Law::evaluate(const std::size_t point, const SymmetricTensor<2, 3> &eps)
   {

@@ -29,6 +29,8 @@ namespace clearjoint::fe::detail
     double equivalent_plastic_strain(std::size_t point, bool trial = false) const override;
     double elastic_energy(std::size_t point,
                           const dealii::SymmetricTensor<2, 3> &eps) const override;
+    void write_history(RestartWriter &out) const override;
+    void read_history(RestartReader &in) override;
 
   private:
     J2Plasticity law_;

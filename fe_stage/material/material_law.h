@@ -15,6 +15,7 @@
 // has the finite one (the scene allows finite with it only).
 #pragma once
 
+#include "fe_stage/core/restart_stream.h"
 #include "fe_stage/material/linear_elastic.h"
 
 #include <deal.II/base/symmetric_tensor.h>
@@ -90,6 +91,12 @@ namespace clearjoint::fe::detail
     /// Elastic strain energy per volume ½(ε − ε_p):C:(ε − ε_p) [J/m³] at the committed state.
     virtual double elastic_energy(std::size_t point,
                                   const dealii::SymmetricTensor<2, 3> &eps) const = 0;
+
+    /// Every point's committed history into a restart file, and back into a history sized
+    /// for the same mesh (its trial states the committed ones). The reader fails, naming the
+    /// file, when the sizes differ.
+    virtual void write_history(RestartWriter &out) const = 0;
+    virtual void read_history(RestartReader &in) = 0;
   };
 
   /// The linear-elastic law as a MaterialLaw (no history).
@@ -125,6 +132,12 @@ namespace clearjoint::fe::detail
     double elastic_energy(std::size_t, const dealii::SymmetricTensor<2, 3> &eps) const override
     {
       return 0.5 * (law_.stress(eps) * eps);
+    }
+    void write_history(RestartWriter &out) const override { out.put<std::uint64_t>(0); }
+    void read_history(RestartReader &in) override
+    {
+      if (in.get<std::uint64_t>() != 0)
+        in.damaged("a material history where the elastic law has none");
     }
 
   private:

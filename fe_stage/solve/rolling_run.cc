@@ -9,6 +9,9 @@
 // profile, slip stages).
 #include "fe_stage/solve/rolling_run.h"
 
+#include "fe_stage/core/restart_values.h"
+#include "fe_stage/solve/rolling_restart.h"
+
 #include "common/error.h"
 #include "common/log.h"
 #include "common/units.h"
@@ -18,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace clearjoint::fe::detail
 {
@@ -339,6 +343,7 @@ namespace clearjoint::fe::detail
       const double inertia;
       FrameWork frame_work;
       RollingBalance ledger;
+      double wall_offset = 0.0;  // [s] a resumed run's: the wall time of the runs before it
 
       /// Step `step` (0-based) as `solved` left it: friction's slip work, the contact forces
       /// (frame → fixed), the torques, the energies and the paper's angles; the material and
@@ -402,10 +407,70 @@ namespace clearjoint::fe::detail
         rec.spin_coupled = solved.coupled;
         rec.cuts = solved.cuts;
         set_paper_angles(rec, G, motion, u_tracked, u_journal, previous);
-        rec.wall_time = model.elapsed();
+        rec.wall_time = wall_offset + model.elapsed();
         return rec;
       }
     };
+
+    /// The run's own part of a restart file: the steps' records, the ledgers carried from step
+    /// to step, the journal frame's committed turn, the fields written so far.
+    void write_run_part(RestartWriter &out, const RunResult &result, const StepCloser &closer,
+                        const JournalFrame &frame, const unsigned int field_counter)
+    {
+      out.section("rolling run");
+      out.put_vector(result.rolling_steps);
+      out.put_vector(result.increments);
+      out.put(closer.ledger);
+      out.put(closer.frame_work.work);
+      out.put<std::uint64_t>(closer.frame_work.force_before.size());
+      for (const auto &[key, f] : closer.frame_work.force_before)
+        {
+          out.put(key);
+          put_tensor(out, f);
+          put_tensor(out, closer.frame_work.u_before.at(key));
+        }
+      out.put(frame.psi_converged);
+      out.put(field_counter);
+    }
+
+    void read_run_part(RestartReader &in, RunResult &result, StepCloser &closer,
+                       JournalFrame &frame, unsigned int &field_counter)
+    {
+      in.section("rolling run");
+      result.rolling_steps = in.get_vector<RollingStepRecord>();
+      result.increments = in.get_vector<IncrementRecord>();
+      if (result.rolling_steps.size() != result.increments.size())
+        in.damaged("its step records do not match its increments");
+      closer.ledger = in.get<RollingBalance>();
+      closer.frame_work.work = in.get<double>();
+      const auto n = in.get<std::uint64_t>();
+      for (std::uint64_t k = 0; k < n; ++k)
+        {
+          const auto key = in.get<types::global_dof_index>();
+          closer.frame_work.force_before[key] = get_tensor(in);
+          closer.frame_work.u_before[key] = get_tensor(in);
+        }
+      frame.psi_converged = in.get<double>();
+      frame.delta_psi = 0.0;
+      field_counter = in.get<unsigned int>();
+      if (!result.rolling_steps.empty())
+        closer.wall_offset = result.rolling_steps.back().wall_time;
+    }
+
+    /// The resumed run's first line: from where, and the state there.
+    void log_resumed(const std::string &path, const RunResult &result, const SpinStepper &stepper)
+    {
+      std::string at = "t = " + format_value(stepper.time()) + " s";
+      if (!result.rolling_steps.empty())
+        {
+          const auto &last = result.rolling_steps.back();
+          at += ", delta " + format_value(last.delta) + " m, F " + format_value(last.force_normal) +
+                " N, D_p " + format_value(last.plastic_dissipation) + " J, after " +
+                log::format_duration(last.wall_time) + " of earlier runs";
+        }
+      log::info("fe_stage: resumed from " + path + " after step " +
+                std::to_string(result.rolling_steps.size()) + ": " + at);
+    }
 
     /// Why a run whose journal's spin ran away stops (`rec`: the step where it did).
     std::string runaway_message(const FeScene &scene, const rolling::Motion &motion,
@@ -456,7 +521,8 @@ namespace clearjoint::fe::detail
 
     unsigned int field_counter = 0;
     parts_.fields.create_directory();
-    if (parts_.fields.enabled())
+    const auto &restart = parts_.options.restart;
+    if (parts_.fields.enabled() && restart.resume_dir.empty())
       {
         parts_.frame.phi = 0.0;
         parts_.frame.centre_previous = parts_.frame.centre = motion.centre_frame(0.0);
@@ -466,9 +532,29 @@ namespace clearjoint::fe::detail
       }
 
     StepCloser closer{parts_, model_, motion, paper, inertia, {}, {}};
-    const double wall_steps_start = model_.elapsed();
-    unsigned int step = 0;
     SpinStepper stepper = model_.spin_stepper(motion, t_end, R.n_steps, L.max_cuts, inertia);
+    const RestartHeader header = RestartHeader::of(parts_.scene, n_ranks_, result.n_dofs);
+    if (!restart.resume_dir.empty())
+      {
+        RestartReader in = RestartFolder(restart.resume_dir, parts_.comm).read();
+        RestartHeader::read(in, header);
+        read_run_part(in, result, closer, parts_.frame, field_counter);
+        stepper.read_restart(in);
+        model_.read_restart(in);
+        in.expect_end();
+        if (rank_ == 0)
+          log_resumed(in.path(), result, stepper);
+        // the steps before are this run's output too
+        for (std::size_t k = 0; k < result.rolling_steps.size(); ++k)
+          {
+            if (parts_.options.on_increment)
+              parts_.options.on_increment(result.increments[k]);
+            if (parts_.options.on_rolling_step)
+              parts_.options.on_rolling_step(result.rolling_steps[k]);
+          }
+      }
+    const double wall_steps_start = model_.elapsed(), t_steps_start = stepper.time();
+    unsigned int step = result.rolling_steps.size();
     const unsigned int max_steps = R.n_steps << std::min(L.max_cuts + 1, 20u);
     for (; stepper.time() < t_end * (1.0 - 1e-12) && step < max_steps; ++step)
       {
@@ -484,14 +570,31 @@ namespace clearjoint::fe::detail
 
         const IncrementRecord inc = increment_of(rec, solved.state.record);
         result.increments.push_back(inc);
+        const bool last = t1 >= t_end * (1.0 - 1e-12);
+        const bool writes_fields =
+          parts_.fields.enabled() && (rec.step % R.field_stride == 0 || last);
+        // before the callbacks: an interrupt there stops the run after this state is kept
+        if (!restart.write_dir.empty() && (rec.step % restart.every == 0 || last))
+          {
+            RestartHeader h = header;
+            h.steps = rec.step;
+            h.time = t1;
+            RestartWriter out;
+            h.write(out);
+            write_run_part(out, result, closer, parts_.frame,
+                           field_counter + (writes_fields ? 1 : 0));
+            stepper.write_restart(out);
+            model_.write_restart(out);
+            RestartFolder(restart.write_dir, parts_.comm).write(out);
+          }
         if (rank_ == 0)
-          log_step(rec, (model_.elapsed() - wall_steps_start) / t1 * (t_end - t1));
+          log_step(rec,
+                   (model_.elapsed() - wall_steps_start) / (t1 - t_steps_start) * (t_end - t1));
         if (parts_.options.on_increment)
           parts_.options.on_increment(inc);
         if (parts_.options.on_rolling_step)
           parts_.options.on_rolling_step(rec);
-        const bool last = t1 >= t_end * (1.0 - 1e-12);
-        if (parts_.fields.enabled() && (rec.step % R.field_stride == 0 || last))
+        if (writes_fields)
           parts_.fields.write(field_counter++, t1);
         if (motion.spin_ran_away(t1, rec.gamma_rate))
           {

@@ -1,5 +1,6 @@
 #include "fe_stage/solve/spin_stepper.h"
 
+#include "fe_stage/core/restart_values.h"
 #include "fe_stage/core/scoped_timer.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/solve/root_finder.h"
@@ -403,5 +404,38 @@ namespace clearjoint::fe::detail
     dt_previous_ = step.dt;
     have_previous_ = true;
     control_.accept();
+  }
+
+  void SpinStepper::write_restart(RestartWriter &out) const
+  {
+    out.section("spin stepper");
+    for (const double v : {t_, gamma_, gamma_rate_, last_force_, last_torque_, torque_rate_slope_,
+                           dt_previous_, search_time_})
+      out.put(v);
+    out.put(have_previous_);
+    out.put(n_searches_);
+    out.put(n_coupled_fallbacks_);
+    out.put(control_.carried());
+    put_owned(out, u_previous_step_);
+  }
+
+  void SpinStepper::read_restart(RestartReader &in)
+  {
+    in.section("spin stepper");
+    for (double *v : {&t_, &gamma_, &gamma_rate_, &last_force_, &last_torque_, &torque_rate_slope_,
+                      &dt_previous_, &search_time_})
+      *v = in.get<double>();
+    have_previous_ = in.get<bool>();
+    n_searches_ = in.get<unsigned int>();
+    n_coupled_fallbacks_ = in.get<unsigned int>();
+    const auto carried = in.get<StepController::Carried>();
+    if (!(carried.size > 0.0 && carried.size <= control_.nominal()))
+      in.damaged("its step size " + format_value(carried.size) + " s is not in (0, " +
+                 format_value(control_.nominal()) + "] s, this scene's nominal step");
+    control_.restore(carried);
+    if (!(t_ >= 0.0 && t_ <= t_end_ * (1.0 + 1e-12)))
+      in.damaged("its time " + format_value(t_) + " s is not in [0, " + format_value(t_end_) +
+                 "] s, this scene's run");
+    get_owned(in, u_previous_step_, "the state before the last step");
   }
 }  // namespace clearjoint::fe::detail

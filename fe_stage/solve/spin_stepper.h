@@ -19,6 +19,7 @@
 #pragma once
 
 #include "fe_stage/contact/journal_frame.h"
+#include "fe_stage/core/restart_stream.h"
 #include "fe_stage/core/state.h"
 #include "fe_stage/core/step_failure.h"
 #include "fe_stage/scene.h"
@@ -73,6 +74,12 @@ namespace clearjoint::fe::detail
 
     /// Steps whose coupled iteration failed and that the root finder solved instead.
     unsigned int n_coupled_fallbacks() const { return n_coupled_fallbacks_; }
+
+    /// What carries to the next step, after accept(), into a restart file and back (the
+    /// model's state is the model's to write): t, γ, γ̇, the step size, the balance's scale
+    /// and slope, the state before the last step, the counters.
+    void write_restart(RestartWriter &out) const;
+    void read_restart(RestartReader &in);
 
   private:
     /// What an attempt at Δt solves for: the push δ at its end [m], the bearing's turn over

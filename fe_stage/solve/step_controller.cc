@@ -48,6 +48,14 @@ namespace clearjoint::fe
            std::to_string(max_cuts_) + " times, loading.max_cuts, is not tried)";
   }
 
+  void StepController::restore(const Carried &c)
+  {
+    if (!(c.size > 0.0 && c.size <= nominal_))
+      throw std::invalid_argument("StepController: a carried size must be in (0, nominal]");
+    carried_ = c.size;
+    easy_steps_ = c.easy_steps;
+  }
+
   void StepController::accept()
   {
     if (cuts_ > 0)

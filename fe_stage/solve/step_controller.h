@@ -41,6 +41,16 @@ namespace clearjoint::fe
 
     /// The size the next step starts at (before begin_step's `remaining`).
     double next_size() const { return carried_; }
+    /// What carries from one step to the next (a restart file keeps it): the next step's
+    /// size and the steps converged without a cut since it last changed.
+    struct Carried
+    {
+      double size = 0.0;
+      unsigned int easy_steps = 0;
+    };
+    Carried carried() const { return {carried_, easy_steps_}; }
+    /// Throws std::invalid_argument for a size that is not in (0, nominal].
+    void restore(const Carried &c);
     double nominal() const { return nominal_; }
     double floor() const { return floor_; }
     unsigned int max_cuts() const { return max_cuts_; }

@@ -7,6 +7,7 @@
 // study's run in one place.
 #pragma once
 
+#include "fe_stage/core/restart_stream.h"
 #include "fe_stage/fe_model.h"
 #include "fe_stage/material/material_state.h"
 #include "fe_stage/solve/hht.h"
@@ -66,6 +67,11 @@ namespace clearjoint::fe::detail
     virtual unsigned int sliding_rebuilds() const = 0;
     /// [s] since the model was made (the runs' set-up and wall times).
     virtual double elapsed() const = 0;
+    /// The converged state into a restart file and back (solve/rolling_restart.h), this
+    /// rank's part: u, the points' history, the contact nodes' states and slip references.
+    /// Read back on the same mesh and partition, after build_mesh and init_plasticity.
+    virtual void write_restart(RestartWriter &out) const = 0;
+    virtual void read_restart(RestartReader &in) = 0;
     /// What the linear solves cost (SystemSolver::summary), for the run's summary.
     virtual std::string solver_summary() const = 0;
 

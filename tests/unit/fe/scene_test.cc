@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 using namespace clearjoint;
 using namespace clearjoint::fe;
@@ -255,6 +256,42 @@ TEST(FeStageCli, BadInputExitsOneAndWritesNothing)
   std::ifstream d(dir / "defaults.yaml");
   const std::string defaults((std::istreambuf_iterator<char>(d)), {});
   EXPECT_NE(defaults.find("schema: clearjoint.fe/1"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// The restart flags (fe_stage --write-restart / --restart-every / --resume): the rolling study
+// only, a folder apart from --output (a run replaces that as a whole), at least every step, a
+// folder that holds a state. Each an input error naming the flag, exit 1, nothing written.
+TEST(FeStageCli, BadRestartFlagsExitOneAndWriteNothing)
+{
+  const auto dir = std::filesystem::temp_directory_path() / "clearjoint_fe_restart_cli_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto radial = dir / "radial.yaml", rolling = dir / "rolling.yaml";
+  std::ofstream(radial) << "schema: clearjoint.fe/1\n";
+  std::ofstream(rolling) << "schema: clearjoint.fe/1\nstudy: rolling\n";
+  const auto out = dir / "out";
+  for (const auto &[scene, flags, named] :
+       std::vector<std::tuple<std::filesystem::path, std::string, std::string>>{
+         {radial, "--write-restart " + (dir / "r").string(), "--write-restart"},
+         {rolling, "--write-restart " + (out / "r").string(), "--write-restart"},
+         {rolling, "--resume " + out.string(), "--resume"},
+         {rolling, "--write-restart " + (dir / "r").string() + " --restart-every 0",
+          "--restart-every"},
+         {rolling, "--resume " + (dir / "none").string(), "--resume"}})
+    {
+      const std::string cmd = std::string(FE_STAGE_EXE) + " " + scene.string() + " --output " +
+                              out.string() + " " + flags + " > " + (dir / "log.txt").string() +
+                              " 2>&1";
+      const int st = std::system(cmd.c_str());
+      ASSERT_TRUE(WIFEXITED(st));
+      EXPECT_EQ(WEXITSTATUS(st), 1) << flags;
+      EXPECT_FALSE(std::filesystem::exists(out)) << flags;
+      EXPECT_FALSE(std::filesystem::exists(dir / "r")) << flags;
+      std::ifstream l(dir / "log.txt");
+      const std::string t((std::istreambuf_iterator<char>(l)), {});
+      EXPECT_NE(t.find(named), std::string::npos) << flags << ": " << t;
+    }
   std::filesystem::remove_all(dir);
 }
 

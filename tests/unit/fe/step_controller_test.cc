@@ -78,3 +78,26 @@ TEST(StepController, RefusesANonPositiveNominal)
   EXPECT_THROW(StepController(-1.0, 3, 2), std::invalid_argument);
   EXPECT_THROW(StepController(1.0, 3, 0), std::invalid_argument);
 }
+
+// A restart file keeps what carries between steps (solve/rolling_restart.h): restored, a
+// controller grows and cuts as the one it was taken from; a size outside (0, nominal] is refused.
+TEST(StepController, ARestoredControllerGoesOnAsTheOriginal)
+{
+  StepController a(1.0, 4, 2);
+  a.begin_step();
+  ASSERT_TRUE(a.cut());
+  ASSERT_TRUE(a.cut());
+  a.accept();  // carries 0.25
+  a.begin_step();
+  a.accept();  // one easy step of two
+  StepController b(1.0, 4, 2);
+  b.restore(a.carried());
+  for (StepController *c : {&a, &b})
+    {
+      EXPECT_DOUBLE_EQ(c->begin_step(), 0.25);
+      c->accept();  // the second easy step: grows
+      EXPECT_DOUBLE_EQ(c->begin_step(), 0.5);
+    }
+  EXPECT_THROW(b.restore({0.0, 0}), std::invalid_argument);
+  EXPECT_THROW(b.restore({2.0, 0}), std::invalid_argument);
+}
