@@ -26,6 +26,8 @@ namespace clearjoint::fe::detail
     solver_.reset();
     problem_.reset();
     analysed_ = nullptr;
+    analysed_nonzeros_ = 0;
+    estimated_memory_ = 0.0;
     factored_ = false;
     factored_values_.clear();
   }
@@ -83,31 +85,43 @@ namespace clearjoint::fe::detail
     }
   }  // namespace
 
+  double DirectSolver::analyse(const dealii::TrilinosWrappers::SparseMatrix &A)
+  {
+    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
+    const bool held = &matrix == analysed_ &&
+                      std::size_t(matrix.NumMyNonzeros()) == analysed_nonzeros_;
+    if (dealii::Utilities::MPI::min(held ? 1 : 0, A.get_mpi_communicator()) == 1)
+      return estimated_memory_;
+    invalidate();
+    problem_ = std::make_unique<Epetra_LinearProblem>();
+    problem_->SetOperator(const_cast<Epetra_CrsMatrix *>(&matrix));
+    Amesos factory;
+    solver_.reset(factory.Create("Amesos_Mumps", *problem_));
+    if (!solver_)
+      throw StepFailure{"direct solver: Trilinos' Amesos has no MUMPS"};
+    // No scaling (ICNTL(8) = 0). MUMPS's automatic choice, an iterative simultaneous
+    // row/column scaling, cost 15 % of the rolling study's run (perf, the paper's case on
+    // the coarsest ring: ~1 600 factorizations of 2.7 k DoFs each); without it the results
+    // agree to the solvers' tolerances (bench/fe_unchanged.py: forces within 2e-10 of their
+    // largest, a reduced rolling case's tangential force within 3e-7; docs/benchmarks.md
+    // "The direct solver without scaling, and the stick/slip iteration's cycles"): the
+    // assembled FE operators are well scaled, and the threshold pivoting stays on.
+    Teuchos::ParameterList parameters;
+    parameters.sublist("mumps").set("ICNTL(8)", 0);
+    check(solver_->SetParameters(parameters), "setting the parameters");
+    check(solver_->SymbolicFactorization(), "the symbolic analysis");
+    analysed_ = &matrix;
+    analysed_nonzeros_ = matrix.NumMyNonzeros();
+    // (certain on MUMPS's host, rank 0, as the counts below)
+    estimated_memory_ = dealii::Utilities::MPI::broadcast(
+      A.get_mpi_communicator(), 1e6 * mumps_statistics(*solver_).estimated_memory_mb, 0);
+    return estimated_memory_;
+  }
+
   void DirectSolver::factor(const dealii::TrilinosWrappers::SparseMatrix &A)
   {
     const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
-    if (!holds_pattern_of(A))
-      {
-        invalidate();
-        problem_ = std::make_unique<Epetra_LinearProblem>();
-        problem_->SetOperator(const_cast<Epetra_CrsMatrix *>(&matrix));
-        Amesos factory;
-        solver_.reset(factory.Create("Amesos_Mumps", *problem_));
-        if (!solver_)
-          throw StepFailure{"direct solver: Trilinos' Amesos has no MUMPS"};
-        // No scaling (ICNTL(8) = 0). MUMPS's automatic choice, an iterative simultaneous
-        // row/column scaling, cost 15 % of the rolling study's run (perf, the paper's case on
-        // the coarsest ring: ~1 600 factorizations of 2.7 k DoFs each); without it the results
-        // agree to the solvers' tolerances (bench/fe_unchanged.py: forces within 2e-10 of their
-        // largest, a reduced rolling case's tangential force within 3e-7; docs/benchmarks.md
-        // "The direct solver without scaling, and the stick/slip iteration's cycles"): the
-        // assembled FE operators are well scaled, and the threshold pivoting stays on.
-        Teuchos::ParameterList parameters;
-        parameters.sublist("mumps").set("ICNTL(8)", 0);
-        check(solver_->SetParameters(parameters), "setting the parameters");
-        check(solver_->SymbolicFactorization(), "the symbolic analysis");
-        analysed_ = &matrix;
-      }
+    analyse(A);
     check(solver_->NumericFactorization(), "the factorization");
     keep_values(matrix);
     factored_ = true;

@@ -43,7 +43,11 @@ namespace clearjoint::fe::detail
     bool holds_pattern_of(const dealii::TrilinosWrappers::SparseMatrix &A) const;
     /// Whether A's values are the factored ones (collective).
     bool holds_values_of(const dealii::TrilinosWrappers::SparseMatrix &A) const;
-    /// Factors A, analysing its pattern first unless the kept factorization has it. Throws
+    /// Analyses A's pattern (MUMPS's ordering and symbolic factorization) unless the kept
+    /// analysis is of it; returns MUMPS's estimate of the memory the factorization will need
+    /// in core, all ranks together [bytes] (collective). Throws StepFailure with MUMPS's reason.
+    double analyse(const dealii::TrilinosWrappers::SparseMatrix &A);
+    /// Factors A, analysing its pattern first unless the kept analysis is of it. Throws
     /// StepFailure with MUMPS's reason.
     void factor(const dealii::TrilinosWrappers::SparseMatrix &A);
     /// x = M⁻¹ b with M the matrix of the kept factorization (two triangular solves; A's
@@ -65,6 +69,8 @@ namespace clearjoint::fe::detail
     std::unique_ptr<Epetra_LinearProblem> problem_;
     std::unique_ptr<Amesos_BaseSolver> solver_;
     const Epetra_CrsMatrix *analysed_ = nullptr;  // the matrix the symbolic analysis is of
+    std::size_t analysed_nonzeros_ = 0;           // its pattern's size on this rank
+    double estimated_memory_ = 0.0;               // [bytes] the analysis's estimate, all ranks
     bool factored_ = false;
     double factorization_flops_ = 0.0, factor_entries_ = 0.0;
     std::vector<double> factored_values_;  // this rank's rows, in storage order

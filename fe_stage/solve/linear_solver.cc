@@ -18,12 +18,33 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// [bytes] the memory this machine has free for a new allocation (/proc/meminfo's
+    /// MemAvailable; 0 where it cannot be read, so that nothing large is tried).
+    double available_memory()
+    {
+      std::ifstream meminfo("/proc/meminfo");
+      std::string key;
+      double kb = 0.0;
+      while (meminfo >> key >> kb)
+        {
+          if (key == "MemAvailable:")
+            return 1024.0 * kb;
+          meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+        }
+      return 0.0;
+    }
+  }  // namespace
+
   void SystemSolver::configure(const bool direct, const unsigned int max_iterations)
   {
     direct_ = direct;
@@ -145,15 +166,25 @@ namespace clearjoint::fe::detail
                                         " iterations (residual " + format_value(e.last_residual) +
                                         ")";
             // A system the AMG cannot precondition (the rolling study's elastoplastic
-            // tangent with friction rows at large plastic strain, measured at 7 k DoFs) is
-            // still a small one for MUMPS: solved exactly instead of cutting the step.
-            if (A.m() > direct_fallback_below_)
-              throw StepFailure{failure};
+            // tangent with friction rows at large plastic strain, measured at 7 k DoFs; an
+            // adaptive mesh's at 242 k DoFs, the thickness study at t_B = 6 mm) is solved
+            // exactly by MUMPS instead of cutting the step — where MUMPS's own estimate of
+            // its factorization's memory fits in what the machine has free
+            const double needed = direct_fallback_memory_margin * direct_solver_.analyse(A);
+            const double available = Utilities::MPI::broadcast(
+              A.get_mpi_communicator(), available_memory(), 0);
+            if (needed > available)
+              throw StepFailure{failure + "; the direct solver (MUMPS) is not tried: it would " +
+                                "need " + format_value(needed / 1e9) + " GB, " +
+                                format_value(available / 1e9) + " GB are free"};
             if (n_direct_fallbacks_++ == 0 &&
                 Utilities::MPI::this_mpi_process(A.get_mpi_communicator()) == 0)
               log::warning("fe_stage: " + failure +
-                           ": solved by the direct solver (MUMPS) "
-                           "instead, here and wherever the iterative solver fails again");
+                           ": solved by the direct solver (MUMPS, " +
+                           std::to_string(A.m()) + " DoFs, " + format_value(needed / 1e9) +
+                           " GB of the " + format_value(available / 1e9) +
+                           " GB free) instead, here and wherever the iterative solver fails "
+                           "again");
             direct_solver_.solve(A, x, b);
             return e.last_step;  // (the Krylov iterations spent)
           }

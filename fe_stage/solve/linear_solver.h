@@ -80,9 +80,10 @@ namespace clearjoint::fe::detail
     unsigned int n_amg_builds_ = 0;
     double t_amg_ = 0.0;
     unsigned int n_direct_fallbacks_ = 0;
-    /// A failed Krylov solve of a system up to this size is solved by MUMPS instead (its fill
-    /// stays in the hundreds of MB for FE_Q(2)^3 meshes of this size); larger ones fail the
-    /// step, which is then cut.
-    static constexpr types::global_dof_index direct_fallback_below_ = 60000;
+    /// A failed Krylov solve is solved by MUMPS instead where this many times MUMPS's estimate
+    /// of its factorization's memory (after its analysis) is free on the machine; else the
+    /// step fails and is cut. The margin covers MUMPS's own relaxation of the estimate
+    /// (ICNTL(14), 20 % by default) and what the run allocates besides.
+    static constexpr double direct_fallback_memory_margin = 1.5;
   };
 }  // namespace clearjoint::fe::detail

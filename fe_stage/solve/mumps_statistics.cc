@@ -13,6 +13,7 @@ namespace clearjoint::fe::detail
         // (MUMPS's arrays are 1-based in its manual, 0-based here)
         s.factorization_flops = mumps->GetRINFOG()[2];
         s.factor_entries = double(mumps->GetINFOG()[28]);
+        s.estimated_memory_mb = double(mumps->GetINFOG()[16]);
       }
     return s;
   }
