@@ -574,7 +574,7 @@ namespace clearjoint::fe::detail
         const bool writes_fields =
           parts_.fields.enabled() && (rec.step % R.field_stride == 0 || last);
         // before the callbacks: an interrupt there stops the run after this state is kept
-        if (!restart.write_dir.empty() && (rec.step % restart.every == 0 || last))
+        if (!restart.write_dir.empty() && (rec.step % std::max(restart.every, 1u) == 0 || last))
           {
             RestartHeader h = header;
             h.steps = rec.step;
