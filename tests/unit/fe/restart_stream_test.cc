@@ -2,6 +2,7 @@
 // back as written; a reader out of step stops at the next section naming it; a file that ends
 // early, or has bytes left over, is an input error naming the file.
 #include "fe_stage/core/restart_stream.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -9,24 +10,7 @@
 
 using namespace clearjoint;
 using namespace clearjoint::fe;
-
-namespace
-{
-  /// The message of the InputError that `read` throws ("" when it throws none).
-  template <typename F>
-  std::string error_of(F &&read)
-  {
-    try
-      {
-        read();
-      }
-    catch (const InputError &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
-}  // namespace
+using clearjoint::test_support::input_error_of;
 
 TEST(RestartStream, ValuesListsAndTextsReadBackAsWritten)
 {
@@ -57,18 +41,18 @@ TEST(RestartStream, AReaderOutOfStepOrAShortFileIsAnInputErrorNamingTheFile)
   const std::string bytes = out.bytes();
 
   RestartReader wrong(bytes, "state/rank-0.bin");
-  const std::string e1 = error_of([&] { wrong.section("displacement"); });
+  const std::string e1 = input_error_of([&] { wrong.section("displacement"); });
   EXPECT_NE(e1.find("state/rank-0.bin"), std::string::npos) << e1;
   EXPECT_NE(e1.find("displacement"), std::string::npos) << e1;
 
   RestartReader shortened(bytes.substr(0, bytes.size() - 8), "state/rank-1.bin");
   shortened.section("spin stepper");
-  const std::string e2 = error_of([&] { shortened.get_vector<double>(); });
+  const std::string e2 = input_error_of([&] { shortened.get_vector<double>(); });
   EXPECT_NE(e2.find("ends early"), std::string::npos) << e2;
   EXPECT_NE(e2.find("state/rank-1.bin"), std::string::npos) << e2;
 
   RestartReader left_over(bytes + "x", "f.bin");
   left_over.section("spin stepper");
   left_over.get_vector<double>();
-  EXPECT_NE(error_of([&] { left_over.expect_end(); }).find("left over"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { left_over.expect_end(); }).find("left over"), std::string::npos);
 }
