@@ -38,6 +38,7 @@
 #include "fe_stage/results/case_output.h"
 #include "fe_stage/results/sweep_output.h"
 #include "fe_stage/scene.h"
+#include "fe_stage/solve/rolling_restart.h"
 
 #include <CLI/CLI.hpp>
 #include <mpi.h>
@@ -282,8 +283,7 @@ namespace
     if (scene.study != fe::Study::rolling)
       throw InputError("", flag, r.resume_dir.empty() ? r.write_dir : r.resume_dir,
                        "only with study: rolling (the other studies run in minutes)");
-    if (!r.resume_dir.empty() && !std::filesystem::is_directory(r.resume_dir + "/state") &&
-        !std::filesystem::is_directory(r.resume_dir + "/previous"))
+    if (!r.resume_dir.empty() && fe::detail::RestartFolder::complete_state(r.resume_dir).empty())
       throw InputError("", "--resume", r.resume_dir,
                        "a folder that fe_stage --write-restart wrote a state to",
                        "it has no state/ (nor previous/) folder");

@@ -83,13 +83,18 @@ namespace clearjoint::fe::detail
     });
   }
 
+  std::string RestartFolder::complete_state(const std::string &dir)
+  {
+    for (const char *name : {"/state", "/previous"})
+      if (fs::is_directory(dir + name))
+        return dir + name;
+    return "";
+  }
+
   RestartReader RestartFolder::read() const
   {
-    // `state`, or `previous` when a swap was cut short between its two renames
-    std::string folder = dir_ + "/state";
-    if (!fs::is_directory(folder) && fs::is_directory(dir_ + "/previous"))
-      folder = dir_ + "/previous";
-    if (!fs::is_directory(folder))
+    const std::string folder = complete_state(dir_);
+    if (folder.empty())
       throw InputError("", "--resume", dir_,
                        "a folder with a complete restart state (" + dir_ + "/state)",
                        "written by fe_stage --write-restart");

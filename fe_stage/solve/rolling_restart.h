@@ -35,6 +35,10 @@ namespace clearjoint::fe::detail
 
     const std::string &dir() const { return dir_; }
 
+    /// The folder under `dir` holding its last complete state: `state`, or `previous` when a
+    /// swap was cut short between its two renames; empty when there is none.
+    static std::string complete_state(const std::string &dir);
+
   private:
     std::string dir_;
     MPI_Comm comm_;
