@@ -47,8 +47,8 @@ namespace clearjoint::fe
       return e;
     const std::size_t k = F.size() - 1;
     e.error = std::abs(F[k] - F[k - 1]) / std::abs(F[k]);
-    // Not a bound in either direction: on the 23 recorded prefixes where it is the estimate it
-    // was 0.05-29 times the error against the far end of the reference, median 1.13, above it
+    // Not a bound in either direction: on the 25 recorded prefixes where it is the estimate it
+    // was 0.05-29 times the error against the far end of the reference, median 1.12, above it
     // on 16 (bench/adaptive_estimate_table.py). Readers match "change in the last cycle".
     e.method = "change in the last cycle (not extrapolated; not a bound)";
     if (F.size() < 3)

@@ -559,7 +559,7 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
     ASSERT_EQ(o.exit_code, 0) << o.log;
     EXPECT_NE(o.log.find("fe/thickness/t_B=0.002: own estimate of the error of F(delta_max) "
                          "~1 % (the change in the last cycle, not extrapolated: on the recorded "
-                         "sequences it was 0.05-29x the error, median 1.13) on the last of 2 "
+                         "sequences it was 0.05-29x the error, median 1.12) on the last of 2 "
                          "meshes, 2000 DoFs"),
               std::string::npos)
       << o.log;

@@ -239,7 +239,7 @@ TEST(Presets, OwnErrorEstimateOfAnAdaptiveCase)
   EXPECT_TRUE(b->last_change);
   EXPECT_EQ(describe_own_estimate(*b),
             "~0.85 % (the change in the last cycle, not extrapolated: on the recorded sequences "
-            "it was 0.05-29x the error, median 1.13)");
+            "it was 0.05-29x the error, median 1.12)");
   EXPECT_EQ(describe_own_estimate(*b).find("bound"), std::string::npos);
   // a manifest written before the relabelling ("(a lower bound)") is read the same way
   const auto old = read_own_error_estimate(manifest("change in the last cycle (a lower bound)"));
@@ -261,7 +261,7 @@ TEST(Presets, OwnErrorEstimateOfAnAdaptiveCase)
   std::string text = describe_own_estimates(c, "thickness", estimates);
   EXPECT_EQ(text, "own estimate of the error of F(delta_max): t_B=0.004 0.85 % (extrapolated), "
                   "t_B=0.006 ~0.85 % (the change in the last cycle, not extrapolated: on the "
-                  "recorded sequences it was 0.05-29x the error, median 1.13); preset fast "
+                  "recorded sequences it was 0.05-29x the error, median 1.12); preset fast "
                   "measured 4.8 %");
   text = describe_own_estimates(c, "misalignment", estimates);
   EXPECT_NE(text.find("; preset fast: not measured for this sweep, so the run's own estimate is "

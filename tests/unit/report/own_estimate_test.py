@@ -71,7 +71,7 @@ EXTRAPOLATED = ("last two cycles extrapolated with F = F_inf + C N^-q, q = 0.667
 LAST_CHANGE = "change in the last cycle (not extrapolated; not a bound)"
 OLD_LAST_CHANGE = "change in the last cycle (a lower bound)"  # manifests before 2026-11-29
 LAST_CHANGE_WORDS = ("≈ 3.3 % (the change in the last cycle, not extrapolated: on the recorded "
-                     "sequences it was 0.05–29× the error, median 1.13)")
+                     "sequences it was 0.05–29× the error, median 1.12)")
 
 
 def main():
