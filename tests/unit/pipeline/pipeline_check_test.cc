@@ -371,7 +371,9 @@ TEST(PipelineCheck, TheRollingStudysOwnPresetSettingIsNamedByItsKey)
 // SIGINT and SIGTERM while a stage plots: run_pipeline passes the signal on (to the stage's
 // process group), the stage stops its plot.py and the run exits 130/143 with the task left as
 // '<dir>.partial'. The stand-in plot.py ignores SIGINT, so only the stage's SIGTERM ends it:
-// a stage that did not stop its child would leave it running.
+// a stage that did not stop its child would leave it running. Two fit tasks may plot at once
+// (two CPU slots), so each plot.py records its pid in a file of its own, written whole (a shared
+// file truncated by the second one read empty: CI, stop 51).
 TEST(PipelineInterrupt, ASignalWhileAStagePlotsStopsItsPlotPy)
 {
   for (const auto &[sig, code] : std::vector<std::pair<int, int>>{{SIGINT, 130}, {SIGTERM, 143}})
@@ -383,25 +385,37 @@ TEST(PipelineInterrupt, ASignalWhileAStagePlotsStopsItsPlotPy)
     test_support::write_text(dir.file("plot.py"),
                              "import os, signal, sys, time\n"
                              "signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
-                             "open(os.environ['PLOT_PID'], 'w').write(str(os.getpid()))\n"
+                             "d, me = os.environ['PLOT_PIDS'], str(os.getpid())\n"
+                             "open(os.path.join(d, '.' + me), 'w').write(me)\n"
+                             "os.replace(os.path.join(d, '.' + me), os.path.join(d, me))\n"
                              "time.sleep(60)\n");
-    const std::string pid_file = dir.file("plot.pid");
+    const std::string pid_dir = dir.file("plot_pids");
+    fs::create_directories(pid_dir);
+    const auto plots = [&pid_dir]() {
+      std::vector<pid_t> pids;
+      for (const auto &e : fs::directory_iterator(pid_dir))
+        if (e.path().filename().string().front() != '.')
+          pids.push_back(std::stoi(e.path().filename().string()));
+      return pids;
+    };
     const pid_t pid = test_support::start_process(
       RUN_PIPELINE_EXE, {dir.file("p.yaml"), "--build-dir", b.root}, dir.file("log.txt"),
-      {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py"), "PLOT_PID=" + pid_file});
+      {"CLEARJOINT_PLOT_SCRIPT=" + dir.file("plot.py"), "PLOT_PIDS=" + pid_dir});
     ASSERT_GE(pid, 0);
-    for (int i = 0; i < 6000 && test_support::read_text(pid_file).empty(); ++i)
+    for (int i = 0; i < 6000 && plots().empty(); ++i)
       usleep(20000);
-    ASSERT_FALSE(test_support::read_text(pid_file).empty())
-      << test_support::read_text(dir.file("log.txt"));
-    const pid_t plot = std::stoi(test_support::read_text(pid_file));
+    ASSERT_FALSE(plots().empty()) << test_support::read_text(dir.file("log.txt"));
     kill(pid, sig);
     ASSERT_EQ(test_support::wait_exit_code(pid), code)
       << test_support::read_text(dir.file("log.txt"));
-    bool gone = false;
-    for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
-      gone = kill(plot, 0) != 0;
-    EXPECT_TRUE(gone) << "the stage's plot.py was stopped";
+    // every plot.py that started, the second task's too if it had begun to plot
+    for (const pid_t plot : plots())
+      {
+        bool gone = false;
+        for (int i = 0; i < 250 && !gone; ++i, usleep(20000))
+          gone = kill(plot, 0) != 0;
+        EXPECT_TRUE(gone) << "the stage's plot.py " << plot << " was stopped";
+      }
     // The fit task that was plotting is left as '<dir>.partial' (redone by the next run), with
     // no law in it (fit_stage removes its temporaries) and none under a final name.
     bool partial = false;
