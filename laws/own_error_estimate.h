@@ -31,7 +31,10 @@ namespace clearjoint::laws
   /// How the last cycle's change compared with the error on the recorded adaptive sequences
   /// (bench/adaptive_estimate_table.py: the 25 prefixes where it is fe_stage's estimate, against
   /// the far end of each reference): from 0.05 to 29 times it, median 1.12, above it on 16. So
-  /// it is no bound either way, only an indication; the words below quote these figures.
+  /// it is no bound either way, only an indication; the words below quote these figures. The
+  /// one copy of them: run_pipeline's log and summary (own_error_F_max.last_change_record, which
+  /// the report quotes) take them from here, and AdaptiveEstimate.BracketsTheReferenceOnThe-
+  /// MeasuredSequences checks them against tests/data/fe/adaptive_sequences.txt.
   inline constexpr const char *last_change_record =
     "on the recorded sequences it was 0.05-29x the error, median 1.12";
 

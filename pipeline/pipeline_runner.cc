@@ -279,9 +279,14 @@ namespace clearjoint::pipeline
         const std::string label =
           fe_case_label(s["parameter"].get<std::string>(), c["value"].get<double>());
         if (const auto e = found->second.find(label); e != found->second.end())
-          c["own_error_F_max"] = {{"value", e->second.relative},
-                                  {"unit", "1"},
-                                  {"last_change", e->second.last_change}};
+          {
+            c["own_error_F_max"] = {{"value", e->second.relative},
+                                    {"unit", "1"},
+                                    {"last_change", e->second.last_change}};
+            // the fallback's track record, quoted by the report (one source: laws/)
+            if (e->second.last_change)
+              c["own_error_F_max"]["last_change_record"] = last_change_record;
+          }
       }
     }
   }

@@ -91,21 +91,17 @@ def trend_words(values):
     return 0, f"is not monotonic ({up} of {len(diffs)} steps up)"
 
 
-# How fe_stage's fallback, the change in the last adaptive cycle, compared with the error on the
-# recorded sequences (bench/adaptive_estimate_table.py: the 25 prefixes where it is the
-# estimate, against the far end of each reference): 0.05 to 29 times it, median 1.12, above it
-# on 16. Not a bound either way — only an indication; the words quote these figures.
-LAST_CHANGE_RECORD = "on the recorded sequences it was 0.05–29× the error, median 1.12"
-
-
-def own_estimate(man):
+def own_estimate(man, case=None):
     """fe_stage's own estimate of the relative error of F(δ_max) on an adaptive case's last mesh
     (manifest extra.adaptive.estimated_error_F_max, docs/fe.md "The error estimate"), as
     {"value": [1], "last_change": bool, "method": words, "extrapolated_force": N or None,
-    "n_meshes": int, "n_dofs": DoFs of the last mesh}; None for a case without adaptive cycles
-    or with a single mesh (nothing to estimate from). last_change: the change in the last cycle,
-    not extrapolated and not a bound (method "change in the last cycle (not extrapolated; not a
-    bound)"; manifests before 2026-11-29 said "(a lower bound)", which it never was)."""
+    "n_meshes": int, "n_dofs": DoFs of the last mesh, "record": words or None}; None for a case
+    without adaptive cycles or with a single mesh (nothing to estimate from). last_change: the
+    change in the last cycle, not extrapolated and not a bound (method "change in the last cycle
+    (not extrapolated; not a bound)"; manifests before 2026-11-29 said "(a lower bound)", which
+    it never was). record: how that fallback compared with the error on the recorded sequences,
+    as run_pipeline wrote it beside the case in its summary (`case`: the summary's entry;
+    laws::last_change_record, checked against the sequences by the estimator's test)."""
     a = get(man, "extra", "adaptive")
     e = value_of(get(a, "estimated_error_F_max"))
     if e is None:
@@ -114,21 +110,23 @@ def own_estimate(man):
     cycles = get(a, "cycles", default=[]) or []
     return {"value": e, "last_change": "change in the last cycle" in method, "method": method,
             "extrapolated_force": value_of(get(a, "extrapolated_force")),
-            "n_meshes": len(cycles), "n_dofs": value_of(get(cycles, -1, "n_dofs"))}
+            "n_meshes": len(cycles), "n_dofs": value_of(get(cycles, -1, "n_dofs")),
+            "record": get(case, "own_error_F_max", "last_change_record")}
 
 
 def own_estimate_words(est):
     """"0.85 % (extrapolated from the sequence)" or "≈ 0.4 % (the change in the last cycle, not
-    extrapolated: on the recorded sequences it was 0.05–29× the error, median 1.12)"."""
+    extrapolated: <its record>)", the record as the summary gives it (none: not quoted)."""
     if est["last_change"]:
-        return (f"≈ {100 * est['value']:.2g} % (the change in the last cycle, not extrapolated: "
-                f"{LAST_CHANGE_RECORD})")
+        record = f": {est['record']}" if est.get("record") else ""
+        return (f"≈ {100 * est['value']:.2g} % (the change in the last cycle, not extrapolated"
+                f"{record})")
     return f"{100 * est['value']:.2g} % (extrapolated from the sequence)"
 
 
 def largest_own_estimate(fs):
     """(estimate, case) with the largest own estimate over the sweep's cases, or None."""
-    found = [(own_estimate(man), case) for case, _, man in fs.cases]
+    found = [(own_estimate(man, case), case) for case, _, man in fs.cases]
     found = [(e, c) for e, c in found if e is not None]
     return max(found, key=lambda ec: ec[0]["value"]) if found else None
 
@@ -141,7 +139,7 @@ def own_estimate_section(fs, preset_error=None):
     for a sweep without adaptive cases."""
     rows = []
     for case, _, man in fs.cases:
-        est = own_estimate(man)
+        est = own_estimate(man, case)
         if est is None:
             continue
         F = value_of(get(man, "extra", "force_at_delta_max"))

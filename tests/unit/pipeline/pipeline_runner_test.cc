@@ -3,13 +3,14 @@
 #include "common/csv.h"
 #include "common/strict_reader.h"
 #include "common/units.h"
+#include "fake_pipeline.h"
 #include "geometry/joint_geometry.h"
 #include "laws/law_family.h"
 #include "laws/law_file.h"
+#include "laws/own_error_estimate.h"
 #include "pipeline/mesh_task.h"
 #include "pipeline/pipeline_config.h"
 #include "test_support.h"
-#include "fake_pipeline.h"
 
 #include <gtest/gtest.h>
 
@@ -527,6 +528,7 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
     EXPECT_EQ(c["own_error_F_max"]["unit"], "1");
     EXPECT_EQ(c["own_error_F_max"]["last_change"], false);
     EXPECT_FALSE(c["own_error_F_max"].contains("lower_bound"));
+    EXPECT_FALSE(c["own_error_F_max"].contains("last_change_record")) << "extrapolated";
     // no preset figure: each law carries its case's own estimate as its discretisation error
     // (fit_stage --discretisation-error-from), the family the largest of its cases'
     const auto law = laws::read_law_file(dir.file("out/r/fit/thickness/t_B=0.004/law.json"));
@@ -567,6 +569,8 @@ TEST(RunPipeline, EachAdaptiveCaseLogsItsOwnErrorEstimate)
     const auto &c = summary["sweeps"][0]["cases"][1];
     EXPECT_EQ(c["own_error_F_max"]["value"], 0.01);
     EXPECT_EQ(c["own_error_F_max"]["last_change"], true);
+    // the words the report quotes, from their one source
+    EXPECT_EQ(c["own_error_F_max"]["last_change_record"], laws::last_change_record);
     const auto law = laws::read_law_file(one.file("out/r/fit/thickness/t_B=0.004/law.json"));
     ASSERT_TRUE(law.discretisation_error.has_value());
     EXPECT_EQ(law.discretisation_error->F_relative, 0.01);

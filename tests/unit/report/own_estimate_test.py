@@ -3,7 +3,8 @@
 (fe_stage's manifest extra.adaptive.estimated_error_F_max, as fe_stage/results/case_output.cc
 writes it) shows each case's estimate — its value, and whether it is extrapolated or only the
 change in the last cycle (not extrapolated, no bound either way: said with how that change
-compared with the error on the recorded sequences) — with the last mesh's DoFs and F(δ_max); beside the chosen preset's measured figure where
+compared with the error on the recorded sequences, in the words run_pipeline's summary gives
+beside the case, laws::last_change_record — not typed here a second time) — with the last mesh's DoFs and F(δ_max); beside the chosen preset's measured figure where
 there is one (saying so where the own estimate is the larger), and, where the preset's figure
 is null (a Gmsh bearing without a convergence study), says that the run's own estimate is the
 figure to use, naming the largest. The summary's "What ran" says the same per sweep, and "What
@@ -52,8 +53,13 @@ def manifest(forces, dofs, estimate=None, method="", F_inf=None):
     return {"status": "complete", "extra": extra}
 
 
+# run_pipeline's words for the fallback's record (any text: the report quotes what it is given)
+RECORD = "on the recorded sequences it was 0.05-29x the error, median 1.12"
+
+
 def sweep(d, name, cases):
-    """cases: (t_B [m], manifest); each gets a law and an fe_dir with the manifest."""
+    """cases: (t_B [m], manifest); each gets a law and an fe_dir with the manifest, and in the
+    summary's entry the estimate as run_pipeline writes it (the record beside a last change)."""
     out = []
     for value, man in cases:
         folder = os.path.join(d, name, f"{value}")
@@ -62,7 +68,13 @@ def sweep(d, name, cases):
             json.dump(law(man["extra"]["force_at_delta_max"]["value"]), f)
         with open(os.path.join(folder, "manifest.json"), "w") as f:
             json.dump(man, f)
-        out.append({"value": value, "law": os.path.join(folder, "law.json"), "fe_dir": folder})
+        entry = {"value": value, "law": os.path.join(folder, "law.json"), "fe_dir": folder}
+        est = man["extra"].get("adaptive", {}).get("estimated_error_F_max")
+        if est:
+            last_change = "change in the last cycle" in est["method"]
+            entry["own_error_F_max"] = {"value": est["value"], "unit": "1", "last_change": last_change,
+                                        **({"last_change_record": RECORD} if last_change else {})}
+        out.append(entry)
     return {"name": name, "parameter": "t_B", "unit": "m", "cases": out}
 
 
@@ -70,8 +82,7 @@ EXTRAPOLATED = ("last two cycles extrapolated with F = F_inf + C N^-q, q = 0.667
                 "over the last 4 meshes: 0.512, not used)")
 LAST_CHANGE = "change in the last cycle (not extrapolated; not a bound)"
 OLD_LAST_CHANGE = "change in the last cycle (a lower bound)"  # manifests before 2026-11-29
-LAST_CHANGE_WORDS = ("≈ 3.3 % (the change in the last cycle, not extrapolated: on the recorded "
-                     "sequences it was 0.05–29× the error, median 1.12)")
+LAST_CHANGE_WORDS = f"≈ 3.3 % (the change in the last cycle, not extrapolated: {RECORD})"
 
 
 def main():
@@ -96,6 +107,14 @@ def main():
         old = own_estimate(manifest([68121.5, 67905.0, 65751.5], [9315, 22992, 57501], 0.0327,
                                     OLD_LAST_CHANGE))
         expect(old["last_change"], "an older manifest's '(a lower bound)' is read as the last change")
+        # the record comes from the summary's entry; a summary without it (before 2026-12-01):
+        # the words say what the figure is and quote nothing
+        case6 = fs.cases[1][0]
+        expect(own_estimate(fs.cases[1][2], case6)["record"] == RECORD, "the record from the summary")
+        from plotting._report_fe import own_estimate_words
+        expect(own_estimate_words(own_estimate(fs.cases[1][2])) ==
+               "≈ 3.3 % (the change in the last cycle, not extrapolated)",
+               f"no record: {own_estimate_words(own_estimate(fs.cases[1][2]))}")
 
         # a Gmsh bearing is described by its mesh, not the generated base mesh's counts
         text = modelled_paragraph(fs)
