@@ -6,7 +6,7 @@ item 2), so that no figure there is typed by hand.
         [--presets fast standard accurate] [--studies thickness misalignment impact impact_deformable rolling pipeline]
         [--times-only] [--tiny] [--set KEY=VALUE ...] [--build-dir build]
         [--run-pipeline build/pipeline/run_pipeline] [--work /tmp/clearjoint-measure]
-        [--no-plots] [--dry-run] [--no-check] [--cpu-time]
+        [--no-plots] [--dry-run] [--no-check] [--cpu-time] [--jobs N]
 
 For each preset and study asked for, the plan (bench/measure_presets.yaml; its header says every
 key) names the study's reference case and its reference. Every run goes through run_pipeline on
@@ -47,18 +47,26 @@ minutes with the real fe_stage, in seconds with the tests' stand-in stages. Its 
 the presets': it refuses to write the repository's own pipeline.yaml. --set KEY=VALUE adds a
 scene key (YAML value) to every run.
 --dry-run prints the new blocks without writing.
+
+--jobs N runs up to N runs at once (each `run_pipeline --jobs 1`, one task: every preset's own
+runs and every reference run their figures need, started together, each run once however many
+parts ask for it); the figures are the same as one at a time. Each run's CPU time is its own
+(its process's, from wait4), but a wall time beside other runs is not what the run takes alone,
+so --jobs above 1 needs --cpu-time. The whole pipeline (`pipeline`) runs alone, after the
+preset's other runs.
 """
 import argparse
+import concurrent.futures
 import csv
 import datetime
 import hashlib
 import json
 import math
 import os
-import resource
 import shlex
 import subprocess
 import sys
+import threading
 import time
 
 import yaml
@@ -89,6 +97,17 @@ EARLIER_NOTE = " || the previous note: "
 
 class MeasureError(Exception):
     pass
+
+
+PRINT_LOCK = threading.Lock()
+
+
+def say(line):
+    """Prints one whole line: the pool's threads (--jobs) print too, and print() writes the text
+    and its newline apart, so two lines could run into one."""
+    with PRINT_LOCK:
+        sys.stdout.write(line + "\n")
+        sys.stdout.flush()
 
 
 def significant(x, digits=3):
@@ -261,6 +280,12 @@ class Measurer:
         self.cwd = os.path.dirname(os.path.abspath(args.pipeline))
         self.results = {}  # run key → result
         self.forced = set()
+        # --jobs: runs started and not yet read (run key → (Future, own)); the lock guards them
+        # and `results`, which the pool's threads write
+        self.pending = {}
+        self.lock = threading.Lock()
+        self.jobs = max(1, int(getattr(args, "jobs", 1) or 1))
+        self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=self.jobs)
         os.makedirs(os.path.join(args.work, "pipelines"), exist_ok=True)
 
     def preset_fe(self, preset):
@@ -354,13 +379,61 @@ class Measurer:
     def run(self, study, spec, own):
         """One run of `study` as `spec` says: {seconds, outcome, value, dofs}. `own`: the
         preset's own run, whose time is measured now (--force)."""
+        return self.start(study, spec, own).result()
+
+    def start(self, study, spec, own):
+        """The run's Future: started now on the pool (--jobs), or the one already started or
+        done for the same inputs — a run is made once however many parts ask for it."""
         p = self.pipeline_for(study, spec)
         key = self.key_of(p)
         # a reference run that is also a preset's own run measured here is run as such
         own = own or (not spec.get("set") and spec["preset"] in self.args.presets
                       and study in self.studies)
-        if key in self.results and (not own or key in self.forced):
-            return self.results[key]
+        with self.lock:
+            if key in self.results and (not own or key in self.forced):
+                done = concurrent.futures.Future()
+                done.set_result(self.results[key])
+                return done
+            if key in self.pending and (not own or self.pending[key][1]):
+                return self.pending[key][0]
+            future = self.pool.submit(self.execute, study, spec, own, p, key)
+            self.pending[key] = (future, own)
+            return future
+
+    def start_all(self, preset, studies):
+        """--jobs above 1: starts every run the preset's figures need (each study's own run,
+        then its references), so that the pool runs them N at a time (in the order started)."""
+        for study in studies:
+            for spec, own in self.runs_needed(study, preset):
+                self.start(study, spec, own)
+
+    def runs_needed(self, study, preset):
+        """[(spec, own)]: the runs measure() will ask for (the same specs: the same keys)."""
+        entry = self.plan["studies"][study]
+        if entry["kind"] == "pipeline":
+            return []
+        needed = [({"preset": preset, "set": {}}, True)]
+        if self.args.times_only:
+            return needed
+        ref = entry.get("reference") or {}
+        if "recorded" in ref:
+            _, _, cases = sweep_cases(study, entry, self.pipeline)
+            return needed + [({"preset": preset, "set": {}, "value": v}, False) for v, seq in cases
+                             if seq is not None and not same_value(v, entry["value"])]
+        for part in ref["parts"] if "parts" in ref else [ref]:
+            specs = ([part["of"]] if "of" in part else []) + list(part.get("richardson") or []) \
+                + ([part["run"]] if "run" in part else [])
+            needed += [(self.spec(x, preset), False) for x in specs]
+        return needed
+
+    def wait_for_runs(self):
+        """Waits for every run started (their failures are read where they are asked for)."""
+        with self.lock:
+            futures = [f for f, _ in self.pending.values()]
+        concurrent.futures.wait(futures)
+
+    def execute(self, study, spec, own, p, key):
+        """Makes the run (on the pool's thread): run_pipeline on a generated file."""
         name = f"{study}-{spec['preset']}-{key}"
         p["run"] = name
         path = os.path.join(self.args.work, "pipelines", name + ".yaml")
@@ -371,15 +444,20 @@ class Measurer:
             cmd.append("--force")
         if self.args.no_plots:
             cmd.append("--no-plots")
-        print(f"  {'run  ' if own else 'ref  '} {study}, {self.describe(spec)}: {' '.join(cmd)}",
-              flush=True)
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        done = subprocess.run(cmd, cwd=self.cwd, capture_output=True, text=True)
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-        if done.returncode != 0:
-            raise MeasureError(f"run_pipeline failed ({done.returncode}) for {study}, "
-                               f"{self.describe(spec)}:\n{done.stderr[-3000:]}")
+        say(f"  {'run  ' if own else 'ref  '} {study}, {self.describe(spec)}: {' '.join(cmd)}")
+        # the run's own CPU time (its process and the children it waited for: the task) from
+        # wait4, which other runs going on at once (--jobs) do not add to
+        log = os.path.join(self.args.work, "pipelines", name + ".log")
+        with open(log, "w") as out:
+            child = subprocess.Popen(cmd, cwd=self.cwd, stdout=out, stderr=subprocess.STDOUT)
+            _, status, usage = os.wait4(child.pid, 0)
+        child.returncode = os.waitstatus_to_exitcode(status)
+        cpu = usage.ru_utime + usage.ru_stime
+        if child.returncode != 0:
+            with open(log) as f:
+                tail = f.read()[-3000:]
+            raise MeasureError(f"run_pipeline failed ({child.returncode}) for {study}, "
+                               f"{self.describe(spec)} (its log: {log}):\n{tail}")
         with open(os.path.join(self.args.work, "out", name, "pipeline_summary.json")) as f:
             summary = json.load(f)
         stage = {"fe_sweep": "fe_stage", "impact": "fe_impact", "impact_deformable": "fe_impact",
@@ -397,12 +475,12 @@ class Measurer:
                       "out": t["output_dir"]}
         except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
             raise MeasureError(f"{name}: cannot read the result in {t['output_dir']}: {e!r}")
-        print(f"        {t['outcome']} in {result['wall']:.1f} s (run_pipeline's CPU {cpu:.1f} s): "
-              f"{result['value']!r}"
-              + (f", {result['dofs']} DoFs" if result["dofs"] else ""), flush=True)
-        self.results[key] = result
-        if own:
-            self.forced.add(key)
+        say(f"        {name}: {t['outcome']} in {result['wall']:.1f} s (run_pipeline's CPU "
+            f"{cpu:.1f} s): {result['value']!r}" + (f", {result['dofs']} DoFs" if result["dofs"] else ""))
+        with self.lock:
+            self.results[key] = result
+            if own:
+                self.forced.add(key)
         return result
 
     def quantity(self, study, out):
@@ -572,7 +650,7 @@ class Measurer:
 
     def measure(self, preset, study, block, wrote):
         entry = self.plan["studies"][study]
-        print(f"{preset} / {study}", flush=True)
+        say(f"{preset} / {study}")
         if entry["kind"] == "pipeline":
             seconds = self.whole_pipeline(preset)
             set_key(block, entry["time_key"], significant(seconds))
@@ -593,6 +671,7 @@ class Measurer:
             wrote.append("error_F_max." + study)
 
     def whole_pipeline(self, preset):
+        self.wait_for_runs()  # the whole pipeline's time is its own: nothing else running
         path = os.path.abspath(self.args.pipeline)
         if "presets" in self.plan:  # the tiny presets: a copy of the pipeline with them
             p = yaml.safe_load(open(path))
@@ -785,7 +864,16 @@ def main(argv=None):
     ap.add_argument("--cpu-time", action="store_true",
                     help="a task's time is the CPU time of its run_pipeline run, not the task's "
                          "wall time (a shared machine; one-rank tasks)")
+    ap.add_argument("--jobs", type=int, default=1, metavar="N",
+                    help="up to N of a preset's runs at once (each one run_pipeline task); above 1 "
+                         "needs --cpu-time")
     args = ap.parse_args(argv)
+    if args.jobs < 1:
+        raise SystemExit(f"measure_presets: --jobs {args.jobs}: the number of runs at once must be 1 or more")
+    if args.jobs > 1 and not args.cpu_time:
+        raise SystemExit(f"measure_presets: --jobs {args.jobs} runs beside each other, where a wall "
+                         f"time is not what a run takes alone: add --cpu-time (each run's own CPU "
+                         f"time), or use --jobs 1")
     args.set = parse_set(args.set)
     args.build_dir = os.path.abspath(args.build_dir)
     args.work = os.path.abspath(args.work)
@@ -842,6 +930,11 @@ def main(argv=None):
     where_machine = machine()
     load_before = load_average()
     blocks, failures, kept_keys = {}, [], {}
+    for preset in args.presets if m.jobs > 1 else []:  # every preset's runs at once: no core idles
+        try:                                             # between one preset's last run and the next's
+            m.start_all(preset, studies)
+        except MeasureError as e:  # a plan that names no runnable case: measure() says it again
+            print(f"  (not started at once: {e})", file=sys.stderr, flush=True)
     for preset in args.presets:
         old = ((pipeline["presets"].get(preset) or {}).get("measured")) or {}
         block = json.loads(json.dumps(old, default=str))
@@ -885,6 +978,7 @@ def main(argv=None):
                                    capture_output=True, text=True)
             if check.returncode != 0:
                 failures.append(f"run_pipeline --check of the written file failed:\n{check.stderr[-3000:]}")
+    m.pool.shutdown(wait=True)
     for f in failures:
         print("measure_presets: " + f, file=sys.stderr)
     return 1 if failures else 0

@@ -9,6 +9,7 @@ figure; a bad value written by hand is an input error naming the key.
 
     measure_presets_test.py RUN_PIPELINE FIT_STAGE MSH_CHECK
 """
+import collections
 import json
 import os
 import shutil
@@ -220,6 +221,35 @@ def main():
         expect("a hand-typed comment, replaced" not in text, "a measured figure's comment is new")
         expect(kept.get("note", "").endswith(" || the previous note: typed by hand"),
                f"the note carries the note before it: {kept.get('note')}")
+
+        # 1b. the same with --jobs 2 (runs beside each other, issue 32 item 2's command on two
+        # cores): the same figures, and the same runs, each made once (a reference two parts
+        # or two presets ask for is not made twice, however the pool orders them)
+        p2 = os.path.join(d, "p2.yaml")
+        with open(p2, "w") as f:
+            f.write(PIPELINE)
+        jobs = subprocess.run(command + ["--pipeline", p2, "--work", os.path.join(d, "work2"),
+                                         "--jobs", "2", "--cpu-time"],
+                              capture_output=True, text=True, cwd=d)
+        expect(jobs.returncode == 0, f"measure_presets --jobs 2 exit {jobs.returncode}:\n"
+                                     f"{jobs.stdout[-3000:]}\n{jobs.stderr[-3000:]}")
+        m2 = yaml.safe_load(open(p2))["presets"]
+        for preset in expected:
+            one = {k: v.get("percent") for k, v in m[preset]["measured"]["error_F_max"].items()}
+            two = {k: v.get("percent") for k, v in m2[preset]["measured"]["error_F_max"].items()}
+            expect(one == two, f"{preset}: --jobs 2's figures {two} against one at a time {one}")
+
+        def runs_made(stdout):  # "  run   STUDY, SPEC: command" (or "ref  "): one per run made
+            return collections.Counter(l.split(": ")[0].split(None, 1)[1] for l in stdout.splitlines()
+                                       if l.startswith(("  run  ", "  ref  ")))
+        made = runs_made(jobs.stdout)
+        expect(made == runs_made(done.stdout) and max(made.values(), default=0) == 1,
+               f"--jobs 2 makes the runs one at a time makes, each once: {made} against "
+               f"{runs_made(done.stdout)}")
+        refused = subprocess.run(command + ["--jobs", "2", "--dry-run"], capture_output=True,
+                                 text=True, cwd=d)
+        expect(refused.returncode != 0 and "--cpu-time" in refused.stderr,
+               f"--jobs 2 without --cpu-time refused: {refused.returncode} {refused.stderr}")
 
         # 2. run_pipeline reads the blocks and prints each FE task's time beside its figure
         run = subprocess.run([run_pipeline, p, "--no-plots", "--build-dir", build, "--jobs", "1"],
