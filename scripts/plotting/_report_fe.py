@@ -137,11 +137,12 @@ def own_estimate_section(fs, preset_error=None):
     or None). Where the preset's figure is null (a geometry without a convergence study, e.g. a
     Gmsh bearing) the run's own estimate is the figure to use, and the section says so. Empty
     for a sweep without adaptive cases."""
-    rows = []
+    rows, estimates = [], []
     for case, _, man in fs.cases:
         est = own_estimate(man, case)
         if est is None:
             continue
+        estimates.append(est)
         F = value_of(get(man, "extra", "force_at_delta_max"))
         F_inf = est["extrapolated_force"]
         rows.append(f"<tr><td>{esc(case_label(fs.sweep, case))}</td><td>{est['n_meshes']}</td>"
@@ -181,8 +182,7 @@ def own_estimate_section(fs, preset_error=None):
                    + (" The change in the last cycle is only an indication of the error, "
                       "neither a lower nor an upper bound: run more adaptive cycles "
                       "(mesh.adaptive_cycles) for an extrapolated estimate."
-                      if any(own_estimate(m) and own_estimate(m)["last_change"]
-                             for _, _, m in fs.cases) else "")
+                      if any(e["last_change"] for e in estimates) else "")
                    + " The fitted laws carry it as their mesh error (their law files' "
                      "discretisation_error: each law its case's estimate, the family the "
                      "largest of its cases'), so the MBD band's mesh variants use it.</p>")
