@@ -394,9 +394,12 @@ class Measurer:
                 done = concurrent.futures.Future()
                 done.set_result(self.results[key])
                 return done
-            if key in self.pending and (not own or self.pending[key][1]):
-                return self.pending[key][0]
-            future = self.pool.submit(self.execute, study, spec, own, p, key)
+            earlier = self.pending.get(key, (None, False))
+            if earlier[0] and (not own or earlier[1]):
+                return earlier[0]
+            # the same inputs still going as a reference: the forced run after it, not beside it
+            # (one output folder); the pool starts in order, so `earlier` is ahead of it
+            future = self.pool.submit(self.execute, study, spec, own, p, key, earlier[0])
             self.pending[key] = (future, own)
             return future
 
@@ -432,8 +435,11 @@ class Measurer:
             futures = [f for f, _ in self.pending.values()]
         concurrent.futures.wait(futures)
 
-    def execute(self, study, spec, own, p, key):
-        """Makes the run (on the pool's thread): run_pipeline on a generated file."""
+    def execute(self, study, spec, own, p, key, after=None):
+        """Makes the run (on the pool's thread): run_pipeline on a generated file, once the
+        Future `after` (the same run as a reference) is done."""
+        if after is not None:
+            concurrent.futures.wait([after])
         name = f"{study}-{spec['preset']}-{key}"
         p["run"] = name
         path = os.path.join(self.args.work, "pipelines", name + ".yaml")

@@ -16,6 +16,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 import yaml
 
@@ -162,6 +163,36 @@ def main():
                "the accurate preset's mesh part compares its own run")
         expect(m.run_key("impact", m.spec(of, "standard")) != m.run_key("impact", m.spec(finest, "standard")),
                "the standard preset's mesh part compares two meshes")
+        # --jobs: a forced (own) run asked for while the same run goes on as a reference runs
+        # after it, not beside it (both would write one output folder); a reference asked for
+        # twice is made once.
+        jargs = type("J", (), {"pipeline": os.path.join(d, "p.yaml"), "work": os.path.join(d, "wj"),
+                               "set": {}, "jobs": 2, "presets": ["standard"]})()
+        m = measure_presets.Measurer(
+            jargs, {"presets": {p: {"fe": None, "mbd": None} for p in measure_presets.PRESETS},
+                    "rolling": {"scene": "r.yaml"}},
+            {"studies": {"rolling": {"kind": "rolling"}}})
+        m.studies = ["rolling"]
+        spans = []
+
+        def fake_execute(study, spec, own, p, key, after=None):
+            if after is not None:
+                after.result()
+            start = time.monotonic()
+            time.sleep(0.3)
+            spans.append((own, start, time.monotonic()))
+            return {"value": 1.0, "own": own}
+
+        m.execute = fake_execute
+        ref = m.start("rolling", {"preset": "fast", "set": {}}, False)  # fast: not measured here
+        again = m.start("rolling", {"preset": "fast", "set": {}}, False)
+        forced = m.start("rolling", {"preset": "fast", "set": {}}, True)
+        expect(again is ref and forced is not ref, "a reference asked twice is one run; a forced one is another")
+        expect(forced.result()["own"] and not ref.result()["own"], "the forced run is the own run")
+        spans.sort(key=lambda x: x[1])
+        expect(len(spans) == 2 and spans[1][1] >= spans[0][2],
+               f"the forced run starts after the reference's end: {spans}")
+        m.pool.shutdown()
         build = make_fake_build(d, fit_stage, msh_check)
         write_scenes(d, SCENES)
         shutil.copy(os.path.join(ROOT, "laws", "paper_tB4.json"), os.path.join(d, "law.json"))
