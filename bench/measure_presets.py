@@ -52,8 +52,8 @@ scene key (YAML value) to every run.
 runs and every reference run their figures need, started together, each run once however many
 parts ask for it); the figures are the same as one at a time. Each run's CPU time is its own
 (its process's, from wait4), but a wall time beside other runs is not what the run takes alone,
-so --jobs above 1 needs --cpu-time. The whole pipeline (`pipeline`) runs alone, after the
-preset's other runs.
+so --jobs above 1 needs --cpu-time. The whole pipeline (`pipeline`) runs alone, after every
+other run started.
 """
 import argparse
 import concurrent.futures
@@ -871,8 +871,8 @@ def main(argv=None):
                     help="a task's time is the CPU time of its run_pipeline run, not the task's "
                          "wall time (a shared machine; one-rank tasks)")
     ap.add_argument("--jobs", type=int, default=1, metavar="N",
-                    help="up to N of a preset's runs at once (each one run_pipeline task); above 1 "
-                         "needs --cpu-time")
+                    help="up to N runs at once, of every preset asked for (each one run_pipeline "
+                         "task); above 1 needs --cpu-time")
     args = ap.parse_args(argv)
     if args.jobs < 1:
         raise SystemExit(f"measure_presets: --jobs {args.jobs}: the number of runs at once must be 1 or more")
