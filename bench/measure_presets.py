@@ -194,6 +194,16 @@ def value_text(v, unit, resolved=None):
     return f"{v:g} {unit}"
 
 
+def reference_parts(ref):
+    """A plan's reference as its list of parts (a reference of one part has no `parts`)."""
+    return ref["parts"] if "parts" in ref else [dict(ref, name="")]
+
+
+def value_spec(preset, v):
+    """The preset's own run at sweep value v (a recorded reference's other values)."""
+    return {"preset": preset, "set": {}, "value": v}
+
+
 def sweep_cases(study, entry, pipeline):
     """For an fe_sweep study whose reference is `recorded`: (recorded block, path of its file,
     [(sweep value, its sequence or None)]) over the values the study's `values` asks for. For
@@ -421,12 +431,13 @@ class Measurer:
         ref = entry.get("reference") or {}
         if "recorded" in ref:
             _, _, cases = sweep_cases(study, entry, self.pipeline)
-            return needed + [({"preset": preset, "set": {}, "value": v}, False) for v, seq in cases
+            return needed + [(value_spec(preset, v), False) for v, seq in cases
                              if seq is not None and not same_value(v, entry["value"])]
-        for part in ref["parts"] if "parts" in ref else [ref]:
-            specs = ([part["of"]] if "of" in part else []) + list(part.get("richardson") or []) \
-                + ([part["run"]] if "run" in part else [])
-            needed += [(self.spec(x, preset), False) for x in specs]
+        for part in reference_parts(ref):
+            runs = self.part_runs(study, part, preset)
+            if runs is not None:
+                of, richardson, finer = runs
+                needed += [(s, False) for s in ([of] if of else []) + richardson + ([finer] if finer else [])]
         return needed
 
     def wait_for_runs(self):
@@ -528,6 +539,20 @@ class Measurer:
     def spec(self, s, preset):
         return {"preset": (s or {}).get("preset", preset), "set": dict((s or {}).get("set") or {})}
 
+    def part_runs(self, study, part, preset):
+        """(of, richardson, finer): the runs one part of a reference compares, as specs — `of`
+        (None: the preset's own run), the Richardson runs ([] if none), the finer run (None if
+        none) — or None for a part whose `of` and finer run are one run (the finest preset
+        against the finest reference of that part, e.g. the accurate preset's mesh part): it
+        would say 0 %, so it is left out, and no run is made for it. error() and runs_needed()
+        both read the parts here, so --jobs starts exactly the runs error() asks for."""
+        of = self.spec(part["of"], preset) if "of" in part else None
+        finer = self.spec(part["run"], preset) if "run" in part else None
+        if of is not None and finer is not None and \
+                self.run_key(study, of) == self.run_key(study, finer):
+            return None
+        return of, [self.spec(s, preset) for s in part.get("richardson") or []], finer
+
     def error(self, study, preset, own_value):
         """(percent or None, where)"""
         entry = self.plan["studies"][study]
@@ -540,33 +565,25 @@ class Measurer:
             case = f"v = {entry['velocity']} m/s, "
         elif entry["kind"] == "impact_deformable":
             case = f"deformable journal, v = {entry['velocity']} m/s, "
-        ref = entry["reference"]
-        parts = ref["parts"] if "parts" in ref else [dict(ref, name="")]
         total, texts = 0.0, []
-        for part in parts:
-            # A part whose run is the very run it compares (the finest preset against the
-            # finest reference of that part, e.g. the mesh part of the accurate preset) would
-            # say 0 %: it is left out, and the figure says so.
-            if "of" in part and "run" in part and \
-                    self.run_key(study, self.spec(part["of"], preset)) == \
-                    self.run_key(study, self.spec(part["run"], preset)):
+        for part in reference_parts(entry["reference"]):
+            runs = self.part_runs(study, part, preset)
+            if runs is None:
                 texts.append(f"{part.get('name') or 'a part'} not included (its reference is "
                              f"this preset's own run: nothing finer measured)")
                 continue
-            of = self.run(study, self.spec(part.get("of"), preset), False)["value"] \
-                if "of" in part else own_value
+            of_spec, richardson_specs, finer = runs
+            of = self.run(study, of_spec, False)["value"] if of_spec else own_value
             try:
-                if "richardson" in part:
-                    specs = [self.spec(s, preset) for s in part["richardson"]]
-                    values = [self.run(study, s, False)["value"] for s in specs]
+                if richardson_specs:
+                    values = [self.run(study, s, False)["value"] for s in richardson_specs]
                     ratio = float(part.get("ratio", 2))
                     r, order = richardson(values, ratio)
-                    how = (f"the Richardson value over {'; '.join(self.describe(s) for s in specs)} "
+                    how = (f"the Richardson value over {'; '.join(self.describe(s) for s in richardson_specs)} "
                            f"({', '.join(f'{v:.6g}' for v in values)} {unit}; p = {order:.3g})")
-                elif "run" in part:
-                    s = self.spec(part["run"], preset)
-                    r = self.run(study, s, False)["value"]
-                    how = f"the finer run {self.describe(s)}"
+                elif finer:
+                    r = self.run(study, finer, False)["value"]
+                    how = f"the finer run {self.describe(finer)}"
                 else:
                     raise MeasureError(f"study '{study}': a reference needs richardson, run or parts")
             except MeasureError as e:
@@ -575,7 +592,7 @@ class Measurer:
             e = 100.0 * abs(of - r) / abs(r)
             total += e
             name = f"{significant(e)} % from {part['name']}: " if part.get("name") else ""
-            of_text = f" ({self.describe(self.spec(part['of'], preset))})" if "of" in part else ""
+            of_text = f" ({self.describe(of_spec)})" if of_spec else ""
             texts.append(f"{name}{of:.6g} {unit}{of_text} against {r:.6g} {unit}, {how}")
         if total >= 100.0:
             return None, (f"{what}, {case}preset {preset}: {total:.3g} % — 100 % or more is no "
@@ -599,7 +616,7 @@ class Measurer:
                 missing.append(value_text(v, punit))
                 continue
             r = own if same_value(v, entry["value"]) else \
-                self.run(study, {"preset": preset, "set": {}, "value": v}, False)
+                self.run(study, value_spec(preset, v), False)
             scene = self.run_scene(study, r, rec)
             scenes.append(scene)
             resolved = scene

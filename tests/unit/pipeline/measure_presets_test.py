@@ -163,6 +163,20 @@ def main():
                "the accurate preset's mesh part compares its own run")
         expect(m.run_key("impact", m.spec(of, "standard")) != m.run_key("impact", m.spec(finest, "standard")),
                "the standard preset's mesh part compares two meshes")
+        # ... and --jobs does not start it either: runs_needed() lists the runs error() asks
+        # for, read from the same parts (before, it also listed a left-out part's run; the
+        # real plan's is one of its Richardson runs, so nothing was made for nothing there).
+        m.plan["studies"]["impact"]["reference"] = {"parts": [
+            {"name": "the time step", "richardson": [{"set": {"impact.steps_per_period": n}}
+                                                     for n in (160, 320, 640)]},
+            {"name": "the mesh", "of": of, "run": finest}]}
+        m.args.times_only = False
+        for preset, n_refs in (("accurate", 3), ("standard", 5)):
+            needed = m.runs_needed("impact", preset)
+            expect(len(needed) == 1 + n_refs and needed[0] == ({"preset": preset, "set": {}}, True),
+                   f"{preset}: its own run and {n_refs} references: {needed}")
+        expect(m.spec(finest, "accurate") not in [s for s, _ in m.runs_needed("impact", "accurate")],
+               "the accurate preset's left-out mesh part makes no run")
         # --jobs: a forced (own) run asked for while the same run goes on as a reference runs
         # after it, not beside it (both would write one output folder); a reference asked for
         # twice is made once.
