@@ -437,7 +437,8 @@ class Measurer:
             runs = self.part_runs(study, part, preset)
             if runs is not None:
                 of, richardson, finer = runs
-                needed += [(s, False) for s in ([of] if of else []) + richardson + ([finer] if finer else [])]
+                specs = ([of] if of else []) + richardson + ([finer] if finer else [])
+                needed += [(s, False) for s in specs]
         return needed
 
     def wait_for_runs(self):
