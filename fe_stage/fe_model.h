@@ -226,6 +226,9 @@ namespace clearjoint::fe
     std::string adaptive_error_method;
     double adaptive_order = 0.0;               // [1] q of F = F_inf + C N^-q (0: not extrapolated)
     double adaptive_extrapolated_force = 0.0;  // [N] F_inf (0: not extrapolated)
+    /// [m] study impact: the expected peak penetration the adaptive meshes were marked at
+    /// (the quasi-static studies mark at loading.delta_max); 0: no adaptive cycles
+    double adaptive_marking_delta = 0.0;
     /// mesh.adaptive_target_error > 0: whether the estimate reached it (within the cycles)
     bool adaptive_target_reached = false;
     /// contact.sliding finite: how often the mortar search's new partners needed a new

@@ -49,7 +49,8 @@ namespace clearjoint::fe::detail
   {
     // the study chosen once (its plan)
     if (plan_.dynamic)
-      return ImpactRun(*this, {scene_, plan_, options_, dofs_, state_, fields_, comm_}).run();
+      return ImpactRun(*this, {scene_, plan_, options_, bodies_, dofs_, state_, fields_, comm_})
+        .run();
     if (plan_.rolling)
       return RollingRun(*this, {scene_, plan_, options_, bodies_, dofs_, contact_, state_, frame_,
                                 fields_, comm_})

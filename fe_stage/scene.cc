@@ -594,9 +594,6 @@ namespace clearjoint::fe
         throw InputError(f, "impact.time_step", format_value(I.time_step), "(0, inf) s");
       if (!(I.end_time >= 0.0))
         throw InputError(f, "impact.end_time", format_value(I.end_time), "(0, inf) s");
-      if (s.mesh.adaptive_cycles > 0)
-        throw InputError(f, "mesh.adaptive_cycles", std::to_string(s.mesh.adaptive_cycles),
-                         "0 for study impact", "the impact runs on one mesh");
       if (!(I.journal_mass >= 0.0))
         throw InputError(f, "impact.journal_mass", format_value(I.journal_mass), "(0, inf) kg");
       if (I.journal_mass > 0.0 && s.loading.journal != JournalLoading::rigid)

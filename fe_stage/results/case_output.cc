@@ -68,10 +68,13 @@ namespace clearjoint::fe
     return {"clearjoint fe_stage: adaptive refinement, mesh.adaptive_cycles = " +
               std::to_string(M.adaptive_cycles) + ", adaptive_fraction = " +
               format_value(M.adaptive_fraction) + " (Kelly indicator, fixed fraction of the cells)",
-            "force_at_delta_max = F at delta_max on that mesh (full body; "
-            "marking meshes pushed in mesh.adaptive_increments = " +
-              std::to_string(M.adaptive_increments) +
-              " steps); the last row is the recorded curve's mesh" +
+            (result.adaptive_marking_delta > 0.0 ?
+               "force_at_delta_max = the static F at the impact's expected delta_max, " +
+                 format_value(result.adaptive_marking_delta) +
+                 " m, where the meshes were marked (full body; " :
+               std::string("force_at_delta_max = F at delta_max on that mesh (full body; ")) +
+              "marking meshes pushed in mesh.adaptive_increments = " +
+              std::to_string(M.adaptive_increments) + " steps); the last row is the run's mesh" +
               (M.adaptive_target_error > 0.0 ?
                  std::string("; target error ") + format_value(M.adaptive_target_error) +
                    (result.adaptive_target_reached ? " reached" : " NOT reached") :
@@ -236,6 +239,8 @@ namespace clearjoint::fe
     a = {{"cycles", rows},
          {"fraction", M.adaptive_fraction},
          {"marking_increments", M.adaptive_increments}};
+    if (result.adaptive_marking_delta > 0.0)  // the impact's: its expected peak penetration
+      a["marking_delta"] = {{"value", result.adaptive_marking_delta}, {"unit", "m"}};
     if (M.adaptive_target_error > 0.0)
       a["target_error"] = {{"value", M.adaptive_target_error},
                            {"unit", "1"},

@@ -25,6 +25,7 @@
 //      end time.
 #include "fe_stage/solve/impact_run.h"
 
+#include "fe_stage/solve/adaptive_cycles.h"
 #include "fe_stage/solve/quasi_static_stepper.h"
 
 #include "common/error.h"
@@ -188,6 +189,9 @@ namespace clearjoint::fe::detail
   {
     RunResult result;
     const HhtAlpha hht = begin(result);
+    if (!adapt_mesh(result))
+      return result;
+    describe_mesh(result);
     if (!compute_reference(result))
       return result;
     // 2. Time steps. A deformable journal is free now: the constraints are rebuilt without its
@@ -231,7 +235,6 @@ namespace clearjoint::fe::detail
     const auto &I = parts_.scene.impact;
     auto &S = result.impact;
     model_.build_mesh();
-    model_.record_mesh(result);
     S.velocity_in = I.velocity;
     S.journal_mass =
       rigid_journal_mass(parts_.scene);  // a deformable journal's: its FE mass, later
@@ -241,13 +244,90 @@ namespace clearjoint::fe::detail
       HhtAlpha::for_application(I.application, I.alpha, "impact.alpha", parts_.scene.source_file);
     S.alpha = hht.alpha();
     S.kinetic_initial = 0.5 * S.journal_mass * I.velocity * I.velocity;
+    return hht;
+  }
+
+  void ImpactRun::describe_mesh(RunResult &result) const
+  {
+    const auto &I = parts_.scene.impact;
+    const auto &S = result.impact;
+    model_.record_mesh(result);
     if (rank_ == 0)
       log::info("fe_stage: impact: " + std::to_string(result.n_cells) + " cells, " +
                 std::to_string(result.n_dofs) + " DoFs; " +
                 (parts_.plan.deformable_partner ? "deformable" : "rigid") + " journal " +
                 format_value(S.journal_mass) + " kg at " + format_value(I.velocity) +
                 " m/s, setup " + log::format_duration(result.setup_time));
-    return hht;
+  }
+
+  bool ImpactRun::expected_penetration(QuasiStaticStepper &stepper, RunResult &result,
+                                       double &delta_estimate)
+  {
+    const double delta_probe = 0.02 * parts_.scene.loading.delta_max;
+    double f_probe = 0.0;
+    if (!stepper.push_through({delta_probe}, result.message,
+                              [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
+      {
+        result.message = "static probe of the contact stiffness: " + result.message;
+        return false;
+      }
+    if (!(f_probe > 0.0))
+      {
+        result.message = "the static probe at delta = " + format_value(delta_probe) +
+                         " m found no contact force (mesh too coarse where the journal touches)";
+        return false;
+      }
+    delta_estimate =
+      parts_.scene.impact.velocity * std::sqrt(result.impact.journal_mass * delta_probe / f_probe);
+    return true;
+  }
+
+  bool ImpactRun::adapt_mesh(RunResult &result)
+  {
+    if (parts_.scene.mesh.adaptive_cycles == 0)
+      return true;
+    const auto failed = [&](const std::string &what) {
+      result.message = what + ": " + result.message;
+      result.wall_time = model_.elapsed();
+      return false;
+    };
+    // The meshes are marked where the impact is expected to peak: the static push to the
+    // penetration a linear contact of the base mesh's probed stiffness reaches (the same
+    // estimate that sizes the reference curve below), fixed for every cycle so that the
+    // sequence F_k(δ_mark) is one quantity and gives the mesh's error estimate for the force
+    // at the peak's penetration.
+    QuasiStaticStepper stepper = model_.quasi_static_stepper();
+    double delta_mark = 0.0;
+    if (!expected_penetration(stepper, result, delta_mark))
+      return failed("adaptive cycles, base mesh");
+    result.adaptive_marking_delta = delta_mark;
+    if (rank_ == 0)
+      log::info("fe_stage: impact: adaptive cycles marked at the expected delta_max " +
+                format_value(delta_mark) + " m (static probe on the base mesh)");
+    AdaptiveCycles cycles(model_, {parts_.scene, parts_.bodies, parts_.dofs, parts_.comm},
+                          delta_mark, "F(expected delta_max)");
+    if (!cycles.refine(stepper, result))
+      return false;
+    if (cycles.final_mesh_marked())
+      cycles.close(result, result.adaptive_cycles.back());
+    else
+      {
+        // the final mesh's own push to δ_mark closes the sequence
+        const double t0 = model_.elapsed();
+        AdaptiveCycle last;
+        last.n_dofs = parts_.dofs.handler().n_dofs();
+        last.n_cells = parts_.bodies.triangulation().n_global_active_cells();
+        if (!stepper.push_through(cycles.marking_targets(), result.message,
+                                  [&](unsigned int, IncrementRecord &r) {
+                                    last.force = r.force;
+                                    last.contact_iterations += r.contact_iterations;
+                                  }))
+          return failed("the final adaptive mesh's push to the expected delta_max");
+        last.wall_time = model_.elapsed() - t0;
+        cycles.close(result, last);
+      }
+    model_.start_from_rest();
+    return true;
   }
 
   bool ImpactRun::compute_reference(RunResult &result)
@@ -262,16 +342,10 @@ namespace clearjoint::fe::detail
       return false;
     };
     // 1. The static probe and the quasi-static reference curve on this mesh.
-    const double delta_probe = 0.02 * L.delta_max;
-    double f_probe = 0.0;
     QuasiStaticStepper stepper = model_.quasi_static_stepper();
-    if (!stepper.push_through({delta_probe}, result.message,
-                              [&](unsigned int, IncrementRecord &r) { f_probe = r.force; }))
-      return failed("static probe of the contact stiffness: " + result.message);
-    if (!(f_probe > 0.0))
-      return failed("the static probe at delta = " + format_value(delta_probe) +
-                    " m found no contact force (mesh too coarse where the journal touches)");
-    const double delta_estimate = I.velocity * std::sqrt(m_J * delta_probe / f_probe);
+    double delta_estimate = 0.0;
+    if (!expected_penetration(stepper, result, delta_estimate))
+      return failed(result.message);
     const double delta_curve = 1.5 * delta_estimate;
     if (delta_curve > L.delta_max)
       throw InputError(parts_.scene.source_file, "loading.delta_max", format_value(L.delta_max),

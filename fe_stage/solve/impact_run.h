@@ -7,6 +7,7 @@
 #include "fe_stage/core/dof_space.h"
 #include "fe_stage/core/state.h"
 #include "fe_stage/fe_model.h"
+#include "fe_stage/mesh/bodies.h"
 #include "fe_stage/results/field_output.h"
 #include "fe_stage/scene.h"
 #include "fe_stage/solve/hht.h"
@@ -28,6 +29,7 @@ namespace clearjoint::fe::detail
       const FeScene &scene;
       const StudyPlan &plan;
       const RunOptions &options;
+      const Bodies &bodies;
       const DofSpace &dofs;
       State &state;
       FieldOutput &fields;
@@ -40,8 +42,20 @@ namespace clearjoint::fe::detail
     RunResult run();
 
   private:
-    /// The mesh, the journal's mass and the integrator's α, β, γ (returned).
+    /// The base mesh, the journal's mass and the integrator's α, β, γ (returned).
     HhtAlpha begin(RunResult &result);
+    /// mesh.adaptive_cycles > 0: the base mesh refined where the impact is expected to peak
+    /// (solve/adaptive_cycles.h, marked at the expected δ_max), the sequence's error estimate
+    /// into the result; the model left on the final mesh, at rest. False: result.message says
+    /// why.
+    bool adapt_mesh(RunResult &result);
+    /// The run's mesh into the result and its log line.
+    void describe_mesh(RunResult &result) const;
+    /// The static probe (a push to 2 % of loading.delta_max) and the penetration a linear
+    /// contact of that stiffness reaches from ½ m_J v², δ = v √(m_J δ_probe / F_probe) [m].
+    /// False: result.message says why.
+    bool expected_penetration(QuasiStaticStepper &stepper, RunResult &result,
+                              double &delta_estimate);
     /// The static probe and the quasi-static reference curve, with the contact period and Δt
     /// they set. False: result.message says why, result.wall_time is set.
     bool compute_reference(RunResult &result);

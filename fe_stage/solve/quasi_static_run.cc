@@ -5,7 +5,7 @@
 // refinement) and the error estimate from their sequence.
 #include "fe_stage/solve/quasi_static_run.h"
 
-#include "fe_stage/solve/adaptive_estimate.h"
+#include "fe_stage/solve/adaptive_cycles.h"
 
 #include "common/error.h"
 #include "common/log.h"
@@ -37,117 +37,18 @@ namespace clearjoint::fe::detail
     , n_ranks_(Utilities::MPI::n_mpi_processes(parts.comm))
   {}
 
-  bool QuasiStaticRun::run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
-                                           bool &last_mesh_marked)
-  {
-    // Adaptive cycles (mesh.adaptive_cycles): the push is computed on the current mesh (not
-    // recorded), F(δ_max) kept, and the cells where Kelly's indicator is largest refined; the
-    // recorded curve is the one on the last mesh. The marking meshes take the push in
-    // mesh.adaptive_increments equal steps: only the state at δ_max is used there, and it
-    // hardly depends on the path (μ = 0.1: 1 to 20 increments within 5e-6 of F, docs/fe.md),
-    // so the sequence F_k(N_k) that gives the error estimate stays comparable with friction.
-    const std::vector<double> marking_targets =
-      equal_steps(parts_.scene.loading.delta_max, parts_.scene.mesh.adaptive_increments);
-    // With a target error (mesh.adaptive_target_error) the cycles stop at the first mesh whose
-    // estimate, extrapolated from three or more, meets it — the curve is then computed on
-    // that mesh — or at adaptive_cycles, the most allowed.
-    const double target = parts_.scene.mesh.adaptive_target_error;
-    for (unsigned int cycle = 0; cycle <= parts_.scene.mesh.adaptive_cycles; ++cycle)
-      {
-        if (cycle == 0)
-          model_.build_mesh();
-        else
-          model_.refine_mesh();
-        if (cycle == parts_.scene.mesh.adaptive_cycles)
-          break;
-        const double t0 = model_.elapsed();
-        AdaptiveCycle c;
-        c.n_dofs = parts_.dofs.handler().n_dofs();
-        c.n_cells = parts_.bodies.triangulation().n_global_active_cells();
-        if (!stepper.push_through(marking_targets, result.message,
-                                  [&](unsigned int, IncrementRecord &r) {
-                                    c.force = r.force;
-                                    c.contact_iterations += r.contact_iterations;
-                                  }))
-          {
-            result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
-            result.wall_time = model_.elapsed();
-            return false;
-          }
-        c.wall_time = model_.elapsed() - t0;
-        result.adaptive_cycles.push_back(c);
-        if (rank_ == 0)
-          {
-            char buf[200];
-            std::snprintf(buf, sizeof(buf),
-                          "fe_stage: adaptive cycle %u/%u  %lu cells  %lu DoFs  F(delta_max) "
-                          "%.8g N  contact its %u  %s",
-                          cycle + 1, parts_.scene.mesh.adaptive_cycles, c.n_cells, c.n_dofs,
-                          c.force, c.contact_iterations, log::format_duration(c.wall_time).c_str());
-            log::info(buf);
-          }
-        if (target > 0.0)
-          {
-            const AdaptiveEstimate e =
-              estimate_adaptive_error(result.adaptive_cycles, parts_.dofs.fe().degree);
-            if (rank_ == 0 && e.error >= 0.0)
-              log::info("fe_stage: estimated error of F(delta_max) " +
-                        format_value(100.0 * e.error) + " %, target " +
-                        format_value(100.0 * target) + " %; method: " + e.method);
-            if (adaptive_target_met(e, target))
-              {
-                last_mesh_marked = true;
-                break;
-              }
-          }
-      }
-    return true;
-  }
-
-  void QuasiStaticRun::close_adaptive_sequence(RunResult &result, const bool last_mesh_marked)
-  {
-    const double target = parts_.scene.mesh.adaptive_target_error;
-    // the curve's F(δ_max) on the final mesh closes the sequence (in place of that mesh's
-    // marking run when the target stopped the cycles there: the same mesh)
-    AdaptiveCycle last;
-    last.n_dofs = result.n_dofs;
-    last.n_cells = result.n_cells;
-    last.force = result.increments.back().force;
-    last.wall_time = result.increments.back().wall_time - result.setup_time;
-    for (const auto &r : result.increments)
-      last.contact_iterations += r.contact_iterations;
-    if (last_mesh_marked)
-      result.adaptive_cycles.back() = last;
-    else
-      result.adaptive_cycles.push_back(last);
-    const AdaptiveEstimate e =
-      estimate_adaptive_error(result.adaptive_cycles, parts_.dofs.fe().degree);
-    result.adaptive_error = e.error;
-    result.adaptive_error_method = e.method;
-    result.adaptive_order = e.order;
-    result.adaptive_extrapolated_force = e.extrapolated_force;
-    result.adaptive_target_reached = adaptive_target_met(e, target);
-    if (rank_ == 0 && result.adaptive_error >= 0.0)
-      log::info("fe_stage: estimated error of F(delta_max) on the final mesh " +
-                format_value(100.0 * result.adaptive_error) +
-                " %; method: " + result.adaptive_error_method);
-    if (rank_ == 0 && target > 0.0 && !result.adaptive_target_reached)
-      log::warning("fe_stage: the target error " + format_value(100.0 * target) +
-                   " % (mesh.adaptive_target_error) was not reached in " +
-                   std::to_string(parts_.scene.mesh.adaptive_cycles) +
-                   " cycles (mesh.adaptive_cycles, the most allowed): the curve is on the "
-                   "last mesh, with the estimate above");
-  }
-
   RunResult QuasiStaticRun::run()
   {
     RunResult result;
     result.n_ranks = n_ranks_;
     const auto &L = parts_.scene.loading;
     const std::vector<double> targets = equal_steps(L.delta_max, L.n_increments);
-    bool last_mesh_marked = false;  // the curve's mesh has a marking run in the sequence
     QuasiStaticStepper stepper = model_.quasi_static_stepper();
-    if (!run_adaptive_cycles(result, stepper, last_mesh_marked))
+    // the adaptive cycles (none: the mesh built once) mark at δ_max, the curve's end
+    AdaptiveCycles cycles(model_, {parts_.scene, parts_.bodies, parts_.dofs, parts_.comm},
+                          L.delta_max, "F(delta_max)");
+    model_.build_mesh();
+    if (!cycles.refine(stepper, result))
       return result;
     // the elastoplastic patch test (scene.cc admits no adaptive cycles with it): the mesh is
     // the curve's, so the points' history is sized for it here
@@ -226,7 +127,17 @@ namespace clearjoint::fe::detail
       }
     result.complete = true;
     if (!result.adaptive_cycles.empty())
-      close_adaptive_sequence(result, last_mesh_marked);
+      {
+        // the curve's F(δ_max) on the final mesh closes the sequence
+        AdaptiveCycle last;
+        last.n_dofs = result.n_dofs;
+        last.n_cells = result.n_cells;
+        last.force = result.increments.back().force;
+        last.wall_time = result.increments.back().wall_time - result.setup_time;
+        for (const auto &r : result.increments)
+          last.contact_iterations += r.contact_iterations;
+        cycles.close(result, last);
+      }
     result.sliding_rebuilds = model_.sliding_rebuilds();
     result.sliding_resolves = stepper.sliding_resolves();
     if (rank_ == 0 && stepper.finite_sliding())

@@ -47,16 +47,6 @@ namespace clearjoint::fe::detail
     RunResult run();
 
   private:
-    /// The adaptive cycles before the curve (none: the mesh built once), the sequence
-    /// F_k(N_k) in result.adaptive_cycles; the model is left on the curve's mesh. False
-    /// (result.message set) when a marking push failed. last_mesh_marked: a target error
-    /// stopped the cycles on a mesh that has its marking run in the sequence.
-    bool run_adaptive_cycles(RunResult &result, QuasiStaticStepper &stepper,
-                             bool &last_mesh_marked);
-    /// The curve's F(δ_max) on the final mesh closes the adaptive sequence, and the sequence's
-    /// error estimate goes into the result.
-    void close_adaptive_sequence(RunResult &result, bool last_mesh_marked);
-
     StudyModel &model_;
     Parts parts_;
     const unsigned int rank_, n_ranks_;

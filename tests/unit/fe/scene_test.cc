@@ -500,6 +500,11 @@ TEST(FeScene, ImpactStudy)
   expect_error(head + "impact: {steps_per_period: 5}\n", {"impact.steps_per_period", "10"});
   expect_error(head + "impact: {mass: heavy}\n", {"impact.mass", "redistributed"});
   EXPECT_DOUBLE_EQ(parse(head + "impact: {journal_mass: 2.5}\n").impact.journal_mass, 2.5);
+  // adaptive meshes marked at the expected peak (issue 32): the cycles and a target error
+  EXPECT_EQ(parse(head + "mesh: {adaptive_cycles: 3}\n").mesh.adaptive_cycles, 3u);
+  EXPECT_DOUBLE_EQ(parse(head + "mesh: {adaptive_cycles: 3, adaptive_target_error: 0.02}\n")
+                     .mesh.adaptive_target_error,
+                   0.02);
   EXPECT_DOUBLE_EQ(rigid_journal_mass(parse(head + "impact: {journal_mass: 2.5}\n")), 2.5);
   EXPECT_NEAR(rigid_journal_mass(parse(head)), 7800.0 * M_PI * 9.5e-3 * 9.5e-3 * 18e-3, 1e-12);
   expect_error(head + "impact: {journal_mass: 0}\n", {"impact.journal_mass", "kg"});
