@@ -70,6 +70,10 @@ namespace clearjoint::fe::detail
     /// (c the complementarity constant [N/m], ε_g [m] the round-off band; collective).
     Change update_active_set(double c, double eps_g);
 
+    /// Within this fraction of the largest normal nodal force of Coulomb's cone's edge
+    /// (| |w| − μξ |), a node keeps its stick or slip label (update_active_set says why).
+    static constexpr double edge_tolerance = 1e-5;
+
     /// Whether the contact holds DoF k of the node: a DoF fixed by a symmetry plane carries
     /// that plane's reaction, not contact (on the plane the friction force lies in it).
     bool holds(const ContactNode &cn, const unsigned int k) const
@@ -108,6 +112,9 @@ namespace clearjoint::fe::detail
     }
 
   private:
+    /// [N] the largest λ over the nodes in contact (ξ > band), all ranks (collective).
+    double largest_normal_force(double c, double band) const;
+
     const FeScene &scene_;
     const DofSpace &dofs_;
     MPI_Comm comm_;

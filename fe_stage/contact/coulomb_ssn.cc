@@ -29,6 +29,16 @@ namespace clearjoint::fe
     return r > 0.0 && w_norm <= r + band ? FrictionState::stick : FrictionState::slip;
   }
 
+  bool keeps_or_decides_stick(const double xi, const double w_norm, const double mu,
+                              const double band, const bool was_stick, const double edge)
+  {
+    const bool stick = coulomb_state(xi, w_norm, mu, band) == FrictionState::stick;
+    // (a disc of positive radius, as coulomb_state's stick needs)
+    if (stick != was_stick && w_norm > 0.0 && mu * xi > 0.0 && std::abs(w_norm - mu * xi) <= edge)
+      return was_stick;
+    return stick;
+  }
+
   NodeNcp evaluate_coulomb_ncp(const double lambda_n, const Eigen::Vector2d &lambda_t,
                                const double gap, const Eigen::Vector2d &slip_t,
                                const CoulombParameters &p)

@@ -95,6 +95,14 @@ namespace clearjoint::fe
   /// counts with it (a penetration below 1e-9 of the push is not contact); 0 is the exact law.
   FrictionState coulomb_state(double xi, double w_norm, double mu, double band = 0.0);
 
+  /// The FE model's stick decision for a node in contact that was in contact before
+  /// (was_stick its label then): coulomb_state's, except within `edge` [λ unit] of the cone's
+  /// edge, | |w| − μξ | ≤ edge with w ≠ 0, where the node keeps its label — there stick and slip
+  /// are the same state to that tolerance, and re-deciding on round-off let a node flip for
+  /// every iteration (contact/active_set.cc). edge = 0: coulomb_state's decision.
+  bool keeps_or_decides_stick(double xi, double w_norm, double mu, double band, bool was_stick,
+                              double edge);
+
   /// Classifies the node and evaluates its residuals and generalised derivative. All inputs
   /// must be finite (std::invalid_argument otherwise: the caller's Newton has diverged).
   NodeNcp evaluate_coulomb_ncp(double lambda_n, const Eigen::Vector2d &lambda_t, double gap,

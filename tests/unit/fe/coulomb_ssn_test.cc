@@ -472,6 +472,35 @@ TEST(CoulombSsn, HswFormConvergesForModerateConstants)
         }
 }
 
+// The FE model's stick decision for a node that stays in contact: Coulomb's law, except on the
+// cone's edge (| |w| − μξ | within `edge`), where the node keeps its label. The margins are the
+// ones of the impact step whose one node flipped stick ↔ slip for 100 iterations (|w| − μξ
+// alternating +1.27e-6 and +2.15e-7 N at μξ = 0.0451 N, the largest nodal force 1.09 N, edge
+// 1e-5 of it).
+TEST(CoulombSsn, NodeOnTheConesEdgeKeepsItsLabel)
+{
+  using clearjoint::fe::keeps_or_decides_stick;
+  const double mu = 0.1, xi = 0.451, edge = 1.09e-5;  // μξ = 0.0451 N
+  const double r = mu * xi;
+  for (const bool was_stick : {true, false})
+    {
+      // on the edge, either side of it: the label it had
+      EXPECT_EQ(keeps_or_decides_stick(xi, r + 1.27e-6, mu, 0.0, was_stick, edge), was_stick);
+      EXPECT_EQ(keeps_or_decides_stick(xi, r - 1.27e-6, mu, 0.0, was_stick, edge), was_stick);
+      // off it: Coulomb's law whatever the label was
+      EXPECT_TRUE(keeps_or_decides_stick(xi, r - 2e-5, mu, 0.0, was_stick, edge));
+      EXPECT_FALSE(keeps_or_decides_stick(xi, r + 2e-5, mu, 0.0, was_stick, edge));
+      // edge 0: Coulomb's law at the finest margin
+      EXPECT_FALSE(keeps_or_decides_stick(xi, r + 1.27e-6, mu, 0.0, was_stick, 0.0));
+      EXPECT_TRUE(keeps_or_decides_stick(xi, r - 1.27e-6, mu, 0.0, was_stick, 0.0));
+      // no tangential force: stick (no direction to slip in)
+      EXPECT_TRUE(keeps_or_decides_stick(xi, 0.0, mu, 0.0, was_stick, 1.0));
+    }
+  // μ = 0: no disc to stick in, however near w is to its (zero) edge
+  EXPECT_FALSE(keeps_or_decides_stick(xi, 0.0, 0.0, 0.0, true, edge));
+  EXPECT_FALSE(keeps_or_decides_stick(xi, 1e-6, 0.0, 0.0, true, edge));
+}
+
 // The class decision shared by evaluate_coulomb_ncp and the FE model's active set: the exact law
 // at band 0, and a round-off band that keeps a node at ξ or |w| − μξ within it on the
 // contact-free / sticking side.
