@@ -23,13 +23,17 @@ namespace clearjoint::fe::detail
     , rank_(Utilities::MPI::this_mpi_process(parts.comm))
   {}
 
-  std::vector<double> AdaptiveCycles::marking_targets() const
+  std::vector<double> equal_steps(const double delta, const unsigned int n)
   {
-    const unsigned int n = parts_.scene.mesh.adaptive_increments;
     std::vector<double> t;
     for (unsigned int inc = 1; inc <= n; ++inc)
-      t.push_back(inc == n ? delta_mark_ : inc * (delta_mark_ / n));
+      t.push_back(inc == n ? delta : inc * (delta / n));
     return t;
+  }
+
+  std::vector<double> AdaptiveCycles::marking_targets() const
+  {
+    return equal_steps(delta_mark_, parts_.scene.mesh.adaptive_increments);
   }
 
   bool AdaptiveCycles::refine(QuasiStaticStepper &stepper, RunResult &result)

@@ -19,6 +19,9 @@
 
 namespace clearjoint::fe::detail
 {
+  /// The push from 0 to δ in n equal increments (the last exactly δ) [m].
+  std::vector<double> equal_steps(double delta, unsigned int n);
+
   class AdaptiveCycles
   {
   public:

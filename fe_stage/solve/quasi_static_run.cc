@@ -18,18 +18,6 @@
 
 namespace clearjoint::fe::detail
 {
-  namespace
-  {
-    /// The push to δ_max in n equal increments (the last exactly δ_max).
-    std::vector<double> equal_steps(const double delta_max, const unsigned int n)
-    {
-      std::vector<double> t;
-      for (unsigned int inc = 1; inc <= n; ++inc)
-        t.push_back(inc == n ? delta_max : inc * (delta_max / n));
-      return t;
-    }
-  }  // namespace
-
   QuasiStaticRun::QuasiStaticRun(StudyModel &model, const Parts &parts)
     : model_(model)
     , parts_(parts)
