@@ -18,6 +18,22 @@
 
 namespace clearjoint::fe::detail
 {
+  namespace
+  {
+    /// The recorded curve on the final mesh as the adaptive sequence's last member.
+    AdaptiveCycle curve_as_cycle(const RunResult &result)
+    {
+      AdaptiveCycle last;
+      last.n_dofs = result.n_dofs;
+      last.n_cells = result.n_cells;
+      last.force = result.increments.back().force;
+      last.wall_time = result.increments.back().wall_time - result.setup_time;
+      for (const auto &r : result.increments)
+        last.contact_iterations += r.contact_iterations;
+      return last;
+    }
+  }  // namespace
+
   QuasiStaticRun::QuasiStaticRun(StudyModel &model, const Parts &parts)
     : model_(model)
     , parts_(parts)
@@ -115,17 +131,7 @@ namespace clearjoint::fe::detail
       }
     result.complete = true;
     if (!result.adaptive_cycles.empty())
-      {
-        // the curve's F(δ_max) on the final mesh closes the sequence
-        AdaptiveCycle last;
-        last.n_dofs = result.n_dofs;
-        last.n_cells = result.n_cells;
-        last.force = result.increments.back().force;
-        last.wall_time = result.increments.back().wall_time - result.setup_time;
-        for (const auto &r : result.increments)
-          last.contact_iterations += r.contact_iterations;
-        cycles.close(result, last);
-      }
+      cycles.close(result, curve_as_cycle(result));  // the curve's F(δ_max) closes the sequence
     result.sliding_rebuilds = model_.sliding_rebuilds();
     result.sliding_resolves = stepper.sliding_resolves();
     if (rank_ == 0 && stepper.finite_sliding())
