@@ -92,7 +92,7 @@ namespace clearjoint::fe::detail
     // uses (contact_rows.cc). Nothing is frozen or relaxed: once the sets settle, the slip law's
     // residual |t − μλŵ| falls quadratically.
     unsigned int n_changed = 0;
-    double slip_residual = 0.0, force_scale = 0.0;
+    double slip_residual = 0.0;
     std::string changed;
     const double mu = scene_.contact.mu;
     const double band = c * eps_g;  // the round-off band of contact/coulomb_ssn.h's law
@@ -102,7 +102,8 @@ namespace clearjoint::fe::detail
     // journal's reversal (its largest nodal force 1.09 N, the slip law settled to 1e-13 N;
     // docs/benchmarks.md "Adaptive meshes for the impact"). Within 1e-5 of the largest nodal
     // force, Coulomb's inequality holds to that at the few nodes on the edge either way.
-    const double edge = friction_ ? edge_tolerance * largest_normal_force(c, band) : 0.0;
+    const double force_scale = largest_normal_force(c, band);
+    const double edge = friction_ ? edge_tolerance * force_scale : 0.0;
     for (auto &cn : nodes_)
       {
         if (!cn.candidate)
@@ -128,8 +129,6 @@ namespace clearjoint::fe::detail
                 cn.kappa = mu * xi / w.norm();
               }
           }
-        if (cn.owned && now)
-          force_scale = std::max(force_scale, cn.lambda);
         if (cn.owned && (now != cn.active || (friction_ && now && stick != cn.stick)))
           {
             ++n_changed;
@@ -157,6 +156,6 @@ namespace clearjoint::fe::detail
         cn.stick = stick;
       }
     return {Utilities::MPI::sum(n_changed, comm_), Utilities::MPI::max(slip_residual, comm_),
-            Utilities::MPI::max(force_scale, comm_), changed};
+            force_scale, changed};
   }
 }  // namespace clearjoint::fe::detail

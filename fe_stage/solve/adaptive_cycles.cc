@@ -36,27 +36,35 @@ namespace clearjoint::fe::detail
     return equal_steps(delta_mark_, parts_.scene.mesh.adaptive_increments);
   }
 
+  bool AdaptiveCycles::push_to_mark(QuasiStaticStepper &stepper, std::string &message,
+                                    AdaptiveCycle &mesh) const
+  {
+    const double t0 = model_.elapsed();
+    mesh = AdaptiveCycle{};
+    mesh.n_dofs = parts_.dofs.handler().n_dofs();
+    mesh.n_cells = parts_.bodies.triangulation().n_global_active_cells();
+    if (!stepper.push_through(marking_targets(), message, [&](unsigned int, IncrementRecord &r) {
+          mesh.force = r.force;
+          mesh.contact_iterations += r.contact_iterations;
+        }))
+      return false;
+    mesh.wall_time = model_.elapsed() - t0;
+    return true;
+  }
+
   bool AdaptiveCycles::refine(QuasiStaticStepper &stepper, RunResult &result)
   {
     const unsigned int n_cycles = parts_.scene.mesh.adaptive_cycles;
     const double target = parts_.scene.mesh.adaptive_target_error;
-    const std::vector<double> targets = marking_targets();
     for (unsigned int cycle = 0; cycle < n_cycles; ++cycle)
       {
-        const double t0 = model_.elapsed();
         AdaptiveCycle c;
-        c.n_dofs = parts_.dofs.handler().n_dofs();
-        c.n_cells = parts_.bodies.triangulation().n_global_active_cells();
-        if (!stepper.push_through(targets, result.message, [&](unsigned int, IncrementRecord &r) {
-              c.force = r.force;
-              c.contact_iterations += r.contact_iterations;
-            }))
+        if (!push_to_mark(stepper, result.message, c))
           {
             result.message = "adaptive cycle " + std::to_string(cycle + 1) + ": " + result.message;
             result.wall_time = model_.elapsed();
             return false;
           }
-        c.wall_time = model_.elapsed() - t0;
         result.adaptive_cycles.push_back(c);
         if (rank_ == 0)
           {

@@ -44,6 +44,10 @@ namespace clearjoint::fe::detail
     /// increments within 5e-6 of F, docs/fe.md), so the sequence stays comparable with friction.
     std::vector<double> marking_targets() const;
 
+    /// The push to δ_mark (marking_targets) on the current mesh, its size, F(δ_mark), contact
+    /// iterations and wall time into `mesh`. False (`message` says why) when it failed.
+    bool push_to_mark(QuasiStaticStepper &stepper, std::string &message, AdaptiveCycle &mesh) const;
+
     /// From the mesh the model has now (built): the cycles, the sequence F_k(N_k) into
     /// result.adaptive_cycles; the model is left on the final mesh, at rest. False
     /// (result.message set) when a marking push failed.

@@ -313,17 +313,9 @@ namespace clearjoint::fe::detail
     else
       {
         // the final mesh's own push to δ_mark closes the sequence
-        const double t0 = model_.elapsed();
         AdaptiveCycle last;
-        last.n_dofs = parts_.dofs.handler().n_dofs();
-        last.n_cells = parts_.bodies.triangulation().n_global_active_cells();
-        if (!stepper.push_through(cycles.marking_targets(), result.message,
-                                  [&](unsigned int, IncrementRecord &r) {
-                                    last.force = r.force;
-                                    last.contact_iterations += r.contact_iterations;
-                                  }))
+        if (!cycles.push_to_mark(stepper, result.message, last))
           return failed("the final adaptive mesh's push to the expected delta_max");
-        last.wall_time = model_.elapsed() - t0;
         cycles.close(result, last);
       }
     model_.start_from_rest();
