@@ -17,9 +17,14 @@ namespace clearjoint::fe::detail
     /// Zero vectors on the DoF space (after every change of the mesh or its ghost layer).
     void reinit(const DofSpace &dofs, MPI_Comm comm)
     {
-      u_.reinit(dofs.owned(), comm);
-      u_ghosted_.reinit(dofs.owned(), dofs.relevant(), comm);
-      forces_.reinit(dofs.owned(), comm);
+      reinit(dofs.owned(), dofs.relevant(), comm);
+    }
+    /// The same on a layout given by its owned and locally relevant DoFs.
+    void reinit(const IndexSet &owned, const IndexSet &relevant, MPI_Comm comm)
+    {
+      u_.reinit(owned, comm);
+      u_ghosted_.reinit(owned, relevant, comm);
+      forces_.reinit(owned, comm);
     }
     /// u at the owned DoFs: what a solve writes (publish() afterwards).
     TrilinosWrappers::MPI::Vector &u_owned() { return u_; }

@@ -53,7 +53,8 @@ namespace clearjoint::fe::detail
             // is negative once known): one iteration for γ̇ and the state. Failed from the
             // state predicted in time: the attempt is tried again from the last state (as
             // the root finder's); failed from there: the root finder, from the same start
-            // at the same Δt
+            // at the same Δt. Stalled on the torque balance: first the root finder from the
+            // stall (solve_nested_from), then as any failure
             // (bordered: from the first step on, its slope its own in every iteration)
             const bool bordered = scene_.rolling.spin_solver == Rolling::SpinSolver::bordered;
             if (bordered || (scene_.rolling.spin_solver == Rolling::SpinSolver::coupled &&
@@ -64,8 +65,14 @@ namespace clearjoint::fe::detail
                     predicted_in_time = true;
                     start_predicted_in_time(step.dt);
                   }
-                if (solve_coupled(attempt, bordered, step))
+                std::optional<Stall> stall;
+                if (solve_coupled(attempt, bordered, step, stall))
                   break;
+                if (stall && solve_nested_from(*stall, attempt, step))
+                  {
+                    ++n_coupled_fallbacks_;
+                    break;
+                  }
                 if (predicted_in_time)
                   throw StepFailure{"the coupled iteration failed"};
                 problem_.restore_state(saved_);
@@ -133,11 +140,40 @@ namespace clearjoint::fe::detail
     state_.publish();
   }
 
-  /// rolling.spin_solver nested (and the coupled iteration's fallback): the root of the torque
-  /// balance over γ̇, each evaluation a converged state of the bodies. Throws StepFailure.
-  void SpinStepper::solve_nested(Attempt &attempt, Step &step, const bool predict_in_time,
-                                 bool &predicted_in_time)
+  /// After a coupled iteration stalled on the torque balance: the root finder from its last
+  /// iterate — that spin, that state, the balance's slope there — instead of from the step's
+  /// start. The stall is the active sets and the yielding points flickering as γ̇ moves by
+  /// 1e-5 of itself while the balance sits at 1e-5..1e-4 of its scale, short of the 1e-6
+  /// tolerance; the bodies there are within a few iterations of their converged state at a
+  /// fixed γ̇, and the root is within the secant's reach. (The level-2 paper's case, step 12:
+  /// the bordered iteration stalled twice, then the root finder from the step's start took 18
+  /// material iterations for its first evaluation alone.) False when it failed: the caller
+  /// goes on as after any failed coupled iteration.
+  bool SpinStepper::solve_nested_from(const Stall &stall, Attempt &attempt, Step &step)
   {
+    try
+      {
+        bool predicted_in_time = false;
+        solve_nested(attempt, step, false, predicted_in_time, &stall);
+        return true;
+      }
+    catch (const StepFailure &f)
+      {
+        if (rank_ == 0)
+          log::debug(" the root finder from the stalled iteration failed (" + f.reason + ")");
+        return false;
+      }
+  }
+
+  /// rolling.spin_solver nested (and the coupled iteration's fallback): the root of the torque
+  /// balance over γ̇, each evaluation a converged state of the bodies. From `from` (a stalled
+  /// coupled iteration): its first evaluation at the stall's spin from the model's state
+  /// there, the second by the stall's slope. Throws StepFailure.
+  void SpinStepper::solve_nested(Attempt &attempt, Step &step, const bool predict_in_time,
+                                 bool &predicted_in_time, const Stall *from)
+  {
+    if (from)
+      attempt.torque_scale = from->scale;
     const double dt = attempt.dt, t1 = t_ + dt;
     double &torque_scale = attempt.torque_scale;
     RollingSolve &rs = step.state;
@@ -208,16 +244,17 @@ namespace clearjoint::fe::detail
     // step: the second point is the Newton step with that slope instead, near the root as
     // the slope changes little from step to step (the reduced pipeline scene: 81 → 76
     // evaluations at 16 steps, 142 → 136 at 32, docs/benchmarks.md)
-    const double a = gamma_rate_;
+    const double a = from ? from->rate : gamma_rate_;
     const double roll = motion_.rolling_rate(t1);
     const bool rolling_already = std::abs(roll - a) <= 5e-2 * roll;
     const double slope_guess =
       torque_scale > 0.0 ? (inertia_ / dt - torque_rate_slope_) / torque_scale : 0.0;
     const IncreasingRoot balance{g, 1e-6, 1e-10 * roll, scene_.rolling.max_spin_iterations,
                                  "the journal's torque balance"};
-    const auto root = rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess) ?
-                        solve_increasing_from(balance, a, slope_guess) :
-                        solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
+    const auto root = from ? solve_increasing_from(balance, a, from->slope) :
+                      rolling_already && torque_rate_slope_ < 0.0 && std::isfinite(slope_guess) ?
+                             solve_increasing_from(balance, a, slope_guess) :
+                             solve_increasing(balance, a, rolling_already ? a + 2e-4 * roll : roll);
     step.spin_evaluations = root.evaluations;
     if (!root.converged)
       throw StepFailure{root.message};
@@ -242,9 +279,9 @@ namespace clearjoint::fe::detail
   /// in a step without contact, where M = 0 and the slope is I/Δt alone). Converged when one
   /// iterate meets the material Newton tolerance (SpinProblem::material_tolerance) and the
   /// root finder's (|g| ≤ 1e-6, or a γ̇ step by the iterates' secant below 1e-10 of the
-  /// rolling rate). False when it diverges (the correction grew three times running), stalls,
-  /// a solve fails, or it runs out of rolling.max_newton_iterations; the caller restores the
-  /// state.
+  /// rolling rate). False when it diverges (the correction grew three times running), stalls
+  /// (then with `stall`, the model left at its last iterate), a solve fails, or it runs out of
+  /// rolling.max_newton_iterations; the caller restores the state.
   ///
   /// `bordered` (rolling.spin_solver bordered): Newton on the bodies and γ̇ together. The
   /// linearised problem of an iteration is, with ψ = γ̇ Δt − Δφ the journal's turn,
@@ -259,7 +296,8 @@ namespace clearjoint::fe::detail
   /// it (the coupled iteration's linear tail, ~10× an iteration: docs/benchmarks.md "Why a
   /// bordered solve would pay"). One more linear solve an iteration, no slope carried from
   /// step to step.
-  bool SpinStepper::solve_coupled(const Attempt &a, const bool bordered, Step &step)
+  bool SpinStepper::solve_coupled(const Attempt &a, const bool bordered, Step &step,
+                                  std::optional<Stall> &stall)
   {
     const double tolerance = problem_.material_tolerance();
     const double roll = motion_.rolling_rate(t_ + a.dt);
@@ -342,7 +380,11 @@ namespace clearjoint::fe::detail
                 case SpinBalanceIteration::Trend::diverges:
                   return hand_over("diverges");
                 case SpinBalanceIteration::Trend::stalls:
-                  return hand_over("stalls on the torque balance");
+                  stall = Stall{rate, balance.slope(), scale};
+                  if (rank_ == 0)
+                    log::debug(" the coupled iteration stalls on the torque balance; the root "
+                               "finder goes on from its last iterate");
+                  return false;
                 case SpinBalanceIteration::Trend::continues:
                   break;
               }

@@ -30,6 +30,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <optional>
 #include <string>
 
 namespace clearjoint::fe::detail
@@ -92,8 +93,17 @@ namespace clearjoint::fe::detail
     double torque_scale(double force, double torque, double t1, double dt) const;
     void start_predicted_in_time(double dt);
     void pair_turned_journal();
-    bool solve_coupled(const Attempt &a, bool bordered, Step &step);
-    void solve_nested(Attempt &attempt, Step &step, bool predict_in_time, bool &predicted_in_time);
+    /// Where a coupled iteration that stalled on the torque balance left the step: the spin
+    /// [rad/s] of its last iterate (the model holds that iterate's state), the balance's slope
+    /// there [s/rad] and its scale [N m]. The root finder goes on from it.
+    struct Stall
+    {
+      double rate = 0.0, slope = 0.0, scale = 0.0;
+    };
+    bool solve_coupled(const Attempt &a, bool bordered, Step &step, std::optional<Stall> &stall);
+    void solve_nested(Attempt &attempt, Step &step, bool predict_in_time, bool &predicted_in_time,
+                      const Stall *from = nullptr);
+    bool solve_nested_from(const Stall &stall, Attempt &attempt, Step &step);
     bool retry(const StepFailure &f, bool predicted_in_time, bool &predict_in_time, double &dt,
                std::string &message);
 
