@@ -21,6 +21,13 @@ estimate is rough.
         [--refinements 0 1 2] [--refinements-steps 50]
         [--journal core|rigid] [--delta 1e-5] [--ramp-time 0.25] [--end-time 0.25] [--ranks 1]
         [--reuse]
+    bench/fe_rolling_bench.py --histories L0.csv L1.csv L2.csv [--refinements 0 1 2]
+
+--histories tabulates finished runs as the mesh levels instead of running them: their
+rolling_history.csv files, coarsest first, each level's cells along the contact's path halved
+(the paper's case at 1 mm, whose finest level runs for hours on two ranks with restart files:
+docs/benchmarks.md "The paper's rolling case at 1 mm"). The runs' scenes are theirs; the table
+says only which files it read.
 
 The default scene is the paper's time line (the push ramped over 0.25 s, the bearing half a
 turn at 12.56 rad/s, mu = 0.3, the SPEC hardening table) with a push of 10 um instead of 1 mm
@@ -107,7 +114,8 @@ def run_new_case(args, name, n_steps, refinements):
 # trend stays. The plastic dissipation is a sum over the run and needs no fit.
 QUANTITIES = [("force_normal", "F at the end, fitted [N]", "{:.1f}", True),
               ("gamma_rate", "spin at the end, fitted [rad/s]", "{:.6f}", True),
-              ("plastic_dissipation", "plastic dissipation [J]", "{:.5g}", False)]
+              ("plastic_dissipation", "plastic dissipation [J]", "{:.5g}", False),
+              ("max_plastic_strain", "largest plastic strain", "{:.4g}", False)]
 
 
 def fitted_end(rows, key, window):
@@ -176,10 +184,32 @@ def table(title, label, levels, results, window):
                   f"{fmt.format(spread)} ({100.0 * spread / abs(vals[-1]):.2g} % of the finest)")
 
 
+def histories_table(args):
+    """The mesh table of finished runs (--histories), labelled by --refinements."""
+    levels = args.refinements[:len(args.histories)]
+    if len(levels) != len(args.histories):
+        sys.exit(f"fe_rolling_bench: {len(args.histories)} histories but --refinements names "
+                 f"{len(args.refinements)} levels")
+    results = []
+    for path in args.histories:
+        rows, status = read_history(path)
+        if not rows or not status.startswith("complete"):
+            sys.exit(f"fe_rolling_bench: {path}: not a finished rolling history (status {status})")
+        results.append((rows, float(rows[-1]["wall_time"])))
+    ends = {f"{float(r[-1]['time']):.9g}" for r, _ in results}
+    if len(ends) != 1:
+        sys.exit(f"fe_rolling_bench: the histories end at different times ({', '.join(sorted(ends))} s)")
+    table("Mesh, finished runs: " + ", ".join(args.histories), "contact_refinements", levels,
+          results, args.window)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--fe-stage", required=True, help="the fe_stage executable")
+    ap.add_argument("--fe-stage", help="the fe_stage executable (needed unless --histories)")
+    ap.add_argument("--histories", nargs="*", default=[],
+                    help="rolling_history.csv of finished runs, coarsest first: tabulated as the "
+                         "mesh levels (--refinements labels them), nothing is run")
     ap.add_argument("--work", default="bench_rolling_work")
     ap.add_argument("--steps", type=int, nargs="*", default=[25, 50, 100, 200],
                     help="rolling.n_steps of the time-step levels (each twice the last)")
@@ -198,6 +228,11 @@ def main():
                     help="[s] the end's fit of the force and the spin spans this much of the run")
     ap.add_argument("--reuse", action="store_true")
     args = ap.parse_args()
+    if args.histories:
+        histories_table(args)
+        return
+    if not args.fe_stage:
+        sys.exit("fe_rolling_bench: give --fe-stage (or --histories to tabulate finished runs)")
     if any(b != 2 * a for a, b in zip(args.steps, args.steps[1:])):
         sys.exit("fe_rolling_bench: --steps must double from level to level (Richardson)")
     if any(b != a + 1 for a, b in zip(args.refinements, args.refinements[1:])):
