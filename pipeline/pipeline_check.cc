@@ -237,10 +237,12 @@ namespace clearjoint::pipeline
     /// (a fitted one is checked when impact_compare runs).
     void impact()
     {
-      const nlohmann::json scene = compose_scene(config_, config_.impact->scene, "fe", {});
+      const nlohmann::json scene = runner_.impact_scene();
       const std::string file = write_scene("fe_impact.yaml", scene);
-      run_scene_check("fe_stage", file, preset_origins("fe"), "impact.scene",
-                      "FE impact study (scene " + config_.impact->scene + ")");
+      run_scene_check("fe_stage", file,
+                      fe_origins("impact", config_.impact->overrides,
+                                 config_.impact->preset_overrides),
+                      "impact.scene", "FE impact study (scene " + config_.impact->scene + ")");
       const nlohmann::json *study = find_key_path(scene, "study");
       if (!study || !study->is_string() || study->get<std::string>() != "impact")
         throw InputError(src_, "impact.scene", config_.impact->scene,
@@ -387,8 +389,8 @@ namespace clearjoint::pipeline
     }
 
     /// The pipeline keys behind an FE scene built as overrides_for_preset() builds it, in the
-    /// order they are set: the chosen preset's `fe` map, then the block's (`key`: a sweep's
-    /// or the rolling study's) `overrides` and its `presets.<chosen preset>`.
+    /// order they are set: the chosen preset's `fe` map, then the block's (`key`: a sweep's,
+    /// the impact or the rolling study's) `overrides` and its `presets.<chosen preset>`.
     std::vector<Origin> fe_origins(const std::string &key, const Overrides &overrides,
                                    const PresetOverrides &preset_overrides) const
     {

@@ -35,6 +35,11 @@ namespace clearjoint::pipeline
     return overrides_for_preset(rolling.overrides, rolling.preset_overrides, preset);
   }
 
+  Overrides impact_overrides(const ImpactStudy &impact, const std::string &preset)
+  {
+    return overrides_for_preset(impact.overrides, impact.preset_overrides, preset);
+  }
+
   std::string value_label(const double value)
   {
     // Shortest "%.{p}g" that reads back as the same double: 0.004 stays "0.004", a computed
@@ -481,13 +486,15 @@ namespace clearjoint::pipeline
       return d;
     }
 
-    /// `impact`: the FE impact study's scene and the one law it is compared with, and the
-    /// optional deformable-journal variant.
+    /// `impact`: the FE impact study's scene, its overrides and its settings per preset, the
+    /// one law it is compared with, and the optional deformable-journal variant.
     ImpactStudy read_impact(StrictObject m, const PipelineConfig &c,
                             std::vector<std::string> &old_law_key)
     {
       ImpactStudy impact;
       impact.scene = m.string("scene");
+      impact.overrides = read_overrides(m, "overrides");
+      impact.preset_overrides = read_preset_overrides(m, "impact study");
       if (m.has("deformable"))
         impact.deformable = read_deformable_impact(m.object("deformable"));
       else

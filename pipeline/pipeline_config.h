@@ -103,6 +103,12 @@ namespace clearjoint::pipeline
   struct ImpactStudy
   {
     std::string scene;                  ///< FE scene file with study: impact
+    /// Set in the rigid journal's scene after the preset's `fe` overrides (e.g. its own
+    /// adaptive mesh keys, which the preset's `fe` map would set in every FE task).
+    Overrides overrides;
+    /// `presets.<p>`: set in that scene after `overrides` when preset p runs; see
+    /// PresetOverrides.
+    PresetOverrides preset_overrides;
     LawChoice law;                      ///< the law of the same geometry (key unused)
     std::optional<DeformableImpact> deformable;  ///< absent: the scene's journal only
   };
@@ -193,6 +199,9 @@ namespace clearjoint::pipeline
   /// What the rolling study's scene sets after the preset's `fe` map, in order: the block's
   /// `overrides`, then its `presets.<preset>`.
   Overrides rolling_overrides(const RollingStudy &rolling, const std::string &preset);
+  /// The rigid journal's impact scene's settings when `preset` runs: impact.overrides, then
+  /// impact.presets.<preset>.
+  Overrides impact_overrides(const ImpactStudy &impact, const std::string &preset);
 
   /// Strict reading: unknown keys, missing keys, a wrong schema, an MBD law naming a sweep that
   /// does not exist or a value not in that sweep → InputError naming the key and valid range.

@@ -352,14 +352,19 @@ namespace clearjoint::pipeline
       law_node = fitted.node;
     }
     log::info("FE impact study: " + impact.scene);
-    add_impact_variant(compose_scene(config_, impact.scene, "fe", {}), impact.scene, "", law,
-                       law_node);
+    add_impact_variant(impact_scene(), impact.scene, "", law, law_node);
     if (impact.deformable)
     {
       log::info("FE impact study, deformable journal: " + impact.deformable->scene);
       add_impact_variant(impact_deformable_scene(), impact.deformable->scene, "_deformable",
                          law, law_node);
     }
+  }
+
+  nlohmann::json PipelineRunner::impact_scene() const
+  {
+    return compose_scene(config_, config_.impact->scene, "fe",
+                         impact_overrides(*config_.impact, config_.preset));
   }
 
   nlohmann::json PipelineRunner::impact_deformable_scene() const

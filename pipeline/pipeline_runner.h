@@ -107,6 +107,9 @@ namespace clearjoint::pipeline
     void add_impact_variant(const nlohmann::json &scene_json, const std::string &base,
                             const std::string &suffix, const std::string &law,
                             std::optional<int> law_node);
+    /// The rigid journal's impact scene: base scene, the preset's `fe` overrides,
+    /// impact.overrides, impact.presets.<preset>.
+    nlohmann::json impact_scene() const;
     /// The deformable impact's scene: base scene, the preset's `fe` overrides,
     /// impact.deformable.overrides.
     nlohmann::json impact_deformable_scene() const;

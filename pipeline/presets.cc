@@ -74,6 +74,11 @@ namespace clearjoint::pipeline
       if (config.rolling)
         if (const auto own = settings(config.rolling->preset_overrides))
           p["rolling"] = *own;
+      // The rigid journal's impact scene's (impact.presets.<name>), the same way.
+      p["impact"] = nullptr;
+      if (config.impact)
+        if (const auto own = settings(config.impact->preset_overrides))
+          p["impact"] = *own;
       p["measured"] = nullptr;
       if (const auto it = config.preset_measured.find(name); it != config.preset_measured.end())
       {

@@ -188,6 +188,9 @@ def preset_section(summary):
         # and the rolling study's own settings for it (rolling.presets), after rolling.overrides
         if p.get("rolling"):
             settings += "; rolling study: " + ", ".join(f"{k} = {v}" for k, v in sorted(p["rolling"].items()))
+        # and the impact study's (impact.presets), after impact.overrides
+        if p.get("impact"):
+            settings += "; impact study: " + ", ".join(f"{k} = {v}" for k, v in sorted(p["impact"].items()))
         name = html.escape(p["name"]) + (" <strong>(this run)</strong>" if p.get("chosen") else "")
         style = " style='background:#ffe9b3'" if p.get("chosen") else ""
         rows.append(f"<tr{style}><td>{name}</td><td>{html.escape(settings)}</td>"

@@ -8,7 +8,7 @@ F = K·δ^n without any FE. Not a physics model.
 
 What it imitates of the FE stage contract (docs/pipeline.md, SPEC §2):
 - study radial (default): K grows with geometry.t_B.
-- study impact: accepted by --check; run only with scene key fake_discretisation: true (below),
+- study impact: accepted by --check (impact.steps_per_period checked); run only with scene key fake_discretisation: true (below),
   writing impact_sweep.csv (v_in_m_per_s, peak_force_N, delta_max_m) for sweep.velocity and a
   manifest (the impact tests run the real fe_stage).
 - scene key fake_discretisation: true (for bench/measure_presets.py's test): the results carry a
@@ -93,6 +93,9 @@ if study == "misalignment":
         input_error("misalignment.theta_deg", theta, f"0 <= theta <= theta_max = {theta_max!r} deg")
     K *= 1.0 - 0.2 * theta / theta_max
 elif study == "impact":
+    steps = scene.get("impact", {}).get("steps_per_period", 40)
+    if not (isinstance(steps, int) and 10 <= steps <= 100000):  # the real stage's range
+        input_error("impact.steps_per_period", steps, "an integer in [10, 100000]")
     if check:  # only its scene is checked here (the impact tests run the real fe_stage)
         sys.exit(0)
     if not scene.get("fake_discretisation"):

@@ -231,6 +231,48 @@ TEST(PipelineCheck, TheImpactSectionIsChecked)
   EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
 }
 
+// The rigid journal's impact scene with its own settings (impact.overrides, then
+// impact.presets.<preset>): fe_stage checks the scene they make, and a bad value is named by
+// the pipeline key that set it — the overrides' when the preset's own settings leave it, the
+// preset's own when they set it last; exit 1, nothing written.
+TEST(PipelineCheck, TheImpactStudysOwnSettingsAreCheckedAndNamed)
+{
+  test_support::ScratchDir dir("pipeline_check_impact_own");
+  const Build b(dir);
+  test_support::write_text(dir.file("impact.yaml"), "{\"study\": \"impact\"}\n");
+  const std::string law_ok = std::string(CLEARJOINT_SOURCE_DIR) + "/laws/paper_tB4.json";
+  const auto with = [&](const std::string &own) {
+    std::string text = test_support::read_text(pipeline(dir));
+    text.replace(text.find("report: false"), 13,
+                 "impact: {scene: " + dir.file("impact.yaml") + ", law: {file: " + law_ok + "}, " +
+                   own + "}\nreport: false");
+    test_support::write_text(dir.file("p.yaml"), text);
+  };
+  const std::string presets = "presets: {fast: {impact.steps_per_period: %}, standard: null, "
+                              "accurate: null}";
+  const auto fast = [&](const std::string &value) {
+    std::string p = presets;
+    return p.replace(p.find('%'), 1, value);
+  };
+  for (const auto &[own, key] : std::vector<std::pair<std::string, std::string>>{
+         {"overrides: {impact.steps_per_period: 2}", "impact.overrides.impact.steps_per_period"},
+         {fast("3"), "impact.presets.fast.impact.steps_per_period"},
+         // the preset's own value comes last: it is the one fe_stage sees
+         {"overrides: {impact.steps_per_period: 80}, " + fast("5"),
+          "impact.presets.fast.impact.steps_per_period"}})
+    {
+      with(own);
+      std::string log;
+      EXPECT_EQ(run_pipeline(dir, b, "--check", log), 1) << own << log;
+      EXPECT_NE(log.find("key '" + key + "'"), std::string::npos) << own << log;
+      EXPECT_FALSE(fs::exists(dir.file("out"))) << own;
+    }
+  // a bad overrides value mended by the preset's own setting passes
+  with("overrides: {impact.steps_per_period: 2}, " + fast("160"));
+  std::string log;
+  EXPECT_EQ(run_pipeline(dir, b, "--check", log), 0) << log;
+}
+
 // The impact section's deformable variant (issue 31 item 2) is checked with the rest: its scene
 // must exist, read, be an impact study and have a deformable journal (a rigid one would repeat
 // impact.scene's), and fe_stage must accept it; each failure is an input error naming the

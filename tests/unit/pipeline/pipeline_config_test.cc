@@ -404,6 +404,57 @@ TEST(PipelineConfig, ImpactStudy)
             "(accepted)");
 }
 
+// The rigid journal's impact scene has its own settings as the rolling study has
+// (impact.overrides, then impact.presets.<preset>; issue 32 item 1: the adaptive impact
+// meshes, which the preset's `fe` map would set in every FE task): read by the same code, in
+// the same order; each bad shape an input error naming its key under `impact`.
+TEST(PipelineConfig, TheImpactStudysOwnOverridesAndPresetSettings)
+{
+  const std::string at = "mbd_runs:";
+  const std::string head = "impact:\n  scene: i.yaml\n  law: {file: l.json}\n";
+  {
+    test_support::ScratchDir dir("pipeline_config_impact_presets");
+    std::string text = good;
+    text.replace(text.find(at), at.size(),
+                 head +
+                   "  overrides: {mesh.adaptive_fraction: 0.3}\n  presets:\n"
+                   "    fast: null\n    standard: {mesh.adaptive_cycles: 2}\n"
+                   "    accurate: {mesh.adaptive_cycles: 3, impact.steps_per_period: 160}\n" +
+                   at);
+    test_support::write_text(dir.file("p.yaml"), text);
+    const PipelineConfig c = read_pipeline_config(dir.file("p.yaml"));
+    ASSERT_TRUE(c.impact.has_value());
+    const ImpactStudy &i = *c.impact;
+    ASSERT_EQ(i.overrides.size(), 1u);
+    EXPECT_EQ(impact_overrides(i, "fast"), i.overrides) << "null: nothing extra";
+    const Overrides accurate = impact_overrides(i, "accurate");
+    ASSERT_EQ(accurate.size(), 3u);
+    EXPECT_EQ(accurate[0].first, "mesh.adaptive_fraction") << "the block's overrides first";
+    // then the preset's own settings (a mapping's keys in their sorted order)
+    EXPECT_EQ(accurate[1].first, "impact.steps_per_period");
+    EXPECT_EQ(accurate[1].second, 160);
+    EXPECT_EQ(accurate[2].first, "mesh.adaptive_cycles");
+    EXPECT_EQ(accurate[2].second, 3);
+    // without either key: nothing beyond the preset's `fe` map
+    text = good;
+    text.replace(text.find(at), at.size(), head + at);
+    test_support::write_text(dir.file("q.yaml"), text);
+    const PipelineConfig q = read_pipeline_config(dir.file("q.yaml"));
+    EXPECT_TRUE(impact_overrides(*q.impact, "standard").empty());
+  }
+  for (const auto &[block, key] : std::vector<std::pair<std::string, std::string>>{
+         {"  overrides: 3\n", "impact.overrides"},
+         {"  presets: [fast]\n", "impact.presets"},
+         {"  presets: {fast: null, standard: null}\n", "impact.presets.accurate"},
+         {"  presets: {fast: null, standard: null, accurate: null, rapid: null}\n",
+          "impact.presets.rapid"},
+         {"  presets: {fast: 3, standard: null, accurate: null}\n", "impact.presets.fast"}})
+    {
+      const std::string m = error_for(at, head + block + at);
+      EXPECT_NE(m.find("key '" + key + "'"), std::string::npos) << block << " → " << m;
+    }
+}
+
 // The impact study's deformable-journal variant (issue 31 item 2): `impact.deformable` with a
 // scene and optional overrides; its measured figures (impact_deformable_time, dofs and
 // error_F_max.impact_deformable) only with it; every bad value an input error naming its key.

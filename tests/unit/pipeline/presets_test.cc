@@ -146,6 +146,26 @@ TEST(Presets, SummaryListsTheRollingStudysOwnSettings)
   EXPECT_TRUE(presets_summary(read(dir, measured))[0]["rolling"].is_null());
 }
 
+// ... and the impact study's (impact.presets.<p>) under `impact`, the same way.
+TEST(Presets, SummaryListsTheImpactStudysOwnSettings)
+{
+  test_support::ScratchDir dir("presets_impact_own");
+  const std::string impact = "impact:\n  scene: i.yaml\n  law: {file: l.json}\n";
+  test_support::write_text(dir.file("p.yaml"),
+                           pipeline_text("measured: {note: x, error_F_max: {}}") + impact +
+                             "  presets: {fast: null, standard: {mesh.adaptive_cycles: 2}, "
+                             "accurate: {mesh.adaptive_cycles: 3}}\n");
+  const auto s = presets_summary(read_pipeline_config(dir.file("p.yaml")));
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0]["impact"], nlohmann::json::object()) << "null: nothing extra; " << s[0].dump();
+  EXPECT_EQ(s[1]["impact"], (nlohmann::json{{"mesh.adaptive_cycles", 2}})) << s[1].dump();
+  EXPECT_EQ(s[2]["impact"], (nlohmann::json{{"mesh.adaptive_cycles", 3}})) << s[2].dump();
+  EXPECT_TRUE(s[1]["rolling"].is_null()) << "not the rolling study's: " << s[1].dump();
+  test_support::write_text(dir.file("q.yaml"),
+                           pipeline_text("measured: {note: x, error_F_max: {}}") + impact);
+  EXPECT_TRUE(presets_summary(read_pipeline_config(dir.file("q.yaml")))[0]["impact"].is_null());
+}
+
 // Issue 32 item 2: what bench/measure_presets.py writes besides the figures above — per-sweep
 // case times and DoFs, the machine and the date — read strictly; a bad value names its key.
 TEST(Presets, MeasuredMachineDateAndPerSweepFigures)

@@ -94,12 +94,14 @@ def main():
         if not ok:
             bad.append(what)
 
-    # a sweep's and the rolling study's own settings for a preset (fe_sweeps[i].presets,
-    # rolling.presets; {} for a null entry, null without them) follow the preset's own map
+    # a sweep's, the rolling and the impact study's own settings for a preset
+    # (fe_sweeps[i].presets, rolling.presets, impact.presets; {} for a null entry, null
+    # without them) follow the preset's own map
     presets = [dict(p) for p in PRESETS]
     presets[0].update({"sweeps": {"thickness": {"mesh.adaptive_cycles": 2}},
-                       "rolling": {"rolling.n_steps": 32, "mesh.contact_refinements": 0}})
-    presets[1].update({"sweeps": {"thickness": {}}, "rolling": {}})
+                       "rolling": {"rolling.n_steps": 32, "mesh.contact_refinements": 0},
+                       "impact": {"mesh.adaptive_cycles": 2}})
+    presets[1].update({"sweeps": {"thickness": {}}, "rolling": {}, "impact": {}})
     summary = {"presets": presets, "sweeps": [{"name": "thickness"}],
                "impact": {"scene": "impact.yaml"}, "rolling": {"status": "complete"}}
     t = parse(preset_section(summary))
@@ -131,8 +133,9 @@ def main():
         expect("(this run)" in accurate["preset"][0], f"the chosen preset marked: {accurate['preset']}")
         settings = "FE scene settings"
         expect(fast[settings][0] == "rolling.n_steps = 8; sweep thickness: mesh.adaptive_cycles = 2; "
-               "rolling study: mesh.contact_refinements = 0, rolling.n_steps = 32",
-               f"the preset's, the sweep's and the rolling study's settings: {fast[settings]}")
+               "rolling study: mesh.contact_refinements = 0, rolling.n_steps = 32; "
+               "impact study: mesh.adaptive_cycles = 2",
+               f"the preset's, the sweep's, the rolling and impact studies' settings: {fast[settings]}")
         expect(accurate[settings][0] == "rolling.n_steps = 8",
                f"null entries add nothing: {accurate[settings]}")
     for where in (WHERE_ROLLING, WHERE_IMPACT, WHERE_THICKNESS):
