@@ -39,13 +39,9 @@ namespace clearjoint::fe::detail
     AdaptiveCycles(StudyModel &model, const Parts &parts, double delta_mark,
                    const std::string &quantity);
 
-    /// The push δ = 0 → δ_mark in mesh.adaptive_increments equal steps (the last exactly δ_mark):
-    /// only the state at δ_mark is used, and it hardly depends on the path (μ = 0.1: 1 to 20
-    /// increments within 5e-6 of F, docs/fe.md), so the sequence stays comparable with friction.
-    std::vector<double> marking_targets() const;
-
-    /// The push to δ_mark (marking_targets) on the current mesh, its size, F(δ_mark), contact
-    /// iterations and wall time into `mesh`. False (`message` says why) when it failed.
+    /// The push to δ_mark (in mesh.adaptive_increments equal steps) on the current mesh: its
+    /// size, F(δ_mark), contact iterations and wall time into `mesh`. False (`message` says
+    /// why) when it failed.
     bool push_to_mark(QuasiStaticStepper &stepper, std::string &message, AdaptiveCycle &mesh) const;
 
     /// From the mesh the model has now (built): the cycles, the sequence F_k(N_k) into
@@ -62,6 +58,11 @@ namespace clearjoint::fe::detail
     void close(RunResult &result, const AdaptiveCycle &final_mesh) const;
 
   private:
+    /// The push δ = 0 → δ_mark in mesh.adaptive_increments equal steps (the last exactly δ_mark):
+    /// only the state at δ_mark is used, and it hardly depends on the path (μ = 0.1: 1 to 20
+    /// increments within 5e-6 of F, docs/fe.md), so the sequence stays comparable with friction.
+    std::vector<double> marking_targets() const;
+
     StudyModel &model_;
     Parts parts_;
     const double delta_mark_;
