@@ -333,8 +333,7 @@ if scene.get("fake_discretisation"):
 if study == "rolling":
     write_rolling(out, scene, g)
     sys.exit(0)
-if study == "impact":
-    steps = scene.get("impact", {}).get("steps_per_period", 40)
+if study == "impact":  # `steps`: impact.steps_per_period, read and checked above
     velocities = scene.get("sweep", {}).get("velocity") or [scene.get("impact", {}).get("velocity", 0.1)]
     cases = []
     with open(os.path.join(out, "impact_sweep.csv"), "w") as f:
