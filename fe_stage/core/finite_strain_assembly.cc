@@ -12,13 +12,18 @@
 // functions (s, s') is computed at once: first T_s'[i][J][k] = A_iJkL ∂_L φ_s' for each s', then
 // the block ∂_J φ_s T_s'[i][J][k]. For FE_Q(2)^3 (27 scalar functions) that is ~26 k products a
 // quadrature point where the pair-by-pair sum of DoFs took ~59 k, with the fourth-order
-// tensor read 27 times instead of 6 561.
+// tensor read 27 times instead of 6 561. A is major-symmetric (A_iJkL = A_kLiJ: the geometric
+// part δ_ik S_JL with S symmetric, and F ℂ F with ℂ the symmetric algorithmic tangent of this
+// associative law, material/finite_j2.h), so block (s', s) is block (s, s') transposed: only
+// s' ≥ s are summed, into a per-cell array laid out by blocks, and D is filled from it once a
+// cell (half the products, and no indexed FullMatrix access at every quadrature point).
 #include "fe_stage/core/assembler.h"
 #include "fe_stage/core/step_failure.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <algorithm>
 #include <array>
 
 namespace clearjoint::fe::detail
@@ -48,6 +53,8 @@ namespace clearjoint::fe::detail
     std::vector<Tensor<2, dim>> grad_u(n_q);
     std::vector<Tensor<1, dim>> grad_phi(n_scalar);  // ∇φ_s at the point
     std::vector<Tensor<3, dim>> T(n_scalar);         // T_s[i][J][k] = A_iJkL ∂_L φ_s
+    // the cell's blocks (s, s2 ≥ s): block[(s * n_scalar + s2) * 9 + 3 i + k] = D(s_i, s2_k)
+    std::vector<double> block(n_scalar * n_scalar * dim * dim);
 
     K_ = 0.0;
     A_static_ = 0.0;
@@ -60,7 +67,7 @@ namespace clearjoint::fe::detail
           cell->get_dof_indices(dofs);
           cell->get_dof_values(solution, u_cell);
           const std::size_t first = std::size_t(cell->active_cell_index()) * n_q;
-          D = 0.0;
+          std::fill(block.begin(), block.end(), 0.0);
           f_cell = 0.0;
           for (unsigned int q = 0; q < n_q; ++q)
             {
@@ -87,17 +94,27 @@ namespace clearjoint::fe::detail
                   const Tensor<1, dim> &g = grad_phi[s];
                   for (unsigned int i = 0; i < dim; ++i)
                     f_cell(dof_of[s][i]) += (r.stress[i] * g) * JxW;
-                  for (unsigned int s2 = 0; s2 < n_scalar; ++s2)
-                    for (unsigned int i = 0; i < dim; ++i)
-                      for (unsigned int k = 0; k < dim; ++k)
-                        {
-                          double d = 0.0;
+                  for (unsigned int s2 = s; s2 < n_scalar; ++s2)
+                    {
+                      double *b = &block[(s * n_scalar + s2) * dim * dim];
+                      for (unsigned int i = 0; i < dim; ++i)
+                        for (unsigned int k = 0; k < dim; ++k)
                           for (unsigned int J = 0; J < dim; ++J)
-                            d += g[J] * T[s2][i][J][k];
-                          D(dof_of[s][i], dof_of[s2][k]) += d;
-                        }
+                            b[dim * i + k] += g[J] * T[s2][i][J][k];
+                    }
                 }
             }
+          for (unsigned int s = 0; s < n_scalar; ++s)
+            for (unsigned int s2 = s; s2 < n_scalar; ++s2)
+              {
+                const double *b = &block[(s * n_scalar + s2) * dim * dim];
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int k = 0; k < dim; ++k)
+                    {
+                      D(dof_of[s][i], dof_of[s2][k]) = b[dim * i + k];
+                      D(dof_of[s2][k], dof_of[s][i]) = b[dim * i + k];
+                    }
+              }
           D.vmult(b_cell, u_cell);  // b = K_t u − f_int
           b_cell -= f_cell;
           load_.add(dofs, b_cell);
