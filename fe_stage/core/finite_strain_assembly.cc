@@ -16,7 +16,9 @@
 // part δ_ik S_JL with S symmetric, and F ℂ F with ℂ the symmetric algorithmic tangent of this
 // associative law, material/finite_j2.h), so block (s', s) is block (s, s') transposed: only
 // s' ≥ s are summed, into a per-cell array laid out by blocks, and D is filled from it once a
-// cell (half the products, and no indexed FullMatrix access at every quadrature point).
+// cell (half the products, and no indexed FullMatrix access at every quadrature point; ~8 % of
+// the fast rolling case's CPU, docs/benchmarks.md). A law without that symmetry would need the
+// full sum again: FiniteAssembly.TangentIsTheDerivativeOfTheInternalForce would fail on it.
 #include "fe_stage/core/assembler.h"
 #include "fe_stage/core/step_failure.h"
 
