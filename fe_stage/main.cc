@@ -45,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -476,16 +477,54 @@ namespace
     return complete;
   }
 
+  /// The rank this process was started as by mpirun (Open MPI, or a PMI launcher), 0 without
+  /// one; read from the environment, as MPI has not started.
+  int launcher_rank()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+      if (const char *value = std::getenv(name))
+        return std::atoi(value);
+    return 0;
+  }
+
+  /// --print-defaults and --check: nothing parallel, so MPI is not started (under mpirun the
+  /// ranks other than 0 stay silent). Returns the exit code.
+  int without_mpi(CommandLine &cl)
+  {
+    const bool root = launcher_rank() == 0;
+    if (!root)
+      log::set_level(log::Level::error);
+    try
+      {
+        if (cl.print_defaults)
+          {
+            if (root)
+              std::cout << fe::default_scene_yaml();
+            return exit_success;
+          }
+        read_scene(cl, root);
+        if (root)
+          log::info("fe_stage: " + cl.scene_path + " is a valid scene");
+        return exit_success;
+      }
+    catch (const InputError &e)
+      {
+        if (root)
+          log::error(e.what());
+        return exit_input_error;
+      }
+    catch (const std::exception &e)
+      {
+        log::error(std::string("fe_stage: ") + e.what());
+        return exit_numerical_error;
+      }
+  }
+
   /// After the command line: the scene, the work folder, the case or the sweep, and the
   /// folder published. Returns the exit code.
   int run(CommandLine &cl, int argc, char **argv, const bool root)
   {
     const fe::FeScene scene = read_scene(cl, root);
-    if (cl.check)
-      {
-        log::info("fe_stage: " + cl.scene_path + " is a valid scene");
-        return exit_success;
-      }
     if (!make_work_folder(cl, root))
       return exit_input_error;  // nothing was made: no folder to remove
     bool complete = true;
@@ -507,6 +546,32 @@ int main(int argc, char **argv)
   // A signal during MPI's start-up (seconds on a loaded machine) is noted too, not fatal; the
   // handlers are installed again after it in case MPI set its own.
   interrupt::install();
+  CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint): "
+               "force-penetration curves (study radial, misalignment, hertz, patch), the "
+               "journal's impact (study impact, HHT-alpha dynamics) and its rolling in the "
+               "turning elastoplastic bearing (study rolling).\n"
+               "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted "
+               "by SIGINT/SIGTERM."};
+  CommandLine cl;
+  add_options(app, cl);
+  // The command line is read before MPI starts: --help, --print-defaults and --check need no
+  // MPI, and Open MPI's start alone takes ~1.3 s of a 1.4 s check (run_pipeline checks every
+  // generated scene before its first task; docs/benchmarks.md "The pipeline's start").
+  try
+    {
+      app.parse(argc, argv);
+    }
+  catch (const CLI::ParseError &e)
+    {
+      return app.exit(e) == 0 ? exit_success : exit_input_error;
+    }
+  if (cl.quiet)
+    log::set_level(log::Level::warning);
+  if (cl.verbose)
+    log::set_level(log::Level::debug);
+  if (cl.print_defaults || cl.check)
+    return without_mpi(cl);
+
   const auto runtime = fe::make_runtime(argc, argv);
   const bool root = rank_of(MPI_COMM_WORLD) == 0;
   // SIGINT/SIGTERM: stop after the current increment (all ranks together), or, inside a long
@@ -518,33 +583,6 @@ int main(int argc, char **argv)
   interrupt::arm_hard_stop("fe_stage", root ? 0.3 : 1.5, root);
   if (!root)
     log::set_level(log::Level::error);
-
-  CLI::App app{"fe_stage: FE contact model of a revolute joint with clearance (clearjoint): "
-               "force-penetration curves (study radial, misalignment, hertz, patch), the "
-               "journal's impact (study impact, HHT-alpha dynamics) and its rolling in the "
-               "turning elastoplastic bearing (study rolling).\n"
-               "Exit codes: 0 success, 1 input error, 2 numerical failure, 130/143 interrupted "
-               "by SIGINT/SIGTERM."};
-  CommandLine cl;
-  add_options(app, cl);
-  try
-    {
-      app.parse(argc, argv);
-    }
-  catch (const CLI::ParseError &e)
-    {
-      return app.exit(e) == 0 ? exit_success : exit_input_error;
-    }
-  if (cl.quiet)
-    log::set_level(log::Level::warning);
-  if (cl.verbose && root)
-    log::set_level(log::Level::debug);
-  if (cl.print_defaults)
-    {
-      if (root)
-        std::cout << fe::default_scene_yaml();
-      return exit_success;
-    }
   try
     {
       return run(cl, argc, argv, root);

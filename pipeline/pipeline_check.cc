@@ -3,7 +3,9 @@
 // in a scratch folder outside the output root, so that a bad value stops the run before
 // anything exists under the output root — reported as an input error naming the pipeline key
 // that produced it (a sweep value, an override, a preset key, a law) rather than as a stage
-// failure half-way through the run.
+// failure half-way through the run. The stages' checks run a few at once (StageChecks); a
+// failure among them is reported after the checks of the pipeline file's own keys.
+#include "pipeline/executor_config.h"
 #include "pipeline/pipeline_runner.h"
 #include "pipeline/slurm_executor.h"
 
@@ -190,7 +192,7 @@ namespace clearjoint::pipeline
           origins.push_back({sweep.key, key + ".values[" + std::to_string(v) + "]",
                              sweep.keywords[v].empty() ? nlohmann::json(sweep.values[v])
                                                        : nlohmann::json(sweep.keywords[v])});
-          run_scene_check("fe_stage", file, origins, key + ".scene",
+          add_scene_check("fe_stage", file, origins, key + ".scene",
                           "FE case " + sweep.name + " " + label + " (scene " + sweep.scene + ")");
         }
       }
@@ -212,8 +214,8 @@ namespace clearjoint::pipeline
                                              "--output", scratch_.file("law.json"), "--weighting",
                                              config_.fit_weighting, "--no-plots"};
         fit_args.insert(fit_args.end(), mesh_error.begin(), mesh_error.end());
-        run_stage_check("fit_stage", fit_args, scratch_.file("fit_" + sweep.name + ".log"),
-                        origins, key, "the fit of sweep " + sweep.name);
+        add_stage_check("fit_stage", fit_args, scratch_.file("fit_" + sweep.name + ".log"), origins,
+                        key, "the fit of sweep " + sweep.name);
         if (sweep.values.size() < 2)
           continue;
         std::vector<std::string> family_args = {"--family", sweep.parameter};
@@ -227,9 +229,8 @@ namespace clearjoint::pipeline
                "--weighting", config_.fit_weighting, "--no-plots"})
           family_args.push_back(a);
         family_args.insert(family_args.end(), mesh_error.begin(), mesh_error.end());
-        run_stage_check("fit_stage", family_args,
-                        scratch_.file("family_" + sweep.name + ".log"), origins, key,
-                        "the law family of sweep " + sweep.name);
+        add_stage_check("fit_stage", family_args, scratch_.file("family_" + sweep.name + ".log"),
+                        origins, key, "the law family of sweep " + sweep.name);
       }
     }
 
@@ -239,7 +240,7 @@ namespace clearjoint::pipeline
     {
       const nlohmann::json scene = runner_.impact_scene();
       const std::string file = write_scene("fe_impact.yaml", scene);
-      run_scene_check("fe_stage", file,
+      add_scene_check("fe_stage", file,
                       fe_origins("impact", config_.impact->overrides,
                                  config_.impact->preset_overrides),
                       "impact.scene", "FE impact study (scene " + config_.impact->scene + ")");
@@ -300,7 +301,7 @@ namespace clearjoint::pipeline
       std::vector<Origin> origins = preset_origins("fe");
       for (const auto &[k, val] : d.overrides)
         origins.push_back({k, "impact.deformable.overrides." + k, val});
-      run_scene_check("fe_stage", file, origins, "impact.deformable.scene",
+      add_scene_check("fe_stage", file, origins, "impact.deformable.scene",
                       "FE impact study, deformable journal (scene " + d.scene + ")");
     }
 
@@ -334,7 +335,7 @@ namespace clearjoint::pipeline
       const std::string file = write_scene("fe_rolling.yaml", scene);
       const std::vector<Origin> origins =
         fe_origins("rolling", config_.rolling->overrides, config_.rolling->preset_overrides);
-      run_scene_check("fe_stage", file, origins, "rolling.scene",
+      add_scene_check("fe_stage", file, origins, "rolling.scene",
                       "FE rolling study (scene " + base + ")");
     }
 
@@ -359,10 +360,14 @@ namespace clearjoint::pipeline
         }
         const nlohmann::json scene = compose_scene(config_, m.scene, "mbd", overrides);
         const std::string file = write_scene("mbd_" + m.name + ".yaml", scene);
-        run_scene_check("mbd_stage", file, origins, key + ".scene",
+        add_scene_check("mbd_stage", file, origins, key + ".scene",
                         "MBD run " + m.name + " (scene " + m.scene + ")");
       }
     }
+
+    /// Waits for the stages' checks; the first failure among them, in the order above, is
+    /// thrown (StageChecks). The checks of the pipeline file's own keys throw at once.
+    void finish() { checks_.finish(); }
 
   private:
     /// Writes a generated scene into the scratch folder; returns its path.
@@ -418,19 +423,19 @@ namespace clearjoint::pipeline
               {"--parameter-unit", key + ".parameter.unit", sweep.unit}};
     }
 
-    void run_scene_check(const std::string &stage, const std::string &scene_file,
+    void add_scene_check(const std::string &stage, const std::string &scene_file,
                          const std::vector<Origin> &origins, const std::string &base_key,
-                         const std::string &what) const
+                         const std::string &what)
     {
-      run_stage_check(stage, {scene_file}, scene_file + ".log", origins, base_key, what);
+      add_stage_check(stage, {scene_file}, scene_file + ".log", origins, base_key, what);
     }
 
-    void run_stage_check(const std::string &stage, std::vector<std::string> args,
+    void add_stage_check(const std::string &stage, std::vector<std::string> args,
                          const std::string &log_path, const std::vector<Origin> &origins,
-                         const std::string &base_key, const std::string &what) const
+                         const std::string &base_key, const std::string &what)
     {
-      pipeline::run_stage_check({stage, runner_.stage_executable(stage), src_}, std::move(args),
-                                log_path, origins, base_key, what);
+      checks_.add({stage, runner_.stage_executable(stage), src_}, std::move(args), log_path,
+                  origins, base_key, what);
     }
 
     PipelineRunner &runner_;
@@ -438,6 +443,7 @@ namespace clearjoint::pipeline
     const std::string &src_;
     const Scratch scratch_;
     StandInLaws stand_ins_;
+    StageChecks checks_{machine_cores()};  ///< after scratch_: ended before it is removed
   };
 
   void PipelineRunner::check()
@@ -456,6 +462,7 @@ namespace clearjoint::pipeline
     if (config_.rolling)
       checker.rolling();
     checker.mbd_runs();
+    checker.finish();
     log::info("run_pipeline: checked " + config_.source + ": every generated scene is valid");
   }
 } // namespace clearjoint::pipeline

@@ -3,7 +3,13 @@
 #include "common/atomic_file.h"
 #include "common/document_reader.h"
 #include "common/error.h"
+#include "pipeline/process_groups.h"
 #include "pipeline/task_runner.h"
+
+#include <algorithm>
+#include <cerrno>
+
+#include <signal.h>
 
 #include <sys/wait.h>
 
@@ -47,43 +53,87 @@ namespace clearjoint::pipeline
       const auto e = log.find('\n', p);
       return log.substr(p, e == std::string::npos ? std::string::npos : e - p);
     }
+
+    /// Throws the error a failed check is reported as (the class comment in stage_check.h).
+    [[noreturn]] void report_failure(const StageCheck &check, const int status,
+                                     const std::string &log_path,
+                                     const std::vector<Origin> &origins,
+                                     const std::string &base_key, const std::string &what)
+    {
+      const std::string &stage = check.stage, &src = check.source;
+      std::string log;
+      try
+        {
+          log = read_file(log_path);
+        }
+      catch (...)
+        {}
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != exit_input_error)
+        throw NumericalError(
+          stage + " --check failed on the generated scene of " + what + " (exit status " +
+          std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "): " + error_line(log));
+      const std::string scene_key = dotted(failing_key(error_line(log)));
+      // The last override applied to that key (or to a key above or below it) made it.
+      for (auto it = origins.rbegin(); it != origins.rend(); ++it)
+        if (!scene_key.empty() && related(dotted(it->scene_key), scene_key))
+          throw InputError(src, it->pipeline_key, json_excerpt(it->value),
+                           "a value " + stage + " accepts",
+                           what + ": " + stage + " reports: " + error_line(log));
+      throw InputError(src, base_key, what,
+                       (stage == "fit_stage" ? "a command " : "a scene ") + stage + " accepts",
+                       stage + " reports: " + error_line(log));
+    }
   } // namespace
 
-  void run_stage_check(const StageCheck &check, std::vector<std::string> args,
-                       const std::string &log_path, const std::vector<Origin> &origins,
-                       const std::string &base_key, const std::string &what)
+  StageChecks::StageChecks(const int at_once)
+    : at_once_(static_cast<std::size_t>(std::max(1, at_once)))
+  {}
+
+  StageChecks::~StageChecks()
   {
-    const std::string &stage = check.stage, &src = check.source;
+    for (Pending &p : checks_)
+      if (p.running)
+        {
+          ::kill(p.pid, SIGKILL);
+          wait_for(p);
+        }
+  }
+
+  void StageChecks::wait_for(Pending &p)
+  {
+    while (::waitpid(p.pid, &p.status, 0) < 0)
+      if (errno != EINTR)
+        break;
+    end_group(p.pid);
+    p.running = false;
+  }
+
+  void StageChecks::add(const StageCheck &check, std::vector<std::string> args,
+                        const std::string &log_path, const std::vector<Origin> &origins,
+                        const std::string &base_key, const std::string &what)
+  {
+    if (interrupt_requested())
+      throw NumericalError("interrupted while checking the scenes; nothing was written");
+    // The oldest first: the checks take about as long as each other.
+    while (checks_.size() - oldest_running_ >= at_once_)
+      wait_for(checks_[oldest_running_++]);
     args.insert(args.begin(), check.executable);
     args.push_back("--check");
     args.push_back("-q");
-    const int status = run_process(args, log_path);
+    Pending p{check, log_path, origins, base_key, what};
+    p.pid = spawn_in_own_group(args, log_path);
+    p.running = true;
+    checks_.push_back(std::move(p));
+  }
+
+  void StageChecks::finish()
+  {
+    while (oldest_running_ < checks_.size())
+      wait_for(checks_[oldest_running_++]);
     if (interrupt_requested())
       throw NumericalError("interrupted while checking the scenes; nothing was written");
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
-      return;
-    std::string log;
-    try
-    {
-      log = read_file(log_path);
-    }
-    catch (...)
-    {
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != exit_input_error)
-      throw NumericalError(stage + " --check failed on the generated scene of " + what +
-                           " (exit status " +
-                           std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                           "): " + error_line(log));
-    const std::string scene_key = dotted(failing_key(error_line(log)));
-    // The last override applied to that key (or to a key above or below it) made it.
-    for (auto it = origins.rbegin(); it != origins.rend(); ++it)
-      if (!scene_key.empty() && related(dotted(it->scene_key), scene_key))
-        throw InputError(src, it->pipeline_key, json_excerpt(it->value),
-                         "a value " + stage + " accepts",
-                         what + ": " + stage + " reports: " + error_line(log));
-    throw InputError(src, base_key, what,
-                     (stage == "fit_stage" ? "a command " : "a scene ") + stage + " accepts",
-                     stage + " reports: " + error_line(log));
+    for (const Pending &p : checks_)
+      if (!WIFEXITED(p.status) || WEXITSTATUS(p.status) != 0)
+        report_failure(p.check, p.status, p.log_path, p.origins, p.base_key, p.what);
   }
 } // namespace clearjoint::pipeline

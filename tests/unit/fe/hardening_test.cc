@@ -67,6 +67,30 @@ TEST(FeHardening, CheckValidatesAndWritesNothing)
   EXPECT_EQ(n, 4u) << "only the two scenes and two logs";
 }
 
+// --check and --print-defaults do not start MPI (its start is most of a check's time, and
+// run_pipeline checks every scene before its first task): with an MPI that cannot start (a
+// component that does not exist), they still work, while a run fails.
+TEST(FeHardening, CheckAndPrintDefaultsDoNotStartMpi)
+{
+  test_support::ScratchDir dir("fe_check_no_mpi");
+  test_support::write_text(dir.file("ok.yaml"), scene(3));
+  const std::string exe = "env OMPI_MCA_pml=no_such_component " + std::string(FE_STAGE_EXE);
+  EXPECT_EQ(test_support::run_command(exe + " " + dir.file("ok.yaml") + " --check",
+                                      dir.file("check.log")),
+            0)
+    << test_support::read_text(dir.file("check.log"));
+  EXPECT_NE(test_support::read_text(dir.file("check.log")).find("is a valid scene"),
+            std::string::npos);
+  EXPECT_EQ(test_support::run_command(exe + " --print-defaults", dir.file("defaults.log")), 0);
+  EXPECT_NE(test_support::read_text(dir.file("defaults.log")).find("schema: clearjoint.fe/1"),
+            std::string::npos);
+  // The same environment does stop a run: the check above did not pass by accident.
+  EXPECT_NE(test_support::run_command(exe + " " + dir.file("ok.yaml") + " -o " + dir.file("out") +
+                                        " --no-plots --no-fields",
+                                      dir.file("run.log")),
+            0);
+}
+
 TEST(FeHardening, InterruptsLeaveNothingUnderTheFinalNameAndTheOldOutputIntact)
 {
   test_support::ScratchDir dir("fe_interrupt");
