@@ -9,6 +9,7 @@
 #include <deal.II/base/revision.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <utility>
@@ -49,8 +50,28 @@ namespace clearjoint::fe
     return model.run();
   }
 
+  namespace
+  {
+    /// A process that no launcher started (no mpirun, srun) is a one-rank run that talks to no
+    /// other process. Open MPI's default start of such a "singleton" spawns a helper daemon
+    /// and probes every transport, ~0.55 s of a ~1.15 s fe_stage start-up on the 2-core
+    /// machine (docs/benchmarks.md "The pipeline's start"); the isolated singleton with the
+    /// self transport skips both. A variable the user has set is kept; other MPIs ignore them.
+    void prefer_isolated_singleton()
+    {
+      for (const char *launcher_variable :
+           {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+        if (std::getenv(launcher_variable))
+          return;
+      ::setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+      ::setenv("OMPI_MCA_pml", "ob1", 0);
+      ::setenv("OMPI_MCA_btl", "self", 0);
+    }
+  }  // namespace
+
   std::shared_ptr<void> make_runtime(int &argc, char **&argv)
   {
+    prefer_isolated_singleton();
     return std::make_shared<dealii::Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
   }
 
