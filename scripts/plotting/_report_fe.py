@@ -5,6 +5,9 @@ contact-field checks), the law table, and every case's own plots folded away."""
 import glob
 import math
 import os
+import subprocess
+import sys
+import tempfile
 
 import matplotlib.pyplot as plt
 
@@ -675,6 +678,88 @@ def yield_section(fs, warnings):
             "".join(rows) + "</table>")
 
 
+# The VTK pictures: `plot.py fields`, a process of ~2-3 s each. start_pictures() starts every
+# picture the report will show when it begins, so that they render beside each other and beside
+# the report's own work (~5 s of a ~20 s report on 2 cores); each section then waits for its
+# own (render_picture). {png: (process, its stderr in a temporary file)}
+_STARTED_PICTURES = {}
+PLOT_PY = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plot.py")
+
+
+def _start_picture(png, args):
+    os.makedirs(os.path.dirname(png), exist_ok=True)
+    err = tempfile.TemporaryFile(mode="w+")  # not a pipe: a chatty VTK cannot block on it
+    return subprocess.Popen([sys.executable, PLOT_PY, "fields"] + args,
+                            stdout=subprocess.DEVNULL, stderr=err, text=True), err
+
+
+def render_picture(png, args):
+    """Waits for the picture start_pictures() started for `png`, else renders it now. Returns
+    (written, the renderer's stderr)."""
+    proc, err = _STARTED_PICTURES.pop(png, None) or _start_picture(png, args)
+    with err:
+        proc.wait()
+        err.seek(0)
+        text = err.read()
+    return proc.returncode == 0 and os.path.exists(png), text
+
+
+def field_picture(fs, run_dir, case, man):
+    """The picture of the sweep's drawn case: (png, plot.py fields arguments), the arguments
+    None when the manifest names no bore radius (R_B)."""
+    png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fields.png")
+    R_B = get(man, "extra", "scene", "geometry", "R_B")
+    if not R_B:
+        return png, None
+    label = case_label(fs.sweep, case)
+    return png, [case["fe_dir"], "--output", png, "--bore-radius", repr(R_B),
+                 "--yield-stress", repr(value_of(get(man, "extra", "yield_check", "yield_stress"))
+                                        or scene_yield_stress(man)),
+                 # VTK's default font has no Greek letters
+                 "--title", f"{fs.sweep['name']}: "
+                            f"{label.replace('θ', 'theta').replace('°', ' deg')}"]
+
+
+def fig7_case(fs, theta):
+    """(case, manifest) of the misalignment sweep at θ = theta [deg], or None."""
+    pick = [(c, m) for c, _, m in fs.cases
+            if abs(shown(c["value"], fs.sweep["unit"])[0] - theta) < 1e-9]
+    return pick[0] if pick else None
+
+
+def fig7_picture(fs, run_dir, case, man, theta, panel):
+    """The side cut of the paper's Fig. 7 (panel a or b) at θ = theta: (png, arguments), the
+    arguments None without R_B."""
+    png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fig7{panel}.png")
+    R_B = get(man, "extra", "scene", "geometry", "R_B")
+    if not R_B:
+        return png, None
+    ys = value_of(get(man, "extra", "yield_check", "yield_stress")) or scene_yield_stress(man)
+    return png, [case["fe_dir"], "--cut", "--output", png, "--bore-radius", repr(R_B),
+                 "--yield-stress", repr(ys),
+                 "--title", f"{fs.sweep['name']}: theta = {theta:g} deg (paper Fig. 7{panel})"]
+
+
+def start_pictures(sweeps, run_dir):
+    """Starts the pictures sweep_section() will show for these sweeps (pipeline_summary.json's
+    `sweeps`): each sweep's drawn case and, over θ, the two Fig. 7 cuts."""
+    from plotting import fields
+    for sweep in sweeps:
+        fs = FeSweep(sweep)
+        jobs = []
+        pick = picture_case(fs)
+        if pick:
+            jobs.append(field_picture(fs, run_dir, pick[0], pick[2]))
+        if sweep["parameter"] == "theta":
+            for theta, panel in FIG7_THETAS:
+                c = fig7_case(fs, theta)
+                if c and fields.last_field_file(c[0]["fe_dir"]) is not None:
+                    jobs.append(fig7_picture(fs, run_dir, c[0], c[1], theta, panel))
+        for png, args in jobs:
+            if args and png not in _STARTED_PICTURES:
+                _STARTED_PICTURES[png] = _start_picture(png, args)
+
+
 def pictures_and_checks(fs, run_dir, warnings):
     pick = picture_case(fs)
     if not pick:
@@ -696,25 +781,12 @@ def pictures_and_checks(fs, run_dir, warnings):
             stick_code = int(k)
     stats = cached_field_stats(case, man, warnings, fs.anchor, stick_code)
     out = []
-    R_B = get(man, "extra", "scene", "geometry", "R_B")
-    png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fields.png")
-    os.makedirs(os.path.dirname(png), exist_ok=True)
+    png, args = field_picture(fs, run_dir, case, man)
     rendered = False
-    if R_B:
-        import subprocess
-        import sys
-        plot_py = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plot.py")
-        r = subprocess.run([sys.executable, plot_py, "fields", case["fe_dir"], "--output", png,
-                            "--bore-radius", repr(R_B),
-                            "--yield-stress", repr(value_of(get(man, "extra", "yield_check",
-                                                                "yield_stress")) or
-                                                   scene_yield_stress(man)),
-                            # VTK's default font has no Greek letters
-                            "--title", f"{fs.sweep['name']}: {label.replace('θ', 'theta').replace('°', ' deg')}"],
-                           capture_output=True, text=True)
-        rendered = r.returncode == 0 and os.path.exists(png)
+    if args:
+        rendered, err = render_picture(png, args)
         if not rendered:
-            warnings.add(f"pictures, {label}", "not rendered: " + esc((r.stderr or "").strip()[-300:]),
+            warnings.add(f"pictures, {label}", "not rendered: " + esc(err.strip()[-300:]),
                          fs.anchor)
     else:
         warnings.add(f"pictures, {label}", "not rendered: the FE manifest's scene names no "
@@ -767,34 +839,23 @@ def fig7_cuts(fs, run_dir, warnings):
     """The misalignment sweep's counterpart of the paper's Fig. 7: for θ = 1° and 2.5° (the
     cases at those values, when they have fields), the radial normal stress beside von Mises on
     the plane x = 0 (`plot.py fields --cut`), written to pictures/<sweep>_fig7<a|b>.png."""
-    import subprocess
-    import sys
     from plotting import fields
-    plot_py = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plot.py")
     out = []
     for theta, panel in FIG7_THETAS:
-        pick = [(c, m) for c, _, m in fs.cases
-                if abs(shown(c["value"], fs.sweep["unit"])[0] - theta) < 1e-9]
+        pick = fig7_case(fs, theta)
         if not pick:
             out.append(f"<p>Fig. 7{panel} (θ = {theta:g}°): no case at this θ in the sweep.</p>")
             continue
-        case, man = pick[0]
+        case, man = pick
         label = case_label(fs.sweep, case)
         if fields.last_field_file(case["fe_dir"]) is None:
             out.append(f"<p>Fig. 7{panel} ({esc(label)}): the case was run without fields.</p>")
             continue
-        R_B = get(man, "extra", "scene", "geometry", "R_B")
-        png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fig7{panel}.png")
-        os.makedirs(os.path.dirname(png), exist_ok=True)
-        ys = value_of(get(man, "extra", "yield_check", "yield_stress")) or scene_yield_stress(man)
-        r = subprocess.run([sys.executable, plot_py, "fields", case["fe_dir"], "--cut",
-                            "--output", png, "--bore-radius", repr(R_B or 0.0),
-                            "--yield-stress", repr(ys),
-                            "--title", f"{fs.sweep['name']}: theta = {theta:g} deg (paper Fig. 7{panel})"],
-                           capture_output=True, text=True) if R_B else None
-        if r is None or r.returncode != 0 or not os.path.exists(png):
-            why = ("the FE manifest's scene names no geometry.R_B" if r is None
-                   else (r.stderr or "").strip()[-300:])
+        png, args = fig7_picture(fs, run_dir, case, man, theta, panel)
+        rendered, err = render_picture(png, args) if args else (False, "")
+        if not rendered:
+            why = ("the FE manifest's scene names no geometry.R_B" if not args
+                   else err.strip()[-300:])
             warnings.add(f"pictures, Fig. 7{panel}", "not rendered: " + esc(why), fs.anchor)
             continue
         loading = get(man, "extra", "scene", "loading", "journal", default="?")

@@ -20,7 +20,8 @@ import os
 from plotting import _paper
 from plotting._report_common import Warnings, esc, get, load, load_or_none, value_of
 from plotting._report_fe import (case_label, f_ref_interval, largest_own_estimate, mesh_error,
-                                 own_estimate_words, sweep_section, trend_finding)
+                                 own_estimate_words, start_pictures, sweep_section,
+                                 trend_finding)
 from plotting._report_impact import both_journals_html, impact_headline, impact_section
 from plotting._report_mbd import headline_table, mbd_section
 from plotting._report_rolling import rolling_headline, rolling_section
@@ -389,6 +390,7 @@ def main(argv):
     base = os.path.dirname(os.path.abspath(a.output))
     os.makedirs(base, exist_ok=True)
     warnings = Warnings()
+    start_pictures(summary_sweeps(summary), base)
     sweep_html, sweeps = [], []
     for st in summary_sweeps(summary):
         html_, fs = sweep_section(st, base, warnings,

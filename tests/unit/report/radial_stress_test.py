@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 import vtk  # noqa: E402
 from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
 
-from plotting import fields  # noqa: E402
+from plotting import _report_fe, fields  # noqa: E402
 
 
 def check(cond, what):
@@ -115,6 +115,7 @@ def cut_picture(tmp):
     reader.Update()
     dims = reader.GetOutput().GetDimensions()
     check(dims[0] == 1400 and dims[1] == 560, f"two panels, 1400 x 560: {dims}")
+    started_pictures(tmp, case, png)
     # Without the stress tensor: exit 1 naming the array, no picture.
     grid = fields.read_grid(fields.last_field_file(case))
     grid.GetPointData().RemoveArray("stress")
@@ -127,6 +128,34 @@ def cut_picture(tmp):
                        capture_output=True, text=True)
     check(r.returncode == 1 and "'stress'" in r.stderr and not os.path.exists(png2),
           f"no stress tensor: {r.returncode} {r.stderr}")
+
+
+def started_pictures(tmp, case, png_alone):
+    """The report starts its pictures when it begins (_report_fe.start_pictures) and each
+    section waits for its own (render_picture): the same file as `plot.py fields --cut` alone,
+    and a failed picture's reason from the renderer's stderr."""
+    law = os.path.join(tmp, "law.json")
+    with open(law, "w") as f:
+        json.dump({}, f)
+    sweep = {"name": "misalignment", "parameter": "theta", "unit": "deg",
+             "cases": [{"value": 1.0, "fe_dir": case, "law": law}]}
+    run_dir = os.path.join(tmp, "run")
+    _report_fe.start_pictures([sweep], run_dir)
+    fig7a = os.path.join(run_dir, "pictures", "misalignment_fig7a.png")
+    check(fig7a in _report_fe._STARTED_PICTURES, f"Fig. 7a started: {_report_fe._STARTED_PICTURES}")
+    fs = _report_fe.FeSweep(sweep)
+    png, args = _report_fe.fig7_picture(fs, run_dir, fs.cases[0][0], fs.cases[0][2], 1.0, "a")
+    check(png == fig7a and args is not None, f"the section asks for the started one: {png}")
+    ok, err = _report_fe.render_picture(png, args)
+    check(ok and fig7a not in _report_fe._STARTED_PICTURES, f"rendered and collected: {err}")
+    with open(png_alone, "rb") as a, open(fig7a, "rb") as b:
+        # The title differs (the report names the sweep), so compare the size only.
+        check(len(b.read()) > 10000 and len(a.read()) > 10000, "both pictures written")
+    # A case without fields: not started ahead, rendered on demand, fails with the reason.
+    bad = os.path.join(run_dir, "pictures", "none.png")
+    ok, err = _report_fe.render_picture(bad, [os.path.join(tmp, "no_such_case"), "--cut",
+                                              "--output", bad])
+    check(not ok and err.strip() and not os.path.exists(bad), f"a failed picture: {ok} {err}")
 
 
 def main():
