@@ -472,9 +472,10 @@ namespace clearjoint::pipeline
       const nlohmann::json band_json = compose_scene(config_, m.scene, "mbd", band_overrides);
       const std::string scene_file =
         write_scene(band_json, m.scene, "mbd_" + m.name + "_" + variant.name);
-      band.args = {scene_file, "--output", "{out}"};
-      if (!options_.plots)
-        band.args.push_back("--no-plots");
+      // Never the per-run plots: the report draws the band from the variants' time series and
+      // shows no variant's own pictures (seven PNGs a variant, ~2 s of CPU each time; six
+      // variants in the default pipeline). `plot.py mbd DIR` draws them on demand.
+      band.args = {scene_file, "--output", "{out}", "--no-plots"};
       band.input_files = {scene_file};
       band.output_dir = run + "/mbd/" + m.name + "_band/" + variant.name;
       add(band, "mbd", {fit_node}, 1, band_json);

@@ -820,6 +820,18 @@ TEST(RunPipeline, ReportLeadsWithTheAnswerFromStandInStages)
   const std::string log = test_support::read_text(dir.file("log.txt"));
   ASSERT_EQ(rc, 0) << log;
   const fs::path run = dir.file("out/r");
+  // The band variants draw no plots of their own (the report shows none of them); the runs
+  // the report shows do.
+  EXPECT_TRUE(fs::exists(run / "mbd/fe_law/plots/energy.png"));
+  for (const char *variant : {"n_high", "K_low", "mesh_high"})
+    {
+      const fs::path band = run / "mbd/fe_law_band" / variant;
+      EXPECT_TRUE(fs::exists(band / "timeseries.csv")) << band;
+      EXPECT_FALSE(fs::exists(band / "plots")) << band;
+      EXPECT_NE(test_support::read_text((band / "command.txt").string()).find("--no-plots"),
+                std::string::npos)
+        << band;
+    }
   const std::string report = test_support::read_text((run / "report.html").string());
   const auto at = [&](const std::string &what) {
     const auto p = report.find(what);
