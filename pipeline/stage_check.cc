@@ -103,7 +103,12 @@ namespace clearjoint::pipeline
   {
     while (::waitpid(p.pid, &p.status, 0) < 0)
       if (errno != EINTR)
-        break;
+        {
+          // not ours to reap (cannot happen unless something else waited for it): a failure
+          // with the shell's "cannot run" status, never a pass
+          p.status = 127 << 8;
+          break;
+        }
     end_group(p.pid);
     p.running = false;
   }
