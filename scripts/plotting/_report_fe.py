@@ -704,20 +704,27 @@ def render_picture(png, args):
     return proc.returncode == 0 and os.path.exists(png), text
 
 
+def _picture_scales(man):
+    """`plot.py fields`'s --bore-radius and --yield-stress from a case's FE manifest, None when
+    it names no bore radius (R_B)."""
+    R_B = get(man, "extra", "scene", "geometry", "R_B")
+    if not R_B:
+        return None
+    ys = value_of(get(man, "extra", "yield_check", "yield_stress")) or scene_yield_stress(man)
+    return ["--bore-radius", repr(R_B), "--yield-stress", repr(ys)]
+
+
 def field_picture(fs, run_dir, case, man):
     """The picture of the sweep's drawn case: (png, plot.py fields arguments), the arguments
     None when the manifest names no bore radius (R_B)."""
     png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fields.png")
-    R_B = get(man, "extra", "scene", "geometry", "R_B")
-    if not R_B:
+    scales = _picture_scales(man)
+    if scales is None:
         return png, None
     label = case_label(fs.sweep, case)
-    return png, [case["fe_dir"], "--output", png, "--bore-radius", repr(R_B),
-                 "--yield-stress", repr(value_of(get(man, "extra", "yield_check", "yield_stress"))
-                                        or scene_yield_stress(man)),
-                 # VTK's default font has no Greek letters
-                 "--title", f"{fs.sweep['name']}: "
-                            f"{label.replace('θ', 'theta').replace('°', ' deg')}"]
+    return png, [case["fe_dir"], "--output", png] + scales + [
+        # VTK's default font has no Greek letters
+        "--title", f"{fs.sweep['name']}: {label.replace('θ', 'theta').replace('°', ' deg')}"]
 
 
 def fig7_case(fs, theta):
@@ -731,13 +738,11 @@ def fig7_picture(fs, run_dir, case, man, theta, panel):
     """The side cut of the paper's Fig. 7 (panel a or b) at θ = theta: (png, arguments), the
     arguments None without R_B."""
     png = os.path.join(run_dir, "pictures", f"{fs.sweep['name']}_fig7{panel}.png")
-    R_B = get(man, "extra", "scene", "geometry", "R_B")
-    if not R_B:
+    scales = _picture_scales(man)
+    if scales is None:
         return png, None
-    ys = value_of(get(man, "extra", "yield_check", "yield_stress")) or scene_yield_stress(man)
-    return png, [case["fe_dir"], "--cut", "--output", png, "--bore-radius", repr(R_B),
-                 "--yield-stress", repr(ys),
-                 "--title", f"{fs.sweep['name']}: theta = {theta:g} deg (paper Fig. 7{panel})"]
+    return png, [case["fe_dir"], "--cut", "--output", png] + scales + [
+        "--title", f"{fs.sweep['name']}: theta = {theta:g} deg (paper Fig. 7{panel})"]
 
 
 def start_pictures(sweeps, run_dir):
