@@ -55,19 +55,26 @@ namespace clearjoint::fe
     /// A process that no launcher started (no mpirun, srun) is a one-rank run that talks to no
     /// other process. Open MPI's default start of such a "singleton" spawns a helper daemon
     /// and probes every transport, ~0.55 s of a ~1.15 s fe_stage start-up on the 2-core
-    /// machine (docs/benchmarks.md "The pipeline's start"); the isolated singleton with the
-    /// self transport skips both. A variable the user has set is kept; other MPIs ignore them.
+    /// machine (docs/benchmarks.md "The pipeline's start and its report"); the isolated
+    /// singleton with the self transport skips both. A variable the user has set is kept;
+    /// other MPIs ignore them.
     void prefer_isolated_singleton()
     {
-      for (const char *launcher_variable :
-           {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
-        if (std::getenv(launcher_variable))
-          return;
+      if (launcher_rank().has_value())
+        return;
       ::setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
       ::setenv("OMPI_MCA_pml", "ob1", 0);
       ::setenv("OMPI_MCA_btl", "self", 0);
     }
   }  // namespace
+
+  std::optional<int> launcher_rank()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+      if (const char *value = std::getenv(name))
+        return std::atoi(value);
+    return std::nullopt;
+  }
 
   std::shared_ptr<void> make_runtime(int &argc, char **&argv)
   {

@@ -10,6 +10,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -275,6 +276,10 @@ namespace clearjoint::fe
   /// Initialises MPI, p4est and deal.II's thread settings (one thread per rank: the ranks share
   /// two cores) for the lifetime of the returned object. Call first in main().
   std::shared_ptr<void> make_runtime(int &argc, char **&argv);
+
+  /// The rank a launcher (mpirun, or srun and other PMI launchers) started this process as,
+  /// read from the environment, so before MPI starts; nullopt when no launcher started it.
+  std::optional<int> launcher_rank();
 
   /// deal.II, Trilinos, p4est versions for the manifest.
   std::vector<std::pair<std::string, std::string>> fe_library_versions();

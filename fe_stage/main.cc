@@ -45,7 +45,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -477,21 +476,11 @@ namespace
     return complete;
   }
 
-  /// The rank this process was started as by mpirun (Open MPI, or a PMI launcher), 0 without
-  /// one; read from the environment, as MPI has not started.
-  int launcher_rank()
-  {
-    for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
-      if (const char *value = std::getenv(name))
-        return std::atoi(value);
-    return 0;
-  }
-
   /// --print-defaults and --check: nothing parallel, so MPI is not started (under mpirun the
   /// ranks other than 0 stay silent). Returns the exit code.
   int without_mpi(CommandLine &cl)
   {
-    const bool root = launcher_rank() == 0;
+    const bool root = fe::launcher_rank().value_or(0) == 0;
     if (!root)
       log::set_level(log::Level::error);
     try
