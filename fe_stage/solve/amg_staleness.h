@@ -52,6 +52,23 @@ namespace clearjoint::fe
     /// The iterations lost to staleness since the build exceed one build's cost.
     bool stale() const { return lost_ > rebuild_after_lost_iterations; }
 
+    /// Within a solve: after `iterations` that brought the residual from `initial_residual` to
+    /// `residual`, the iterations lost so far (this solve's and the earlier ones') exceed one
+    /// build's cost, so that going on with this AMG costs more than a fresh one from here. A
+    /// solve whose matrix moved far from the AMG's (the first contact rows after a solve
+    /// without them: 194 iterations where 35 are usual, docs/benchmarks.md "Where a standard
+    /// sweep case spends its time") is then stopped and continued from its iterate with a
+    /// fresh AMG, instead of being judged only after it. Never before the rate is set.
+    bool stale_within(const unsigned int iterations, const double initial_residual,
+                      const double residual) const
+    {
+      if (fresh_rate_ == 0.0 || !(initial_residual > 0.0) || !(residual > 0.0))
+        return false;
+      const double decades = std::max(0.0, std::log10(initial_residual / residual));
+      const double lost_now = std::max(0.0, iterations - fresh_rate_ * decades);
+      return lost_ + lost_now > rebuild_after_lost_iterations;
+    }
+
     /// [iterations] lost to staleness since the build.
     double lost_iterations() const { return lost_; }
 

@@ -43,6 +43,35 @@ namespace clearjoint::fe::detail
         }
       return 0.0;
     }
+
+    /// The Krylov solve's control with the AMG's staleness (solve/amg_staleness.h): given the
+    /// staleness record, it stops the solve as failed once the AMG has lost more iterations
+    /// than a build costs, so that the caller builds a fresh one and goes on from the iterate.
+    class StaleAmgControl : public SolverControl
+    {
+    public:
+      StaleAmgControl(const unsigned int max_steps, const double tolerance,
+                      const AmgStaleness *staleness)
+        : SolverControl(max_steps, tolerance, false, false)
+        , staleness_(staleness)
+      {}
+      State check(const unsigned int step, const double value) override
+      {
+        const State state = SolverControl::check(step, value);
+        if (state == iterate && staleness_ != nullptr &&
+            staleness_->stale_within(step, initial_value(), value))
+          {
+            stopped_as_stale_ = true;
+            lcheck = failure;
+          }
+        return lcheck;
+      }
+      bool stopped_as_stale() const { return stopped_as_stale_; }
+
+    private:
+      const AmgStaleness *staleness_;
+      bool stopped_as_stale_ = false;
+    };
   }  // namespace
 
   void SystemSolver::configure(const bool direct, const unsigned int max_iterations)
@@ -138,11 +167,15 @@ namespace clearjoint::fe::detail
       return solve_direct(A, x, b, relative_tolerance * b_norm);
     if (amg_ && staleness_.stale())
       amg_.reset();  // the iterations it has lost since its build outweigh a new one
+    unsigned int spent = 0;  // Krylov iterations of a first attempt that was stopped
     for (unsigned int attempt = 0; attempt < 2; ++attempt)
       {
         if (!amg_)
           build_amg(A, dofs, mapping);
-        SolverControl control(max_iterations_, relative_tolerance * b_norm);
+        // the first attempt stops once its AMG has lost a build's worth of iterations; the
+        // second, with a fresh AMG from the first's iterate (x), runs to the end
+        StaleAmgControl control(max_iterations_, relative_tolerance * b_norm,
+                                attempt == 0 ? &staleness_ : nullptr);
         SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
         SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
           control,  // right preconditioning: the tolerance applies to the true residual
@@ -156,9 +189,14 @@ namespace clearjoint::fe::detail
           }
         catch (const SolverControl::NoConvergence &e)
           {
+            spent += e.last_step;
             if (attempt == 0)
               {
-                amg_.reset();  // the reused preconditioner may be stale: rebuild once
+                // stopped as stale, or out of iterations with a reused preconditioner that
+                // may be stale: rebuild once and go on from the iterate reached
+                if (control.stopped_as_stale())
+                  ++n_stale_stops_;
+                amg_.reset();
                 continue;
               }
             const std::string failure = std::string(nonsymmetric ? "GMRES" : "CG") +
@@ -186,11 +224,11 @@ namespace clearjoint::fe::detail
                            " GB free) instead, here and wherever the iterative solver fails "
                            "again");
             direct_solver_.solve(A, x, b);
-            return e.last_step;  // (the Krylov iterations spent)
+            return spent;  // (the Krylov iterations spent)
           }
         const unsigned int its = control.last_step();
         staleness_.record(its, control.initial_value(), control.last_value());
-        return its;
+        return spent + its;
       }
     throw StepFailure{"linear solver failed"};
   }
@@ -199,7 +237,10 @@ namespace clearjoint::fe::detail
   {
     if (!direct_)
       return "AMG setup " + log::format_duration(t_amg_) + " in " + std::to_string(n_amg_builds_) +
-             " builds";
+             " builds" +
+             (n_stale_stops_ > 0 ?
+                ", " + std::to_string(n_stale_stops_) + " of them within a solve gone stale" :
+                std::string());
     return "MUMPS: " + std::to_string(direct_solver_.n_factorizations()) + " factorizations, " +
            std::to_string(n_same_matrix_solves_) + " solves of the factored matrix, " +
            std::to_string(n_gmres_on_kept_factors_) +

@@ -62,3 +62,33 @@ TEST(AmgStaleness, ASolveThatReducesNothingSaysNothing)
   s.record(40, 1.0, 1e-10);
   EXPECT_DOUBLE_EQ(s.lost_iterations(), 0.0);
 }
+
+TEST(AmgStaleness, ASolveIsStoppedOnceItHasLostABuildNotBefore)
+{
+  AmgStaleness s;
+  // before any solve has set the rate, nothing is stale, however long the solve
+  EXPECT_FALSE(s.stale_within(1000, 1.0, 0.5));
+  s.record(20, 1.0, 1e-6);  // 20 over 6 decades: 10/3 per decade
+  // 10 iterations for one decade: 6.67 lost, fewer than a build (10)
+  EXPECT_FALSE(s.stale_within(10, 1.0, 0.1));
+  // 20 iterations for one decade: 16.7 lost
+  EXPECT_TRUE(s.stale_within(20, 1.0, 0.1));
+  // a residual that grew counts as no progress: 11 iterations lost
+  EXPECT_TRUE(s.stale_within(11, 1.0, 2.0));
+  // at the fresh rate a solve goes on whatever its length
+  EXPECT_FALSE(s.stale_within(40, 1.0, 1e-12));
+}
+
+TEST(AmgStaleness, IterationsLostInEarlierSolvesCountWithinTheNext)
+{
+  AmgStaleness s;
+  s.record(40, 1.0, 1e-10);  // 4 per decade
+  s.record(46, 1.0, 1e-10);  // 6 lost
+  EXPECT_FALSE(s.stale());
+  // 4 more lost in this solve would not stop it alone, but with the 6 before it they are a
+  // build's worth (10), and one more iteration tips it
+  EXPECT_FALSE(s.stale_within(12, 1.0, 0.01));  // 4 lost: 10 in all, not more
+  EXPECT_TRUE(s.stale_within(13, 1.0, 0.01));   // 5 lost: 11
+  s.built();                                     // a fresh AMG: its first solve sets the rate
+  EXPECT_FALSE(s.stale_within(1000, 1.0, 0.5));
+}
