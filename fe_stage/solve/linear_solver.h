@@ -77,7 +77,7 @@ namespace clearjoint::fe::detail
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
     std::unique_ptr<Epetra_MultiVector> null_space_;  // the AMG reads it: kept alive with it
     AmgStaleness staleness_;                          // when the AMG is worth building again
-    unsigned int n_stale_stops_ = 0;                  // solves stopped and continued with a fresh AMG
+    unsigned int n_stale_stops_ = 0;                  // solves stopped, continued with a fresh AMG
     unsigned int n_amg_builds_ = 0;
     double t_amg_ = 0.0;
     unsigned int n_direct_fallbacks_ = 0;

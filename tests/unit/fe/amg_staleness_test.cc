@@ -89,6 +89,6 @@ TEST(AmgStaleness, IterationsLostInEarlierSolvesCountWithinTheNext)
   // build's worth (10), and one more iteration tips it
   EXPECT_FALSE(s.stale_within(12, 1.0, 0.01));  // 4 lost: 10 in all, not more
   EXPECT_TRUE(s.stale_within(13, 1.0, 0.01));   // 5 lost: 11
-  s.built();                                     // a fresh AMG: its first solve sets the rate
+  s.built();                                    // a fresh AMG: its first solve sets the rate
   EXPECT_FALSE(s.stale_within(1000, 1.0, 0.5));
 }
