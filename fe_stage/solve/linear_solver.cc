@@ -1,5 +1,6 @@
 // Linear solves: MUMPS below a size, else CG (GMRES when friction makes A non-symmetric) with ML AMG
-// on the six rigid-body modes, built again once its staleness has cost more than a build.
+// on the six rigid-body modes, built again once its staleness has cost more than a build
+// (checked within a solve too: a solve gone stale goes on from its iterate with a fresh AMG).
 #include "fe_stage/solve/linear_solver.h"
 
 #include "fe_stage/core/scoped_timer.h"
